@@ -1,0 +1,71 @@
+"""The exceptions of `supportive`: one root, one subclass per kind of trouble.
+
+Every message names where the problem is (file, line, field) and what was expected, so the CLI can print it
+as one line without a traceback.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = [
+    "DatasetError",
+    "ExportError",
+    "LearningError",
+    "SupportiveError",
+    "TaskFileError",
+    "TaskGraphError",
+]
+
+
+class SupportiveError(Exception):
+    """Root of every error `supportive` raises on purpose."""
+
+
+class TaskFileError(SupportiveError, ValueError):
+    """A task file (YAML, JSON or CSV) is unreadable or breaks the schema.
+
+    Args:
+        problem: What is wrong and, where it helps, what was expected.
+        path: The file, when the text came from one.
+        place: The field, as a path like ``demonstrations[1].steps[3]``.
+        line: The 1-based line of the problem, when known.
+    """
+
+    def __init__(
+        self,
+        problem: str,
+        *,
+        path: str | Path | None = None,
+        place: str | None = None,
+        line: int | None = None,
+    ) -> None:
+        self.problem = problem
+        self.path = None if path is None else str(path)
+        self.place = place
+        self.line = line
+        super().__init__(self._render())
+
+    def _render(self) -> str:
+        where = self.path or "<text>"
+        if self.line is not None:
+            where += f":{self.line}"
+        if self.place:
+            where += f": {self.place}"
+        return f"{where}: {self.problem}"
+
+
+class TaskGraphError(SupportiveError, ValueError):
+    """Demonstrations that cannot form a task graph (for example, explicit states that contradict each other)."""
+
+
+class LearningError(SupportiveError, ValueError):
+    """A learning algorithm was given input it cannot work with."""
+
+
+class ExportError(SupportiveError):
+    """An export (HDDL, DOT, …) failed or needs an optional dependency that is not installed."""
+
+
+class DatasetError(SupportiveError, ValueError):
+    """A dataset on disk is missing or malformed."""

@@ -1,0 +1,18 @@
+"""Learning algorithms over the model: Algorithm 1 (CTG), Algorithm 2 (CC-HTN), Algorithms 3–4 (ambiguity)."""
+
+from supportive.learning.ambiguity import resolve_ambiguity
+from supportive.learning.compaction import Compaction
+from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
+from supportive.learning.coverage import admitted_path_count
+from supportive.learning.learner import HTNLearner, LearningStats, learn
+
+__all__ = [
+    "Compaction",
+    "HTNLearner",
+    "LearningStats",
+    "admitted_path_count",
+    "conjugate_task_graph",
+    "learn",
+    "resolve_ambiguity",
+    "update_conjugate",
+]

@@ -1,0 +1,50 @@
+"""Names for learned subtasks: the ground truth's name when the leaves match one, else a short description."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Leaf, Node
+
+__all__ = ["known_names", "named"]
+
+
+def known_names(structure: Node | None) -> dict[frozenset[Leaf], str]:
+    """Leaf set -> name, for every named node of a ground-truth structure."""
+    names: dict[frozenset[Leaf], str] = {}
+    if structure is None or isinstance(structure, ActionNode):
+        return names
+    if structure.name:
+        names[frozenset(structure.leaves)] = structure.name
+    for child in structure.children:
+        names.update(known_names(child))
+    return names
+
+
+def named(node: Node, known: Mapping[frozenset[Leaf], str] | None = None) -> Node:
+    """A copy of ``node`` in which every chain and clique has a name.
+
+    >>> named(ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))).name
+    'knife → {carrots, celery}'
+    """
+    known = known or {}
+    if isinstance(node, ActionNode):
+        return node
+    children = tuple(named(child, known) for child in node.children)
+    name = node.name or known.get(frozenset(node.leaves)) or _describe(node.kind, children)
+    return ChainNode(children, name) if isinstance(node, ChainNode) else CliqueNode(children, name)
+
+
+def _short(node: Node) -> str:
+    if isinstance(node, ActionNode):
+        return node.label
+    name = node.name or ""
+    return name if len(name) <= 28 else f"({name[:25]}…)"
+
+
+def _describe(kind: str, children: tuple[Node, ...]) -> str:
+    parts = [_short(child) for child in children]
+    if kind == "chain":
+        return " → ".join(parts) if len(parts) <= 3 else f"{parts[0]} → … → {parts[-1]}"
+    shown = ", ".join(parts[:3])
+    return "{" + (shown if len(parts) <= 3 else f"{shown}, +{len(parts) - 3}") + "}"

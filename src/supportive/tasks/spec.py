@@ -1,0 +1,104 @@
+"""What a task file holds: actions, an optional ground-truth structure, demonstrations."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+
+from supportive.tasks.htn import Node, leaf_actions
+
+__all__ = ["Action", "Demonstration", "Step", "TaskSpec"]
+
+
+@dataclass(frozen=True)
+class Action:
+    """A primitive skill (an option, §2.0.0.2): an id used everywhere and a text for people."""
+
+    id: str
+    text: str | None = None
+
+    @property
+    def label(self) -> str:
+        """The text when there is one, else the id."""
+        return self.text or self.id
+
+
+@dataclass(frozen=True)
+class Step:
+    """One performed action, with optional timing and the environment state it produced.
+
+    ``state`` is the set of fluents true after the step, when the file gives explicit states; otherwise states
+    are derived from the completed actions (commutativity assumption, §2.1.2).
+    """
+
+    action: str
+    start: float | None = None
+    end: float | None = None
+    state: frozenset[str] | None = None
+
+
+@dataclass(frozen=True)
+class Demonstration:
+    """One successful execution of the task (a path through the environment-space graph, §2.1.1)."""
+
+    steps: tuple[Step, ...]
+    id: str = ""
+    agent: str | None = None
+    initial_state: frozenset[str] | None = None
+
+    @property
+    def actions(self) -> tuple[str, ...]:
+        """The action ids in the order performed."""
+        return tuple(step.action for step in self.steps)
+
+    @property
+    def has_states(self) -> bool:
+        """True when the steps carry explicit environment states."""
+        return any(step.state is not None for step in self.steps)
+
+    @classmethod
+    def of(cls, actions: Sequence[str], id: str = "", agent: str | None = None) -> Demonstration:
+        """Build a demonstration from a plain sequence of action ids.
+
+        >>> Demonstration.of(["a", "b"], id="d1").actions
+        ('a', 'b')
+        """
+        return cls(steps=tuple(Step(a) for a in actions), id=id, agent=agent)
+
+
+@dataclass(frozen=True)
+class TaskSpec:
+    """The contents of a task file.
+
+    ``actions`` is the declared vocabulary (empty when the file declares none: then the vocabulary is whatever
+    the structure and demonstrations use). ``structure`` is the ground-truth hierarchy when known.
+    """
+
+    name: str
+    actions: tuple[Action, ...] = ()
+    structure: Node | None = None
+    demonstrations: tuple[Demonstration, ...] = field(default=())
+
+    def action_ids(self) -> tuple[str, ...]:
+        """Every action id: the declared ones, or those used by the structure and demonstrations."""
+        if self.actions:
+            return tuple(a.id for a in self.actions)
+        seen: dict[str, None] = {}
+        if self.structure is not None:
+            seen.update((a, None) for a in leaf_actions(self.structure))
+        for demo in self.demonstrations:
+            seen.update((a, None) for a in demo.actions)
+        return tuple(seen)
+
+    def texts(self) -> dict[str, str]:
+        """Map from action id to the text people read (the id itself when no text is given)."""
+        return {a.id: a.label for a in self.actions}
+
+    def action_sequences(self) -> Iterator[tuple[str, ...]]:
+        """The demonstrations as plain action sequences."""
+        for demo in self.demonstrations:
+            yield demo.actions
+
+    def with_demonstrations(self, demonstrations: Sequence[Demonstration]) -> TaskSpec:
+        """A copy of this spec with other demonstrations."""
+        return TaskSpec(self.name, self.actions, self.structure, tuple(demonstrations))
