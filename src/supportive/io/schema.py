@@ -1,0 +1,82 @@
+"""The task-file schema (pydantic), shared by the YAML and JSON readers.
+
+Shorthands: an action may be written as its id alone, a step as its action id alone, a structure leaf as an
+action id. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an optional ``name``.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StringConstraints, model_validator
+
+__all__ = ["ActionIn", "DemonstrationIn", "NodeIn", "StepIn", "TaskIn"]
+
+Name = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1)]
+
+
+def _wrap(key: str) -> Any:
+    return BeforeValidator(lambda value: {key: value} if isinstance(value, str) else value)
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class ActionIn(_Strict):
+    """``{id, text}``."""
+
+    id: Name
+    text: str | None = None
+
+
+class StepIn(_Strict):
+    """``{action, start, end, state}``: timing in seconds; ``state`` lists the fluents true after the step."""
+
+    action: Name
+    start: float | None = None
+    end: float | None = None
+    state: list[str] | None = None
+
+    @model_validator(mode="after")
+    def _timing(self) -> StepIn:
+        if self.start is not None and self.end is not None and self.start > self.end:
+            raise ValueError(f"start {self.start} is after end {self.end}")
+        return self
+
+
+class DemonstrationIn(_Strict):
+    """``{id, agent, initial_state, steps}``."""
+
+    id: Name | None = None
+    agent: str | None = None
+    initial_state: list[str] | None = None
+    steps: Annotated[list[Annotated[StepIn, _wrap("action")]], Field(min_length=1)]
+
+
+class NodeIn(_Strict):
+    """A structure node: exactly one of ``action``, ``chain``, ``clique``; an optional ``name``."""
+
+    action: Name | None = None
+    chain: list[Annotated[NodeIn, _wrap("action")]] | None = None
+    clique: list[Annotated[NodeIn, _wrap("action")]] | None = None
+    name: str | None = None
+
+    @model_validator(mode="after")
+    def _one_kind(self) -> NodeIn:
+        kinds = [k for k in ("action", "chain", "clique") if getattr(self, k) is not None]
+        if len(kinds) != 1:
+            raise ValueError("a structure node needs exactly one of 'chain', 'clique' or an action id")
+        children = self.chain if self.chain is not None else self.clique
+        if children is not None and not children:
+            raise ValueError(f"'{kinds[0]}' needs at least one child")
+        return self
+
+
+class TaskIn(_Strict):
+    """A whole task file."""
+
+    name: Name
+    actions: list[Annotated[ActionIn, _wrap("id")]] | None = None
+    structure: Annotated[NodeIn, _wrap("action")] | None = None
+    demonstrations: list[DemonstrationIn] | None = None

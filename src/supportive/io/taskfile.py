@@ -1,0 +1,355 @@
+"""Read and write task files: YAML, JSON (same schema) and CSV demonstrations.
+
+Every problem becomes a :class:`~supportive.errors.TaskFileError` naming the file, the line when known, the
+field (``demonstrations[1].steps[3]``) and what was wrong.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from collections import Counter
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, Literal
+
+import yaml
+from pydantic import ValidationError
+
+from supportive.errors import TaskFileError
+from supportive.io.schema import NodeIn, TaskIn
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node
+from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
+
+__all__ = [
+    "CSV_COLUMNS",
+    "Format",
+    "dump_task",
+    "format_of",
+    "parse_task_file",
+    "parse_task_string",
+    "task_to_dict",
+    "write_task_file",
+]
+
+Format = Literal["yaml", "json", "csv"]
+CSV_COLUMNS = ("demonstration", "step", "action")
+CSV_OPTIONAL = ("agent", "start", "end")
+_SUFFIXES: dict[str, Format] = {".yaml": "yaml", ".yml": "yaml", ".json": "json", ".csv": "csv"}
+
+
+def format_of(path: str | Path) -> Format:
+    """The format a file name implies.
+
+    Raises:
+        TaskFileError: for an unknown suffix.
+    """
+    suffix = Path(path).suffix.lower()
+    if suffix not in _SUFFIXES:
+        raise TaskFileError(f"unsupported file type {suffix or '(none)'!r}; use .yaml, .yml, .json or .csv", path=path)
+    return _SUFFIXES[suffix]
+
+
+def parse_task_file(path: str | Path, format: Format | None = None) -> TaskSpec:
+    """Read a task file.
+
+    Raises:
+        TaskFileError: when the file is missing, unreadable or invalid.
+    """
+    path = Path(path)
+    fmt = format or format_of(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise TaskFileError("no such file", path=path) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise TaskFileError(f"cannot read: {exc}", path=path) from None
+    return parse_task_string(text, fmt, path=path)
+
+
+def parse_task_string(text: str, format: Format, *, path: str | Path | None = None, name: str | None = None) -> TaskSpec:
+    """Read a task from text. ``name`` names a CSV task (default: the file's stem)."""
+    if not text.strip():
+        raise TaskFileError("file is empty", path=path)
+    if format == "csv":
+        return _parse_csv(text, path, name or (Path(path).stem if path else "task"))
+    data = _load(text, format, path)
+    if not isinstance(data, dict):
+        raise TaskFileError(f"expected a mapping with at least 'name', got {_kind(data)}", path=path, line=1)
+    try:
+        model = TaskIn.model_validate(data)
+    except ValidationError as exc:
+        raise _schema_error(exc, text, path) from None
+    return _to_spec(model, text, path)
+
+
+def _load(text: str, format: Format, path: str | Path | None) -> Any:
+    try:
+        if format == "json":
+            return json.loads(text)
+        return yaml.safe_load(text)
+    except json.JSONDecodeError as exc:
+        raise TaskFileError(f"invalid JSON: {exc.msg}", path=path, line=exc.lineno) from None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        raise TaskFileError(
+            f"invalid YAML: {problem}", path=path, line=None if mark is None else mark.line + 1
+        ) from None
+
+
+def _kind(value: object) -> str:
+    return {dict: "a mapping", list: "a list", str: "a string", type(None): "nothing"}.get(
+        type(value), f"{type(value).__name__} {value!r}"
+    )
+
+
+def _place(loc: Sequence[str | int]) -> str:
+    out = ""
+    for part in loc:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
+    return out
+
+
+def _line(text: str, loc: Sequence[str | int]) -> int | None:
+    """The line of the deepest node along ``loc`` that exists in the text (YAML and most JSON)."""
+    try:
+        node = yaml.compose(text)
+    except yaml.YAMLError:
+        return None
+    line = None
+    for part in loc:
+        if node is None:
+            break
+        line = node.start_mark.line + 1
+        if isinstance(node, yaml.MappingNode):
+            node = next((v for k, v in node.value if k.value == part), None)
+        elif isinstance(node, yaml.SequenceNode) and isinstance(part, int) and part < len(node.value):
+            node = node.value[part]
+        else:
+            node = None
+    if node is not None:
+        line = node.start_mark.line + 1
+    return line
+
+
+_MESSAGES = {
+    "missing": "missing required key {key!r}",
+    "extra_forbidden": "unknown key {key!r}",
+    "list_type": "expected a list, got {got}",
+    "string_type": "expected a string, got {got}",
+    "float_type": "expected a number, got {got}",
+    "float_parsing": "expected a number, got {got}",
+    "model_type": "expected a mapping, got {got}",
+    "dict_type": "expected a mapping, got {got}",
+    "string_too_short": "must not be empty",
+    "too_short": "must not be empty",
+}
+
+
+def _schema_error(exc: ValidationError, text: str, path: str | Path | None) -> TaskFileError:
+    error = exc.errors()[0]
+    loc = [p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))]
+    kind = error["type"]
+    key = loc[-1] if loc else ""
+    if kind in ("missing", "extra_forbidden"):
+        place_loc = loc[:-1]
+        line_loc = loc if kind == "extra_forbidden" else loc[:-1]
+    else:
+        place_loc = line_loc = loc
+    template = _MESSAGES.get(kind)
+    if template is None:
+        message = error["msg"].removeprefix("Value error, ")
+    else:
+        message = template.format(key=key, got=_kind(error.get("input")))
+    return TaskFileError(message, path=path, place=_place(place_loc) or None, line=_line(text, line_loc))
+
+
+def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
+    def fail(problem: str, loc: list[str | int]) -> TaskFileError:
+        return TaskFileError(problem, path=path, place=_place(loc), line=_line(text, loc))
+
+    actions = tuple(Action(a.id, a.text) for a in model.actions or ())
+    declared = {a.id for a in actions}
+    seen_actions: set[str] = set()
+    for index, action in enumerate(actions):
+        if action.id in seen_actions:
+            raise fail(f"duplicate action id {action.id!r}", ["actions", index, "id"])
+        seen_actions.add(action.id)
+    structure = None
+    if model.structure is not None:
+        structure = _node(model.structure, ["structure"], declared, fail, Counter())
+    demos = []
+    seen_ids: set[str] = set()
+    for i, demo in enumerate(model.demonstrations or ()):
+        demo_id = demo.id or f"d{i + 1}"
+        if demo_id in seen_ids:
+            raise fail(f"duplicate demonstration id {demo_id!r}", ["demonstrations", i, "id"])
+        seen_ids.add(demo_id)
+        with_state = [step.state is not None for step in demo.steps]
+        if any(with_state) and not all(with_state):
+            j = with_state.index(False)
+            raise fail("every step needs a 'state' when one step has it", ["demonstrations", i, "steps", j])
+        for j, step in enumerate(demo.steps):
+            if declared and step.action not in declared:
+                raise fail(f"action {step.action!r} is not declared in 'actions'", ["demonstrations", i, "steps", j])
+        steps = tuple(
+            Step(s.action, s.start, s.end, None if s.state is None else frozenset(s.state)) for s in demo.steps
+        )
+        initial = None if demo.initial_state is None else frozenset(demo.initial_state)
+        demos.append(Demonstration(steps, demo_id, demo.agent, initial))
+    explicit = {d.has_states for d in demos}
+    if len(explicit) > 1:
+        index = next(i for i, d in enumerate(demos) if d.has_states != demos[0].has_states)
+        raise fail("give explicit states in every demonstration or in none", ["demonstrations", index])
+    return TaskSpec(model.name, actions, structure, tuple(demos))
+
+
+def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, seen: Counter[str]) -> Node:
+    if model.action is not None:
+        if declared and model.action not in declared:
+            raise fail(f"action {model.action!r} is not declared in 'actions'", loc)
+        seen[model.action] += 1
+        return ActionNode(model.action, seen[model.action])
+    key = "chain" if model.chain is not None else "clique"
+    items = model.chain if model.chain is not None else (model.clique or [])
+    children = tuple(_node(child, [*loc, key, i], declared, fail, seen) for i, child in enumerate(items))
+    if len(children) == 1:
+        return children[0]
+    return ChainNode(children, model.name) if key == "chain" else CliqueNode(children, model.name)
+
+
+# ---------------------------------------------------------------------------------------------- CSV
+def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
+    reader = csv.DictReader(io.StringIO(text))
+    header = [h.strip() for h in reader.fieldnames or ()]
+    missing = [c for c in CSV_COLUMNS if c not in header]
+    if missing:
+        raise TaskFileError(
+            f"missing column(s) {', '.join(missing)}; expected header {','.join(CSV_COLUMNS)}[,agent,start,end]",
+            path=path,
+            line=1,
+        )
+    unknown = [c for c in header if c not in CSV_COLUMNS + CSV_OPTIONAL]
+    if unknown:
+        raise TaskFileError(f"unknown column(s) {', '.join(unknown)}", path=path, line=1)
+    rows: dict[str, list[tuple[int, Step, str | None]]] = {}
+    for row in reader:
+        line = reader.line_num
+        values = {k.strip(): (v or "").strip() for k, v in row.items() if k is not None}
+        if None in row:
+            raise TaskFileError("more values than columns", path=path, line=line)
+        demo, action = values["demonstration"], values["action"]
+        if not demo or not action:
+            raise TaskFileError("'demonstration' and 'action' must not be empty", path=path, line=line)
+        try:
+            number = int(values["step"])
+        except ValueError:
+            raise TaskFileError(f"step must be an integer, got {values['step']!r}", path=path, line=line) from None
+        start, end = (_float(values.get(k, ""), k, path, line) for k in ("start", "end"))
+        if start is not None and end is not None and start > end:
+            raise TaskFileError(f"start {start} is after end {end}", path=path, line=line)
+        rows.setdefault(demo, []).append((number, Step(action, start, end), values.get("agent") or None))
+    if not rows:
+        raise TaskFileError("no demonstration rows after the header", path=path, line=2)
+    demos = []
+    for demo_id, steps in rows.items():
+        numbers = [n for n, _, _ in steps]
+        if len(set(numbers)) != len(numbers):
+            raise TaskFileError(f"demonstration {demo_id!r} repeats a step number", path=path)
+        agents = {a for _, _, a in steps if a}
+        if len(agents) > 1:
+            raise TaskFileError(f"demonstration {demo_id!r} names several agents: {sorted(agents)}", path=path)
+        ordered = tuple(step for _, step, _ in sorted(steps, key=lambda item: item[0]))
+        demos.append(Demonstration(ordered, demo_id, agents.pop() if agents else None))
+    return TaskSpec(name, (), None, tuple(demos))
+
+
+def _float(value: str, column: str, path: str | Path | None, line: int) -> float | None:
+    if not value:
+        return None
+    try:
+        return float(value)
+    except ValueError:
+        raise TaskFileError(f"{column} must be a number, got {value!r}", path=path, line=line) from None
+
+
+# ---------------------------------------------------------------------------------------------- writing
+def _node_to_data(node: Node) -> object:
+    if isinstance(node, ActionNode):
+        return node.action
+    data: dict[str, object] = {node.kind: [_node_to_data(child) for child in node.children]}
+    if node.name:
+        data["name"] = node.name
+    return data
+
+
+def _step_to_data(step: Step) -> object:
+    if step.start is None and step.end is None and step.state is None:
+        return step.action
+    data: dict[str, object] = {"action": step.action}
+    if step.start is not None:
+        data["start"] = step.start
+    if step.end is not None:
+        data["end"] = step.end
+    if step.state is not None:
+        data["state"] = sorted(step.state)
+    return data
+
+
+def task_to_dict(spec: TaskSpec) -> dict[str, Any]:
+    """The task as plain data in the file schema (shorthands used where nothing is lost)."""
+    data: dict[str, Any] = {"name": spec.name}
+    if spec.actions:
+        data["actions"] = [{"id": a.id, "text": a.text} if a.text else {"id": a.id} for a in spec.actions]
+    if spec.structure is not None:
+        data["structure"] = _node_to_data(spec.structure)
+    if spec.demonstrations:
+        demos = []
+        for demo in spec.demonstrations:
+            item: dict[str, Any] = {"id": demo.id}
+            if demo.agent:
+                item["agent"] = demo.agent
+            if demo.initial_state is not None:
+                item["initial_state"] = sorted(demo.initial_state)
+            item["steps"] = [_step_to_data(s) for s in demo.steps]
+            demos.append(item)
+        data["demonstrations"] = demos
+    return data
+
+
+def dump_task(spec: TaskSpec, format: Format) -> str:
+    """The task as YAML, JSON or CSV text (CSV holds the demonstrations only)."""
+    if format == "csv":
+        out = io.StringIO()
+        columns = list(CSV_COLUMNS)
+        if any(d.agent for d in spec.demonstrations):
+            columns.append("agent")
+        if any(s.start is not None or s.end is not None for d in spec.demonstrations for s in d.steps):
+            columns += ["start", "end"]
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(columns)
+        for demo in spec.demonstrations:
+            for number, step in enumerate(demo.steps, start=1):
+                row: dict[str, object] = {"demonstration": demo.id, "step": number, "action": step.action}
+                row |= {"agent": demo.agent or "", "start": _blank(step.start), "end": _blank(step.end)}
+                writer.writerow([row[c] for c in columns])
+        return out.getvalue()
+    data = task_to_dict(spec)
+    if format == "json":
+        return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=110)
+
+
+def _blank(value: float | None) -> object:
+    return "" if value is None else value
+
+
+def write_task_file(spec: TaskSpec, path: str | Path, format: Format | None = None) -> None:
+    """Write a task file; the text is produced before the file is opened, so a failure writes nothing."""
+    path = Path(path)
+    text = dump_task(spec, format or format_of(path))
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8")
+    tmp.replace(path)
