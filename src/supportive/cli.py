@@ -1,0 +1,133 @@
+"""The ``supportive`` command: parses arguments, calls the library, prints. No logic of its own.
+
+Bad input never shows a traceback: any :class:`~supportive.errors.SupportiveError` becomes one line on stderr
+and exit status 2.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from enum import Enum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+
+from supportive.errors import SupportiveError, TaskFileError
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
+)
+out = Console(highlight=False, soft_wrap=True)
+err = Console(stderr=True, highlight=False, soft_wrap=True)
+
+
+class LearnFormat(str, Enum):
+    """Output formats of ``learn``."""
+
+    tree = "tree"
+    json = "json"
+    dot = "dot"
+    hddl = "hddl"
+
+
+class Profile(str, Enum):
+    """Generator profiles."""
+
+    ikea = "ikea"
+    uniform = "uniform"
+
+
+def _write_text(text: str, output: Path | None) -> None:
+    if output is None:
+        sys.stdout.write(text)
+        return
+    try:
+        output.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise TaskFileError(f"cannot write: {exc.strerror}", path=output) from None
+
+
+@app.command()
+def learn(
+    file: Annotated[Path, typer.Argument(help="Task file: .yaml, .yml, .json or .csv.")],
+    format: Annotated[LearnFormat, typer.Option("--format", "-f", help="What to print.")] = LearnFormat.tree,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
+    ] = None,
+) -> None:
+    """Learn the CC-HTN of a task from its demonstrations and print or write it."""
+    from supportive.io.dot import htn_to_dot
+    from supportive.io.htn_json import htn_to_dict
+    from supportive.io.taskfile import parse_task_file
+    from supportive.io.tree import render_tree
+    from supportive.learning.learner import learn as learn_htn
+
+    spec = parse_task_file(file)
+    if not spec.demonstrations:
+        raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
+    learner = learn_htn(spec)
+    if format is LearnFormat.hddl:
+        from supportive.io.hddl import write_hddl
+
+        if output is None:
+            raise TaskFileError("--format hddl needs --output DIR (it writes domain.hddl and problem.hddl)")
+        domain, problem = write_hddl(learner.htn_, output)
+        err.print(f"wrote {domain} and {problem}")
+        return
+    if format is LearnFormat.json:
+        text = json.dumps(htn_to_dict(learner.htn_, learner.stats_.as_dict()), indent=2) + "\n"
+    elif format is LearnFormat.dot:
+        text = htn_to_dot(learner.htn_)
+    else:
+        text = render_tree(learner.htn_, spec.texts(), width=120)
+    _write_text(text, output)
+
+
+@app.command()
+def generate(
+    actions: Annotated[int, typer.Option("--actions", "-n", min=2, help="Number of primitive actions.")] = 20,
+    seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same task).")] = 0,
+    demonstrations: Annotated[
+        int, typer.Option("--demonstrations", "-d", min=0, help="Valid orderings to sample as demonstrations.")
+    ] = 4,
+    profile: Annotated[Profile, typer.Option("--profile", help="Shape of the structure.")] = Profile.ikea,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="Task file to write (.yaml, .json or .csv).")
+    ] = None,
+) -> None:
+    """Generate a random nested chain/clique task with sampled demonstrations (a task file)."""
+    from supportive.generate import generate_task
+    from supportive.io.taskfile import dump_task, format_of
+
+    spec = generate_task(actions, seed, demonstrations=demonstrations, profile=profile.value)
+    fmt = format_of(output) if output is not None else "yaml"
+    _write_text(dump_task(spec, fmt), output)
+
+
+@app.command()
+def demo() -> None:
+    """Learn the bundled IKEA chair task and show what the demonstrations did and did not pin down."""
+    from supportive.demo import run_demo
+
+    run_demo(out)
+
+
+def main() -> None:
+    """Entry point: run the app, turning library errors into one line and exit status 2."""
+    try:
+        app()
+    except SupportiveError as exc:
+        err.print(f"supportive: error: {exc}", markup=False)
+        sys.exit(2)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,79 @@
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from supportive.tasks.htn import (
+    HTN,
+    ActionNode,
+    ChainNode,
+    CliqueNode,
+    TopLevel,
+    admits,
+    canonical,
+    count_orderings,
+    iter_orderings,
+    mean_action_depth,
+    node_count,
+    node_edges,
+    sample_ordering,
+    to_leaves,
+)
+
+A, B, C, D = (ActionNode(x) for x in "abcd")
+
+
+def test_counts_match_enumeration() -> None:
+    node = CliqueNode((ChainNode((A, B)), CliqueNode((C, D))))
+    orders = list(iter_orderings(node))
+    assert count_orderings(node) == len(orders) == len(set(orders)) == 4
+    assert all(admits(node, o) for o in orders)
+    assert not admits(node, to_leaves("acbd"))
+
+
+def test_clique_forbids_interleaving() -> None:
+    node = CliqueNode((ChainNode((A, B)), ChainNode((C, D))))
+    assert admits(node, to_leaves("abcd")) and admits(node, to_leaves("cdab"))
+    assert not admits(node, to_leaves("acbd"))
+    assert not admits(node, to_leaves("bacd"))
+
+
+def test_big_counts_do_not_enumerate() -> None:
+    node = CliqueNode(tuple(ActionNode(f"x{i}") for i in range(60)))
+    assert count_orderings(node) == math.factorial(60)
+
+
+def test_canonical_merges_chain_in_chain_but_not_clique_in_clique() -> None:
+    assert canonical(ChainNode((ChainNode((A, B)), C))) == canonical(ChainNode((A, B, C)))
+    assert canonical(CliqueNode((CliqueNode((A, B)), C))) != canonical(CliqueNode((A, B, C)))
+    assert canonical(CliqueNode((A, B))) == canonical(CliqueNode((B, A)))
+    assert canonical(ChainNode((A, B))) != canonical(ChainNode((B, A)))
+
+
+def test_sample_is_seeded_and_admitted() -> None:
+    node = CliqueNode(tuple(ActionNode(f"x{i}") for i in range(8)))
+    assert sample_ordering(node, 3) == sample_ordering(node, 3)
+    assert len({sample_ordering(node, s) for s in range(20)}) > 10
+    assert admits(node, sample_ordering(node, 5))
+
+
+def test_repeated_actions_are_numbered() -> None:
+    assert to_leaves(["stir", "pour", "stir"]) == (("stir", 1), ("pour", 1), ("stir", 2))
+    assert ActionNode("stir", 2).label == "stir#2"
+
+
+def test_sizes_and_depth() -> None:
+    node = ChainNode((A, CliqueNode((B, C)), D))
+    assert node_count(node) == 6
+    assert node_edges(node) == 3 + 2 + 2  # parent links + chain "then" links + clique parent links
+    assert mean_action_depth([node]) == pytest.approx((1 + 2 + 2 + 1) / 4)
+
+
+def test_partial_htn_admits_through_its_top_level() -> None:
+    top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)))
+    htn = HTN("t", (ChainNode((A, B)), C), top)
+    assert not htn.complete
+    assert htn.admits(["a", "b", "c"]) and htn.admits(["c", "a", "b"])
+    assert not htn.admits(["a", "c", "b"]) and not htn.admits(["a", "b"])
+    assert htn.count_orderings() == 2
