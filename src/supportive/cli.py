@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import json
 import sys
-from enum import Enum
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated
 
@@ -29,7 +29,7 @@ out = Console(highlight=False, soft_wrap=True)
 err = Console(stderr=True, highlight=False, soft_wrap=True)
 
 
-class LearnFormat(str, Enum):
+class LearnFormat(StrEnum):
     """Output formats of ``learn``."""
 
     tree = "tree"
@@ -38,7 +38,7 @@ class LearnFormat(str, Enum):
     hddl = "hddl"
 
 
-class Profile(str, Enum):
+class Profile(StrEnum):
     """Generator profiles."""
 
     ikea = "ikea"
@@ -96,7 +96,8 @@ def generate(
     actions: Annotated[int, typer.Option("--actions", "-n", min=2, help="Number of primitive actions.")] = 20,
     seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same task).")] = 0,
     demonstrations: Annotated[
-        int, typer.Option("--demonstrations", "-d", min=0, help="Valid orderings to sample as demonstrations.")
+        int,
+        typer.Option("--demonstrations", "-d", min=0, help="Valid orderings to sample as demonstrations."),
     ] = 4,
     profile: Annotated[Profile, typer.Option("--profile", help="Shape of the structure.")] = Profile.ikea,
     output: Annotated[

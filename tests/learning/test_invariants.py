@@ -71,7 +71,9 @@ def assert_invariants_1_and_2(learner: HTNLearner) -> None:
     htn: HTN = learner.htn_
     graph = learner.task_graph_
     for demo in graph.demonstrations:
-        assert htn.admits_leaves([graph.subgoals[s] for s in demo]), "invariant 1: a demonstration is rejected"
+        assert htn.admits_leaves([graph.subgoals[s] for s in demo]), (
+            "invariant 1: a demonstration is rejected"
+        )
     executions = list(graph.iter_paths())
     assert len(executions) == graph.path_count()
     for root in htn.roots:

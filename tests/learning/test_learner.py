@@ -35,7 +35,12 @@ def test_block_task_shapes() -> None:
     tower = HTNLearner().fit(_all_orderings("blocks-tower")).htn_.roots[0]
     assert isinstance(tower, ChainNode) and [c.kind for c in tower.children] == ["action", "clique", "action"]
     v = HTNLearner().fit(_all_orderings("blocks-v")).htn_.roots[0]
-    assert isinstance(v, ChainNode) and [c.kind for c in v.children] == ["action", "clique", "clique", "clique"]
+    assert isinstance(v, ChainNode) and [c.kind for c in v.children] == [
+        "action",
+        "clique",
+        "clique",
+        "clique",
+    ]
     towers = HTNLearner().fit(_all_orderings("blocks-towers")).htn_.roots[0]
     assert isinstance(towers, CliqueNode) and {c.kind for c in towers.children} == {"chain"}
 
@@ -53,7 +58,9 @@ def test_examples_learn_and_admit_their_demonstrations(name: str) -> None:
 def test_two_glasses_yields_both_readings() -> None:
     htn = learn(examples.load("two-glasses")).htn_
     assert not htn.complete and len(htn.roots) == 4
-    p1, p2, f1, f2 = (ActionNode(a) for a in ("place_glass_1", "place_glass_2", "fill_glass_1", "fill_glass_2"))
+    p1, p2, f1, f2 = (
+        ActionNode(a) for a in ("place_glass_1", "place_glass_2", "fill_glass_1", "fill_glass_2")
+    )
     by_glass = canonical(CliqueNode((ChainNode((p1, f1)), ChainNode((p2, f2)))))
     place_then_fill = canonical(ChainNode((CliqueNode((p1, p2)), CliqueNode((f1, f2)))))
     found = [canonical(alt.roots[0]) for alt in htn.alternatives]
@@ -80,7 +87,9 @@ def test_nested_clique_is_not_flattened() -> None:
     # clique{clique{a, b}, c}: every pair is seen both ways, yet a, c, b is never valid
     orders = [list("abc"), list("bac"), list("cab"), list("cba")]
     root = HTNLearner().fit(orders).htn_.roots[0]
-    assert canonical(root) == canonical(CliqueNode((CliqueNode((ActionNode("a"), ActionNode("b"))), ActionNode("c"))))
+    assert canonical(root) == canonical(
+        CliqueNode((CliqueNode((ActionNode("a"), ActionNode("b"))), ActionNode("c")))
+    )
 
 
 def test_partial_hierarchy_reports_top_level() -> None:
@@ -110,5 +119,12 @@ def test_repeated_actions_learn_as_occurrences() -> None:
     orders = [["stir", "heat", "stir", "a", "b"], ["stir", "heat", "stir", "b", "a"]]
     root = HTNLearner().fit(orders).htn_.roots[0]
     assert canonical(root) == canonical(
-        ChainNode((ActionNode("stir"), ActionNode("heat"), ActionNode("stir", 2), CliqueNode((ActionNode("a"), ActionNode("b")))))
+        ChainNode(
+            (
+                ActionNode("stir"),
+                ActionNode("heat"),
+                ActionNode("stir", 2),
+                CliqueNode((ActionNode("a"), ActionNode("b"))),
+            )
+        )
     )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Node
@@ -25,14 +26,16 @@ def htn_to_dot(htn: HTN) -> str:
             lines.append(f"  {name} [label={_quote(node.label)}, shape=ellipse];")
             return name
         shape = "box" if isinstance(node, ChainNode) else "hexagon"
-        title = ("in order" if isinstance(node, ChainNode) else "any order") + (f"\n{node.name}" if node.name else "")
+        title = ("in order" if isinstance(node, ChainNode) else "any order") + (
+            f"\n{node.name}" if node.name else ""
+        )
         lines.append(f"  {name} [label={_quote(title)}, shape={shape}];")
         children = [emit(child) for child in node.children]
         for child in children:
             lines.append(f"  {name} -> {child};")
         if isinstance(node, ChainNode):
-            for a, b in zip(children, children[1:], strict=False):
-                lines.append(f"  {a} -> {b} [style=dashed, constraint=false, label=\"then\"];")
+            for a, b in itertools.pairwise(children):
+                lines.append(f'  {a} -> {b} [style=dashed, constraint=false, label="then"];')
         return name
 
     if htn.complete:

@@ -37,7 +37,9 @@ def node_from_dict(data: Any, place: str = "node") -> Node:
     if not isinstance(children, list) or not children:
         raise TaskFileError("a chain or clique needs a non-empty 'children' list", place=place)
     nodes = tuple(node_from_dict(c, f"{place}.children[{i}]") for i, c in enumerate(children))
-    return ChainNode(nodes, data.get("name")) if data["kind"] == "chain" else CliqueNode(nodes, data.get("name"))
+    return (
+        ChainNode(nodes, data.get("name")) if data["kind"] == "chain" else CliqueNode(nodes, data.get("name"))
+    )
 
 
 def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]:
@@ -69,9 +71,13 @@ def htn_from_dict(data: Any) -> HTN:
     top = data.get("top_level")
     top_level = None
     if top is not None:
-        top_level = TopLevel(
-            tuple(top["initial"]), tuple(top["terminal"]), tuple(tuple(e) for e in top["edges"])  # type: ignore[misc]
-        )
+        try:
+            edges = tuple((int(src), int(root), int(dst)) for src, root, dst in top["edges"])
+            top_level = TopLevel(tuple(map(int, top["initial"])), tuple(map(int, top["terminal"])), edges)
+        except (KeyError, TypeError, ValueError):
+            raise TaskFileError(
+                "top_level needs 'initial', 'terminal' and 'edges' of [from, root, to]", place="top_level"
+            ) from None
     alternatives = tuple(
         HTN(data.get("task", ""), tuple(node_from_dict(r, f"alternatives[{i}]") for r in alt["roots"]))
         for i, alt in enumerate(data.get("alternatives", []))

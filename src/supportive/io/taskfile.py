@@ -47,7 +47,9 @@ def format_of(path: str | Path) -> Format:
     """
     suffix = Path(path).suffix.lower()
     if suffix not in _SUFFIXES:
-        raise TaskFileError(f"unsupported file type {suffix or '(none)'!r}; use .yaml, .yml, .json or .csv", path=path)
+        raise TaskFileError(
+            f"unsupported file type {suffix or '(none)'!r}; use .yaml, .yml, .json or .csv", path=path
+        )
     return _SUFFIXES[suffix]
 
 
@@ -68,7 +70,9 @@ def parse_task_file(path: str | Path, format: Format | None = None) -> TaskSpec:
     return parse_task_string(text, fmt, path=path)
 
 
-def parse_task_string(text: str, format: Format, *, path: str | Path | None = None, name: str | None = None) -> TaskSpec:
+def parse_task_string(
+    text: str, format: Format, *, path: str | Path | None = None, name: str | None = None
+) -> TaskSpec:
     """Read a task from text. ``name`` names a CSV task (default: the file's stem)."""
     if not text.strip():
         raise TaskFileError("file is empty", path=path)
@@ -193,9 +197,12 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
             raise fail("every step needs a 'state' when one step has it", ["demonstrations", i, "steps", j])
         for j, step in enumerate(demo.steps):
             if declared and step.action not in declared:
-                raise fail(f"action {step.action!r} is not declared in 'actions'", ["demonstrations", i, "steps", j])
+                raise fail(
+                    f"action {step.action!r} is not declared in 'actions'", ["demonstrations", i, "steps", j]
+                )
         steps = tuple(
-            Step(s.action, s.start, s.end, None if s.state is None else frozenset(s.state)) for s in demo.steps
+            Step(s.action, s.start, s.end, None if s.state is None else frozenset(s.state))
+            for s in demo.steps
         )
         initial = None if demo.initial_state is None else frozenset(demo.initial_state)
         demos.append(Demonstration(steps, demo_id, demo.agent, initial))
@@ -246,7 +253,9 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
         try:
             number = int(values["step"])
         except ValueError:
-            raise TaskFileError(f"step must be an integer, got {values['step']!r}", path=path, line=line) from None
+            raise TaskFileError(
+                f"step must be an integer, got {values['step']!r}", path=path, line=line
+            ) from None
         start, end = (_float(values.get(k, ""), k, path, line) for k in ("start", "end"))
         if start is not None and end is not None and start > end:
             raise TaskFileError(f"start {start} is after end {end}", path=path, line=line)
@@ -260,7 +269,9 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
             raise TaskFileError(f"demonstration {demo_id!r} repeats a step number", path=path)
         agents = {a for _, _, a in steps if a}
         if len(agents) > 1:
-            raise TaskFileError(f"demonstration {demo_id!r} names several agents: {sorted(agents)}", path=path)
+            raise TaskFileError(
+                f"demonstration {demo_id!r} names several agents: {sorted(agents)}", path=path
+            )
         ordered = tuple(step for _, step, _ in sorted(steps, key=lambda item: item[0]))
         demos.append(Demonstration(ordered, demo_id, agents.pop() if agents else None))
     return TaskSpec(name, (), None, tuple(demos))

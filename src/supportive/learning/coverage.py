@@ -54,9 +54,7 @@ def _allowed(done: int, subgoal: int, came_by: list[int], ancestors: dict[int, l
     return True
 
 
-def _collect(
-    graph: TaskGraph, node: Node, path: list[_Ancestor], out: dict[int, list[_Ancestor]]
-) -> bool:
+def _collect(graph: TaskGraph, node: Node, path: list[_Ancestor], out: dict[int, list[_Ancestor]]) -> bool:
     if isinstance(node, ActionNode):
         index = graph.subgoal_index(node.leaf)
         if index is None:

@@ -96,8 +96,11 @@ class HTNLearner:
         if not demos:
             raise LearningError(f"task {self.task or '?'}: no demonstrations to learn from")
         self.task_graph_ = TaskGraph()
-        for demo in demos:
-            self.task_graph_.add_demonstration(demo)
+        for i, demo in enumerate(demos):
+            if isinstance(demo, Demonstration):
+                self.task_graph_.add_demonstration(demo)
+            else:
+                self.task_graph_.add(demo, f"d{i + 1}")
         self.ctg_ = conjugate_task_graph(self.task_graph_)
         self._compaction = Compaction(self.task_graph_)
         self._compaction.run()
@@ -113,8 +116,13 @@ class HTNLearner:
         if not hasattr(self, "task_graph_"):
             return self.fit([demonstration], self.task)
         started = time.perf_counter()
-        demo = _as_demonstration(demonstration, len(self.task_graph_.demonstrations))
-        update = self.task_graph_.add_demonstration(demo)
+        graph = self.task_graph_
+        if isinstance(demonstration, Demonstration):
+            update = graph.add_demonstration(demonstration)
+        elif isinstance(demonstration, str):
+            raise LearningError("a demonstration is a sequence of action ids, not a string")
+        else:
+            update = graph.add(demonstration, f"d{len(graph.demonstrations) + 1}")
         if update.changed:
             update_conjugate(self.ctg_, update)
             self._compaction.update()
@@ -123,14 +131,20 @@ class HTNLearner:
 
     def _demonstrations(
         self, source: TaskSpec | Iterable[DemonstrationLike], task: str
-    ) -> list[Demonstration]:
+    ) -> list[Demonstration | Sequence[str]]:
         if isinstance(source, TaskSpec):
             self.task = source.name
             if self.names is None:
                 self.names = known_names(source.structure)
             return list(source.demonstrations)
         self.task = task
-        return [_as_demonstration(d, i) for i, d in enumerate(source)]
+        demos = list(source)
+        for index, demo in enumerate(demos):
+            if isinstance(demo, str):
+                raise LearningError(
+                    f"demonstration {index + 1}: expected a sequence of action ids, got a string"
+                )
+        return demos
 
     def _finish(self, started: float) -> None:
         compaction = self._compaction
@@ -157,14 +171,6 @@ class HTNLearner:
             },
             seconds=round(self.seconds_, 6),
         )
-
-
-def _as_demonstration(demo: DemonstrationLike, index: int) -> Demonstration:
-    if isinstance(demo, Demonstration):
-        return demo
-    if isinstance(demo, str):
-        raise LearningError(f"demonstration {index + 1}: expected a sequence of action ids, got a string")
-    return Demonstration.of(list(demo), id=f"d{index + 1}")
 
 
 def learn(spec: TaskSpec, **options: Any) -> HTNLearner:

@@ -266,13 +266,9 @@ def _trimmed(by_node: dict[int, list[tuple[int, int]]], like: LevelGraph) -> Lev
     alive = forward & backward
     if not alive & like.initial:
         return None
-    kept = {
-        n: [(s, d) for s, d in edges if s in alive and d in alive] for n, edges in by_node.items()
-    }
+    kept = {n: [(s, d) for s, d in edges if s in alive and d in alive] for n, edges in by_node.items()}
     kept = {n: edges for n, edges in kept.items() if edges}
-    return LevelGraph(
-        kept, like.initial & alive, like.terminal & alive, like.state_mask, like.node_mask
-    )
+    return LevelGraph(kept, like.initial & alive, like.terminal & alive, like.state_mask, like.node_mask)
 
 
 def _reach(starts: Iterable[int], step: dict[int, list[int]]) -> set[int]:

@@ -35,8 +35,8 @@ __all__ = [
     "iter_orderings",
     "leaf_actions",
     "mean_action_depth",
-    "node_edges",
     "node_count",
+    "node_edges",
     "sample_ordering",
     "to_leaves",
 ]
@@ -193,11 +193,11 @@ def _admits_at(node: Node, leaves: Sequence[Leaf], start: int) -> bool:
     owner = {leaf: child for child in node.children for leaf in child.leaves}
     pos, used = start, set()
     for _ in node.children:
-        child = owner.get(leaves[pos])
-        if child is None or id(child) in used or not _block_matches(child, leaves, pos):
+        member = owner.get(leaves[pos])
+        if member is None or id(member) in used or not _block_matches(member, leaves, pos):
             return False
-        used.add(id(child))
-        pos += len(child.leaves)
+        used.add(id(member))
+        pos += len(member.leaves)
     return True
 
 

@@ -57,9 +57,35 @@ class TaskGraph:
         self._paths: int | None = None
 
     # ------------------------------------------------------------------ building
-    def add(self, actions: Sequence[str]) -> GraphUpdate:
-        """Add a demonstration given as a plain action sequence (states derived from completed actions)."""
-        return self.add_demonstration(Demonstration.of(actions))
+    def add(self, actions: Sequence[str], demo_id: str = "") -> GraphUpdate:
+        """Add a demonstration given as a plain action sequence (states derived from completed actions).
+
+        Raises:
+            TaskGraphError: when the sequence is empty or earlier demonstrations gave explicit states.
+        """
+        if not actions:
+            raise TaskGraphError(f"demonstration {demo_id or '?'} has no steps")
+        self._check_mode(False, demo_id)
+        state = self._state(0, 0, None, demo_id)
+        self.initial.add(state)
+        new_edges: list[tuple[int, int, int]] = []
+        counts: dict[str, int] = {}
+        sequence = []
+        mask = 0
+        index, state_of = self._subgoal_index, self._state_of
+        for action in actions:
+            count = counts[action] = counts.get(action, 0) + 1
+            leaf = (action, count)
+            subgoal = index.get(leaf)
+            if subgoal is None:
+                subgoal = self._subgoal(leaf)
+            sequence.append(subgoal)
+            mask |= 1 << subgoal
+            dst = state_of.get(mask)
+            if dst is None:
+                dst = self._state(mask, mask, None, demo_id)
+            state = self._link(state, subgoal, dst, new_edges, action, demo_id)
+        return self._finish(state, sequence, new_edges)
 
     def add_demonstration(self, demo: Demonstration) -> GraphUpdate:
         """Add one demonstration and say what changed.
@@ -68,19 +94,12 @@ class TaskGraph:
             TaskGraphError: when the demonstration is empty, mixes explicit and derived states with earlier
                 ones, or gives explicit states that contradict what is known.
         """
-        if not demo.steps:
-            raise TaskGraphError(f"demonstration {demo.id or '?'} has no steps")
-        explicit = demo.has_states
-        if explicit and any(step.state is None for step in demo.steps):
+        if not demo.has_states:
+            return self.add(demo.actions, demo.id)
+        if any(step.state is None for step in demo.steps):
             raise TaskGraphError(f"demonstration {demo.id or '?'}: every step needs a state when one has it")
-        if self.explicit_states is None:
-            self.explicit_states = explicit
-        elif self.explicit_states != explicit:
-            raise TaskGraphError(
-                f"demonstration {demo.id or '?'}: all demonstrations must give explicit states, or none"
-            )
-        start_key: Hashable = frozenset(demo.initial_state or ()) if explicit else 0
-        state = self._state(start_key, 0, demo.initial_state if explicit else None, demo.id)
+        self._check_mode(True, demo.id)
+        state = self._state(frozenset(demo.initial_state or ()), 0, demo.initial_state, demo.id)
         self.initial.add(state)
         new_edges: list[tuple[int, int, int]] = []
         counts: Counter[str] = Counter()
@@ -91,20 +110,41 @@ class TaskGraph:
             subgoal = self._subgoal((step.action, counts[step.action]))
             sequence.append(subgoal)
             mask |= 1 << subgoal
-            key: Hashable = step.state if explicit else mask
-            dst = self._state(key, mask, step.state, demo.id)
-            known = self.out[state].get(subgoal)
-            if known is None:
-                self.out[state][subgoal] = dst
-                self.into[dst].append((subgoal, state))
-                self._n_edges += 1
-                new_edges.append((state, subgoal, dst))
-            elif known != dst:
-                raise TaskGraphError(
-                    f"demonstration {demo.id or '?'}: action {step.action!r} from the same state leads to "
-                    "different states in different demonstrations"
-                )
-            state = dst
+            dst = self._state(step.state, mask, step.state, demo.id)
+            state = self._link(state, subgoal, dst, new_edges, step.action, demo.id)
+        return self._finish(state, sequence, new_edges)
+
+    def _check_mode(self, explicit: bool, demo_id: str) -> None:
+        if self.explicit_states is None:
+            self.explicit_states = explicit
+        elif self.explicit_states != explicit:
+            raise TaskGraphError(
+                f"demonstration {demo_id or '?'}: all demonstrations must give explicit states, or none"
+            )
+
+    def _link(
+        self,
+        src: int,
+        subgoal: int,
+        dst: int,
+        new_edges: list[tuple[int, int, int]],
+        action: str,
+        demo_id: str,
+    ) -> int:
+        known = self.out[src].get(subgoal)
+        if known is None:
+            self.out[src][subgoal] = dst
+            self.into[dst].append((subgoal, src))
+            self._n_edges += 1
+            new_edges.append((src, subgoal, dst))
+        elif known != dst:
+            raise TaskGraphError(
+                f"demonstration {demo_id or '?'}: action {action!r} from the same state leads to "
+                "different states in different demonstrations"
+            )
+        return dst
+
+    def _finish(self, state: int, sequence: list[int], new_edges: list[tuple[int, int, int]]) -> GraphUpdate:
         new_terminal = () if state in self.terminal else (state,)
         self.terminal.add(state)
         self.demonstrations.append(tuple(sequence))

@@ -1,0 +1,97 @@
+"""Speed and memory of CC-HTN learning (``make bench``): writes benchmarks/results/learn.json.
+
+Cases (issue #2): 4 sampled demonstrations of generated IKEA-like tasks with 10, 100, 1,000 and 5,000 actions,
+and all 720 orderings of block task 1. Time is the median of several runs of the whole pipeline (task graph,
+CTG, compaction, ambiguity resolution); peak memory is tracemalloc's peak during one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import statistics
+import time
+import tracemalloc
+from collections.abc import Callable
+from pathlib import Path
+
+from supportive import examples
+from supportive.generate import generate_task
+from supportive.learning import HTNLearner
+from supportive.tasks.htn import iter_orderings
+
+GOALS_SECONDS = {10: None, 100: 0.010, 1000: 0.5, 5000: 5.0, "blocks-tower-720": 0.010}
+REPEATS = {10: 50, 100: 30, 1000: 7, 5000: 3, "blocks-tower-720": 30}
+
+
+def measure(fit: Callable[[], HTNLearner], repeats: int) -> dict[str, float | int | bool]:
+    fit()  # warm up imports and caches
+    times = []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        learner = fit()
+        times.append(time.perf_counter() - started)
+    tracemalloc.start()
+    fit()
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    return {
+        "median_seconds": statistics.median(times),
+        "min_seconds": min(times),
+        "runs": repeats,
+        "peak_memory_mib": peak / 2**20,
+        "complete": learner.htn_.complete,
+        "roots": len(learner.htn_.roots),
+        "task_graph_states": learner.task_graph_.n_states,
+        "known_paths": learner.task_graph_.path_count(),
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--output", type=Path, default=Path(__file__).parent / "results" / "learn.json")
+    parser.add_argument("--seed", type=int, default=2)
+    args = parser.parse_args()
+    cases: dict[str, dict[str, object]] = {}
+    for size in (10, 100, 1000, 5000):
+        spec = generate_task(size, args.seed, demonstrations=4)
+        demos = list(spec.demonstrations)
+        cases[f"ikea-{size}-actions-4-demos"] = {
+            "actions": size,
+            "goal_seconds": GOALS_SECONDS[size],
+            **measure(lambda demos=demos: HTNLearner().fit(demos), REPEATS[size]),
+        }
+    structure = examples.load("blocks-tower").structure
+    assert structure is not None
+    orderings = [[a for a, _ in o] for o in iter_orderings(structure)]
+    cases["blocks-tower-720-orderings"] = {
+        "actions": 8,
+        "goal_seconds": GOALS_SECONDS["blocks-tower-720"],
+        **measure(lambda: HTNLearner().fit(orderings), REPEATS["blocks-tower-720"]),
+    }
+    for case in cases.values():
+        goal = case["goal_seconds"]
+        case["meets_goal"] = None if goal is None else case["median_seconds"] <= goal  # type: ignore[operator]
+    result = {
+        "benchmark": "learn",
+        "machine": {
+            "python": platform.python_version(),
+            "processor": platform.machine(),
+            "system": platform.system(),
+        },
+        "seed": args.seed,
+        "peer": "none run here: the issue quotes a public implementation at ~26 ms (100 actions) and ~3.2 s (1,000)",
+        "cases": cases,
+    }
+    args.output.parent.mkdir(parents=True, exist_ok=True)
+    args.output.write_text(json.dumps(result, indent=2) + "\n")
+    for name, case in cases.items():
+        print(
+            f"{name:32s} median {case['median_seconds'] * 1000:9.2f} ms  peak {case['peak_memory_mib']:7.2f} MiB"
+            f"  goal {case['goal_seconds']}  ok={case['meets_goal']}  roots={case['roots']}"
+        )
+
+
+if __name__ == "__main__":
+    main()
