@@ -1,0 +1,182 @@
+"""The orderings a hierarchy imposes, and how well they match a published "must come before" relation.
+
+An HTN implies ``a`` before ``b`` when every execution it admits performs ``a`` before ``b``. Inside one
+tree that happens exactly when the lowest common ancestor of the two leaves is a chain and ``a``'s branch
+comes first (a clique lets its children go in any order). Between the roots of a partial hierarchy it happens
+when every path of the top-level graph that performs ``b``'s root has performed ``a``'s root before.
+
+Used to score hierarchies learned from CaptainCook4D recordings against the recipes' published task graphs.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from supportive.io.captaincook import Recipe
+from supportive.learning.learner import learn
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel
+
+__all__ = [
+    "PrecedenceScore",
+    "RecipeReport",
+    "captaincook_report",
+    "compare_recipe",
+    "implied_precedences",
+    "precedence_scores",
+]
+
+Pair = tuple[Leaf, Leaf]
+
+
+@dataclass(frozen=True)
+class PrecedenceScore:
+    """Learned precedence pairs scored against published ones.
+
+    By convention the precision of an empty learned set is 1.0 (it claims nothing wrong) and the recall of an
+    empty published set is 1.0 (there is nothing to find); F1 is 0.0 when precision and recall are both 0.
+    """
+
+    precision: float
+    recall: float
+    f1: float
+    true_positives: int
+    learned: int
+    published: int
+
+
+@dataclass(frozen=True)
+class RecipeReport:
+    """What learning one recipe gave, and how its implied orderings compare with the published graph.
+
+    Attributes:
+        recipe: The recipe's name (slug).
+        demonstrations: Error-free recordings learned from.
+        actions: Distinct actions of the recipe.
+        known_paths: Distinct executions in the learned task graph (orders seen in the demonstrations).
+        complete: True when the learned hierarchy has a single root.
+        roots: Number of roots of the learned hierarchy.
+        score: Implied precedences of the learned hierarchy against the published ones.
+        admits_demonstrations: True when the learned hierarchy admits every demonstration (invariant 1).
+    """
+
+    recipe: str
+    demonstrations: int
+    actions: int
+    known_paths: int
+    complete: bool
+    roots: int
+    score: PrecedenceScore
+    admits_demonstrations: bool
+
+
+def implied_precedences(htn: HTN) -> frozenset[Pair]:
+    """Pairs ``(a, b)`` of leaves such that ``a`` comes before ``b`` in every execution ``htn`` admits.
+
+    Within a tree, ``a`` precedes ``b`` when their lowest common ancestor is a chain with ``a``'s branch
+    first. For a partial hierarchy, leaves of different roots are ordered as their roots are on every
+    top-level path (see :func:`_root_precedences`); a hierarchy with several roots and no top level leaves its
+    roots unordered.
+    """
+    pairs: set[Pair] = set()
+    for root in htn.roots:
+        pairs.update(_tree_pairs(root))
+    if htn.top_level is not None and len(htn.roots) > 1:
+        for first, second in _root_precedences(htn.top_level, len(htn.roots)):
+            pairs.update((a, b) for a in htn.roots[first].leaves for b in htn.roots[second].leaves)
+    return frozenset(pairs)
+
+
+def _tree_pairs(node: Node) -> Iterator[Pair]:
+    if isinstance(node, ActionNode):
+        return
+    if isinstance(node, ChainNode):
+        for i, earlier in enumerate(node.children):
+            for later in node.children[i + 1 :]:
+                yield from ((a, b) for a in earlier.leaves for b in later.leaves)
+    for child in node.children:
+        yield from _tree_pairs(child)
+
+
+def _root_precedences(top: TopLevel, n_roots: int) -> Iterator[tuple[int, int]]:
+    """Root pairs ``(a, b)`` such that no initial-to-terminal path performs ``b`` before ``a``.
+
+    ``a`` fails to precede ``b`` exactly when some ``b`` edge on a complete path leaves a state reachable
+    from an initial state without an ``a`` edge. So one reachability pass per root (avoiding its edges) plus
+    one backward pass (states that can still reach a terminal) decide every pair, in O(roots x edges),
+    without listing paths.
+    """
+    into: dict[int, list[int]] = defaultdict(list)
+    for src, _, dst in top.edges:
+        into[dst].append(src)
+    alive = _reach(top.terminal, into)
+    for first in range(n_roots):
+        out: dict[int, list[int]] = defaultdict(list)
+        for src, root, dst in top.edges:
+            if root != first:
+                out[src].append(dst)
+        before_first = _reach(top.initial, out)
+        unordered = {root for src, root, dst in top.edges if src in before_first and dst in alive}
+        yield from ((first, second) for second in range(n_roots) if second not in unordered | {first})
+
+
+def _reach(starts: Iterable[int], step: Mapping[int, list[int]]) -> set[int]:
+    seen = set(starts)
+    stack = list(seen)
+    while stack:
+        for nxt in step.get(stack.pop(), ()):
+            if nxt not in seen:
+                seen.add(nxt)
+                stack.append(nxt)
+    return seen
+
+
+def precedence_scores(learned: Iterable[Pair], published: Iterable[Pair]) -> PrecedenceScore:
+    """Precision, recall and F1 of ``learned`` pairs against ``published`` pairs (see :class:`PrecedenceScore`
+    for the empty-set conventions).
+
+    >>> s = precedence_scores({(("a", 1), ("b", 1))}, {(("a", 1), ("b", 1)), (("b", 1), ("c", 1))})
+    >>> s.precision, s.recall
+    (1.0, 0.5)
+    """
+    mine, truth = set(learned), set(published)
+    hits = len(mine & truth)
+    precision = hits / len(mine) if mine else 1.0
+    recall = hits / len(truth) if truth else 1.0
+    total = precision + recall
+    f1 = 2 * precision * recall / total if total else 0.0
+    return PrecedenceScore(precision, recall, f1, hits, len(mine), len(truth))
+
+
+def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = None) -> RecipeReport:
+    """Learn ``recipe``'s hierarchy from its demonstrations and score its implied precedences.
+
+    Args:
+        recipe: A loaded CaptainCook4D recipe.
+        learner_options: Keyword arguments for :class:`~supportive.learning.learner.HTNLearner`.
+
+    Raises:
+        LearningError: when the recipe has no demonstration.
+    """
+    learner = learn(recipe.spec, **dict(learner_options or {}))
+    htn = learner.htn_
+    demos = recipe.spec.demonstrations
+    return RecipeReport(
+        recipe=recipe.name,
+        demonstrations=len(demos),
+        actions=len(recipe.spec.actions),
+        known_paths=learner.task_graph_.path_count(),
+        complete=htn.complete,
+        roots=len(htn.roots),
+        score=precedence_scores(implied_precedences(htn), recipe.published),
+        admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
+    )
+
+
+def captaincook_report(
+    recipes: Iterable[Recipe], learner_options: Mapping[str, Any] | None = None
+) -> list[RecipeReport]:
+    """:func:`compare_recipe` for each recipe, in order."""
+    return [compare_recipe(recipe, learner_options) for recipe in recipes]

@@ -1,0 +1,200 @@
+"""The CaptainCook4D loader: a tiny synthetic copy of the layout, and the real annotations when present."""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from supportive.errors import DatasetError
+from supportive.io.captaincook import (
+    ENV_VAR,
+    Recipe,
+    default_root,
+    load_captaincook,
+    load_recipe,
+    recipe_slug,
+)
+
+# ------------------------------------------------------------------------------------------- synthetic
+
+
+def _step(text: str, start: float, errors: bool = False) -> dict[str, Any]:
+    return {
+        "step_id": 0,
+        "description": text,
+        "start_time": start,
+        "end_time": start + 1,
+        "has_errors": errors,
+    }
+
+
+def _recording(recording_id: str, person: int, steps: list[dict[str, Any]]) -> dict[str, Any]:
+    return {"activity_name": "Test Soup!", "person_id": person, "recording_id": recording_id, "steps": steps}
+
+
+def _write_dataset(root: Path) -> Path:
+    """A two-step-repeated recipe: Boil -> Stir -> Boil -> Stir, Chop anywhere before the second Stir."""
+    (root / "annotation_json").mkdir(parents=True)
+    (root / "task_graphs").mkdir()
+    graph = {
+        "steps": {
+            "0": "START",
+            "1": "Stir-Stir it",
+            "2": "Boil-Boil water",
+            "3": "Stir-Stir it",
+            "4": "Boil-Boil water",
+            "5": "Chop-Chop 1 onion",
+            "6": "END",
+        },
+        "edges": [[0, 4], [4, 3], [3, 2], [2, 1], [0, 5], [5, 1], [1, 6]],
+    }
+    (root / "task_graphs" / "testsoup.json").write_text(json.dumps(graph))
+    order = ["Boil-Boil water", "Stir-Stir it", "Chop-Chop 1 onion", "Boil-Boil water", "Stir-Stir it"]
+    other = ["Chop-Chop 1 onion", "Boil-Boil water", "Stir-Stir it", "Boil-Boil water", "Stir-Stir it"]
+    recordings = {
+        "9_1": _recording("9_1", 2, [_step(t, i) for i, t in enumerate(order)]),
+        "9_2": _recording("9_2", 3, [_step(t, i) for i, t in enumerate(other)]),
+        "9_3": _recording("9_3", 3, [_step(t, i, errors=i == 1) for i, t in enumerate(order)]),
+        "9_4": _recording("9_4", 4, [_step(t, i) for i, t in enumerate(order[::-1])]),
+    }
+    errors = [{"recording_id": r, "is_error": r == "9_4"} for r in recordings]
+    (root / "annotation_json" / "complete_step_annotations.json").write_text(json.dumps(recordings))
+    (root / "annotation_json" / "error_annotations.json").write_text(json.dumps(errors))
+    return root
+
+
+@pytest.fixture
+def tiny(tmp_path: Path) -> Path:
+    return _write_dataset(tmp_path / "cc")
+
+
+def test_synthetic_recipe(tiny: Path) -> None:
+    (recipe,) = load_captaincook(tiny)
+    assert (recipe.name, recipe.title) == ("testsoup", "Test Soup!")
+    assert {a.text for a in recipe.spec.actions} == {"Stir-Stir it", "Boil-Boil water", "Chop-Chop 1 onion"}
+    ids = {a.text: a.id for a in recipe.spec.actions}
+    boil, stir, chop = ids["Boil-Boil water"], ids["Stir-Stir it"], ids["Chop-Chop 1 onion"]
+    # Only the error-free recordings, in the annotated order, with agents and times.
+    assert [d.id for d in recipe.spec.demonstrations] == ["9_1", "9_2"]
+    first = recipe.spec.demonstrations[0]
+    assert first.actions == (boil, stir, chop, boil, stir)
+    assert first.agent == "person_2"
+    assert (first.steps[1].start, first.steps[1].end) == (1.0, 2.0)
+    # Repeated texts: node 4 is the first Boil, node 2 the second, in the graph's topological order.
+    chain = [(boil, 1), (stir, 1), (boil, 2), (stir, 2)]
+    expected = {(a, b) for i, a in enumerate(chain) for b in chain[i + 1 :]} | {((chop, 1), (stir, 2))}
+    assert recipe.published == expected
+    assert load_recipe("Test Soup!", tiny) == load_recipe("testsoup", tiny) == recipe
+
+
+def test_missing_root_raises(tmp_path: Path) -> None:
+    with pytest.raises(DatasetError, match="no such directory"):
+        load_captaincook(tmp_path / "absent")
+
+
+def test_env_var_must_name_a_directory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv(ENV_VAR, str(tmp_path / "absent"))
+    with pytest.raises(DatasetError, match=ENV_VAR):
+        default_root()
+    monkeypatch.setenv(ENV_VAR, str(tmp_path))
+    assert default_root() == tmp_path
+
+
+def test_missing_and_bad_files_are_named(tiny: Path) -> None:
+    (tiny / "task_graphs" / "testsoup.json").unlink()
+    with pytest.raises(DatasetError, match=r"testsoup\.json: file not found"):
+        load_captaincook(tiny)
+    (tiny / "task_graphs" / "testsoup.json").write_text("{not json")
+    with pytest.raises(DatasetError, match=r"testsoup\.json: unreadable JSON"):
+        load_captaincook(tiny)
+    (tiny / "annotation_json" / "error_annotations.json").unlink()
+    with pytest.raises(DatasetError, match=r"error_annotations\.json"):
+        load_captaincook(tiny)
+
+
+def test_unknown_recipe(tiny: Path) -> None:
+    with pytest.raises(DatasetError, match="no recording of recipe"):
+        load_recipe("Mug Cake", tiny)
+
+
+def test_slug() -> None:
+    assert recipe_slug("Microwave Egg Sandwich") == "microwaveeggsandwich"
+    assert recipe_slug("Herb Omelet with Fried Tomatoes") == "herbomeletwithfriedtomatoes"
+
+
+# ------------------------------------------------------------------------------------------- real data
+
+
+@pytest.fixture(scope="module")
+def root() -> Path:
+    return default_root()  # the dataset ships in ../shared; its absence is a failure, not a skip
+
+
+@pytest.fixture(scope="module")
+def recipes(root: Path) -> list[Recipe]:
+    return load_captaincook(root)
+
+
+def test_all_recipes_map(root: Path, recipes: list[Recipe]) -> None:
+    graphs = {p.stem for p in (root / "task_graphs").glob("*.json")}
+    assert len(recipes) == 24
+    assert {r.name for r in recipes} == graphs
+    assert all(recipe_slug(r.title) == r.name == r.spec.name for r in recipes)
+
+
+def test_only_error_free_recordings(root: Path, recipes: list[Recipe]) -> None:
+    steps = json.loads((root / "annotation_json" / "complete_step_annotations.json").read_text())
+    errors = json.loads((root / "annotation_json" / "error_annotations.json").read_text())
+    flagged = {e["recording_id"] for e in errors if e["is_error"]}
+    faulty = {r for r, rec in steps.items() if any(s["has_errors"] for s in rec["steps"])}
+    clean = set(steps) - flagged - faulty
+    used = [d.id for r in recipes for d in r.spec.demonstrations]
+    assert len(used) == len(set(used)) and set(used) == clean
+    assert all(r.spec.demonstrations for r in recipes)
+
+
+def test_actions_and_demonstrations(recipes: list[Recipe]) -> None:
+    for recipe in recipes:
+        ids = [a.id for a in recipe.spec.actions]
+        assert len(ids) == len(set(ids))
+        assert all(i.replace("_", "").isalpha() and i.islower() for i in ids)
+        leaves = {leaf for pair in recipe.published for leaf in pair}
+        for demo in recipe.spec.demonstrations:
+            assert demo.agent is not None and demo.agent.startswith("person_")
+            assert all(s.start is not None and s.end is not None for s in demo.steps)
+            counts = Counter(demo.actions)
+            performed = {(a, k) for a, n in counts.items() for k in range(1, n + 1)}
+            assert leaves <= performed
+
+
+def test_repeated_steps_become_occurrences(recipes: list[Recipe]) -> None:
+    by_name = {r.name: r for r in recipes}
+    meatballs = by_name["dressedupmeatballs"]
+    stir = next(a.id for a in meatballs.spec.actions if a.label.startswith("Stir-Stir the contents"))
+    heat = next(a.id for a in meatballs.spec.actions if a.label.startswith("Microwave-Microwave the plate"))
+    assert ((stir, 1), (stir, 2)) in meatballs.published
+    # Published chain: Microwave #1 -> Stir #1 -> Microwave #2 -> Stir #2.
+    assert {((heat, 1), (stir, 1)), ((stir, 1), (heat, 2)), ((heat, 2), (stir, 2))} <= meatballs.published
+    assert all(Counter(d.actions)[stir] == 2 for d in meatballs.spec.demonstrations)
+    pinwheels = by_name["pinwheels"]
+    slicing = next(a.id for a in pinwheels.spec.actions if a.label.startswith("slicing-"))
+    assert {((slicing, 1), (slicing, 2)), ((slicing, 2), (slicing, 3))} <= pinwheels.published
+
+
+def test_published_pairs_are_a_strict_transitive_order(recipes: list[Recipe]) -> None:
+    for recipe in recipes:
+        pairs = recipe.published
+        after: dict[tuple[str, int], set[tuple[str, int]]] = {}
+        for a, b in pairs:
+            after.setdefault(a, set()).add(b)
+        assert all((b, a) not in pairs for a, b in pairs), recipe.name
+        for a, b in pairs:
+            assert after.get(b, set()) <= after[a], recipe.name
+        actions = {leaf[0] for pair in pairs for leaf in pair}
+        assert actions <= {a.id for a in recipe.spec.actions}
+        texts = {a.text for a in recipe.spec.actions}
+        assert not texts & {"START", "END"}
