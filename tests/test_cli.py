@@ -1,0 +1,136 @@
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from supportive import examples
+from supportive.cli import main
+from supportive.io.htn_json import htn_from_dict
+
+
+def run(
+    args: list[str], capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> tuple[int, str, str]:
+    monkeypatch.setattr(sys, "argv", ["supportive", *args])
+    try:
+        main()
+        code = 0
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def test_learn_prints_a_tree(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run(["learn", str(examples.path("blocks-v"))], capsys, monkeypatch)
+    assert code == 0
+    assert "blocks-v (partial" in out or "blocks-v" in out
+    assert "red — place the red block" in out
+
+
+def test_learn_json_to_stdout_and_file(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run(
+        ["learn", str(examples.path("knife-carrots-celery")), "--format", "json"], capsys, monkeypatch
+    )
+    assert code == 0
+    data = json.loads(out)
+    assert data["complete"] is True and data["stats"]["task_graph"]["paths"] == 2
+    target = tmp_path / "htn.json"
+    code, out, _ = run(
+        ["learn", str(examples.path("two-glasses")), "-f", "json", "-o", str(target)], capsys, monkeypatch
+    )
+    assert code == 0 and out == ""
+    assert len(htn_from_dict(json.loads(target.read_text())).alternatives) == 2
+
+
+def test_learn_dot_and_hddl(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run(["learn", str(examples.path("blocks-towers")), "--format", "dot"], capsys, monkeypatch)
+    assert code == 0 and out.startswith("digraph htn {")
+    code, _, err = run(
+        ["learn", str(examples.path("knife-carrots-celery")), "--format", "hddl", "-o", str(tmp_path / "h")],
+        capsys,
+        monkeypatch,
+    )
+    assert code == 0 and "domain.hddl" in err
+    assert "(:method" in (tmp_path / "h" / "domain.hddl").read_text()
+    assert "(:htn" in (tmp_path / "h" / "problem.hddl").read_text()
+
+
+def test_learn_reads_csv(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "demos.csv"
+    path.write_text("demonstration,step,action\nd1,1,knife\nd1,2,a\nd1,3,b\nd2,1,knife\nd2,2,b\nd2,3,a\n")
+    code, out, _ = run(["learn", str(path), "-f", "json"], capsys, monkeypatch)
+    assert code == 0 and json.loads(out)["roots"][0]["kind"] == "chain"
+
+
+BAD = {
+    "empty.yaml": "",
+    "unknown-key.yaml": "name: t\ncolour: red\n",
+    "undeclared.yaml": "name: t\nactions: [a]\ndemonstrations:\n  - steps: [a, b]\n",
+    "undeclared-structure.yaml": "name: t\nactions: [a]\nstructure: {chain: [a, z]}\n",
+    "duplicate.yaml": "name: t\ndemonstrations:\n  - {id: x, steps: [a]}\n  - {id: x, steps: [b]}\n",
+    "steps.yaml": "name: t\ndemonstrations:\n  - steps: a\n",
+    "invalid.yaml": "name: [t\n",
+    "columns.csv": "demonstration,action\nd1,a\n",
+    "nodemos.yaml": "name: t\nactions: [a]\n",
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD))
+def test_bad_input_exits_2_with_one_line_and_writes_nothing(
+    name: str, tmp_path: Path, capsys, monkeypatch
+) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / name
+    path.write_text(BAD[name])
+    target = tmp_path / "out.json"
+    code, out, err = run(["learn", str(path), "-f", "json", "-o", str(target)], capsys, monkeypatch)
+    assert code == 2
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"supportive: error: {path}")
+    assert "Traceback" not in err
+    assert not target.exists()
+
+
+def test_usage_errors_exit_2(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, _, _ = run(["learn"], capsys, monkeypatch)
+    assert code == 2
+    code, _, _ = run(["learn", str(examples.path("blocks-v")), "--format", "pdf"], capsys, monkeypatch)
+    assert code == 2
+
+
+def test_hddl_needs_an_output_directory(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, _, err = run(["learn", str(examples.path("blocks-v")), "-f", "hddl"], capsys, monkeypatch)
+    assert code == 2 and "--output DIR" in err
+
+
+def test_demo_says_what_was_and_was_not_learned(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run(["demo"], capsys, monkeypatch)
+    assert code == 0
+    assert "Build frame" in out and "Attach seat" in out
+    assert "✓ Screw seat" in out
+    assert "✗ Fasten nuts and bolts (any order, 6 of 24 orders seen)" in out
+    assert "288 of 768" in out
+
+
+def test_captaincook_json(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run(["captaincook", "--json"], capsys, monkeypatch)
+    assert code == 0
+    rows = json.loads(out)
+    assert len(rows) == 24 and all(r["admits_demonstrations"] for r in rows)
+    assert all(0 < r["recall"] <= 1 for r in rows)
+
+
+def test_console_script_has_no_traceback(tmp_path: Path) -> None:
+    script = shutil.which("supportive", path=str(Path(sys.executable).parent))
+    assert script is not None
+    path = tmp_path / "bad.yaml"
+    path.write_text("name: t\nfoo: 1\n")
+    result = subprocess.run([script, "learn", str(path)], capture_output=True, text=True, check=False)
+    assert result.returncode == 2
+    assert result.stderr.strip() == f"supportive: error: {path}:2: unknown key 'foo'"
