@@ -11,10 +11,12 @@ from pathlib import Path
 __all__ = [
     "DatasetError",
     "ExportError",
+    "GenerationError",
     "LearningError",
     "SupportiveError",
     "TaskFileError",
     "TaskGraphError",
+    "TooManyOrderingsError",
 ]
 
 
@@ -69,3 +71,26 @@ class ExportError(SupportiveError):
 
 class DatasetError(SupportiveError, ValueError):
     """A dataset on disk is missing or malformed."""
+
+
+class GenerationError(SupportiveError, ValueError):
+    """A generator was asked for something it cannot make (a task of no actions, a probability above 1, …)."""
+
+
+class TooManyOrderingsError(GenerationError, LearningError):
+    """A structure admits more orderings than the caller allowed to enumerate.
+
+    Args:
+        count: How many orderings the structure admits.
+        limit: The most the caller allowed.
+    """
+
+    def __init__(self, count: int, limit: int) -> None:
+        self.count = count
+        self.limit = limit
+        text = str(count)
+        shown = text if len(text) <= 12 else f"about 10^{len(text) - 1}"
+        super().__init__(
+            f"the structure admits {shown} orderings, more than the limit of {limit}: "
+            "sample demonstrations instead, or raise the limit"
+        )
