@@ -134,3 +134,15 @@ def test_console_script_has_no_traceback(tmp_path: Path) -> None:
     result = subprocess.run([script, "learn", str(path)], capture_output=True, text=True, check=False)
     assert result.returncode == 2
     assert result.stderr.strip() == f"supportive: error: {path}:2: unknown key 'foo'"
+
+
+def test_generate_is_seeded_and_learnable(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    code, first, _ = run(["generate", "--actions", "30", "--seed", "5"], capsys, monkeypatch)
+    _, second, _ = run(["generate", "--actions", "30", "--seed", "5"], capsys, monkeypatch)
+    _, other, _ = run(["generate", "--actions", "30", "--seed", "6"], capsys, monkeypatch)
+    assert code == 0 and first == second != other
+    target = tmp_path / "task.json"
+    code, _, _ = run(["generate", "-n", "25", "--seed", "1", "-d", "3", "-o", str(target)], capsys, monkeypatch)
+    assert code == 0
+    code, out, _ = run(["learn", str(target), "-f", "json"], capsys, monkeypatch)
+    assert code == 0 and json.loads(out)["stats"]["demonstrations"] == 3
