@@ -142,7 +142,9 @@ def test_generate_is_seeded_and_learnable(tmp_path: Path, capsys, monkeypatch) -
     _, other, _ = run(["generate", "--actions", "30", "--seed", "6"], capsys, monkeypatch)
     assert code == 0 and first == second != other
     target = tmp_path / "task.json"
-    code, _, _ = run(["generate", "-n", "25", "--seed", "1", "-d", "3", "-o", str(target)], capsys, monkeypatch)
+    code, _, _ = run(
+        ["generate", "-n", "25", "--seed", "1", "-d", "3", "-o", str(target)], capsys, monkeypatch
+    )
     assert code == 0
     code, out, _ = run(["learn", str(target), "-f", "json"], capsys, monkeypatch)
     assert code == 0 and json.loads(out)["stats"]["demonstrations"] == 3

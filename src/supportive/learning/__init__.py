@@ -5,14 +5,18 @@ from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
 from supportive.learning.coverage import admitted_path_count
 from supportive.learning.learner import HTNLearner, LearningStats, learn
+from supportive.learning.macros import MacroAction, macro_actions, macro_library
 
 __all__ = [
     "Compaction",
     "HTNLearner",
     "LearningStats",
+    "MacroAction",
     "admitted_path_count",
     "conjugate_task_graph",
     "learn",
+    "macro_actions",
+    "macro_library",
     "resolve_ambiguity",
     "update_conjugate",
 ]
