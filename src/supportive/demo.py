@@ -4,7 +4,6 @@ down, against the ground truth in the task file."""
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from dataclasses import dataclass
 
 from rich.console import Console
@@ -18,11 +17,12 @@ from supportive.learning.precedence import implied_precedences
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
+    ChainNode,
     CliqueNode,
     Leaf,
-    Node,
     canonical,
     count_orderings,
+    internal_nodes,
     to_leaves,
 )
 from supportive.tasks.spec import TaskSpec
@@ -41,16 +41,8 @@ class SubtaskFinding:
     orders_valid: int
 
 
-def _internal(node: Node) -> Iterator[Node]:
-    if not isinstance(node, ActionNode):
-        yield node
-        for child in node.children:
-            yield from _internal(child)
-
-
-def _child_orders(node: Node, demonstrations: list[tuple[Leaf, ...]]) -> int:
+def _child_orders(node: ChainNode | CliqueNode, demonstrations: list[tuple[Leaf, ...]]) -> int:
     """Distinct orders in which the demonstrations performed ``node``'s children (by first leaf)."""
-    assert not isinstance(node, ActionNode)
     owner = {leaf: i for i, child in enumerate(node.children) for leaf in child.leaves}
     orders = set()
     for demo in demonstrations:
@@ -67,11 +59,10 @@ def subtask_findings(spec: TaskSpec, htn: HTN) -> list[SubtaskFinding]:
     """For every subtask of the spec's ground-truth structure: learned exactly or not, and the evidence."""
     if spec.structure is None:
         return []
-    learned = {canonical(node) for root in (htn.roots) for node in _internal(root)}
+    learned = {canonical(node) for root in (htn.roots) for node in internal_nodes(root)}
     demos = [to_leaves(d) for d in spec.action_sequences()]
     findings = []
-    for node in _internal(spec.structure):
-        assert not isinstance(node, ActionNode)
+    for node in internal_nodes(spec.structure):
         valid = math.factorial(len(node.children)) if isinstance(node, CliqueNode) else 1
         findings.append(
             SubtaskFinding(

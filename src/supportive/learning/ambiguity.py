@@ -17,10 +17,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from supportive.learning.compaction import Compaction, Registry, decide
+from supportive.learning.compaction import Compaction, Registry
 from supportive.learning.coverage import admitted_path_count
 from supportive.learning.levels import Group, LevelGraph
 from supportive.tasks.htn import Node, canonical, count_orderings
+from supportive.tasks.task_graph import TaskGraph
 
 __all__ = ["resolve_ambiguity"]
 
@@ -43,7 +44,7 @@ def resolve_ambiguity(
     if len(top.by_node) <= 1 or len(top.by_node) > max_roots:
         return []
     found: dict[tuple[object, ...], tuple[Node, int]] = {}
-    for root in _resolve(top, compaction.registry, depth, limit * 4):
+    for root in _resolve(compaction.graph, top, compaction.registry, depth, limit * 4):
         key = canonical(root)
         if key in found:
             continue
@@ -58,7 +59,9 @@ def _size(node: Node) -> int:
     return len(getattr(node, "children", ())) + sum(_size(c) for c in getattr(node, "children", ()))
 
 
-def _resolve(level: LevelGraph, registry: Registry, depth: int, budget: int) -> Iterator[Node]:
+def _resolve(
+    graph: TaskGraph, level: LevelGraph, registry: Registry, depth: int, budget: int
+) -> Iterator[Node]:
     if depth == 0 or budget <= 0:
         return
     for groups in _readings(level, registry):
@@ -70,11 +73,11 @@ def _resolve(level: LevelGraph, registry: Registry, depth: int, budget: int) -> 
             continue
         scratch = registry.copy()
         restricted.node_mask = scratch.mask
-        top = _compact(restricted, scratch)
+        top = Compaction.resumed(graph, restricted, scratch).top
         if len(top.by_node) == 1:
             yield scratch.nodes[next(iter(top.by_node))]
         elif top.n_edges < level.n_edges or len(top.by_node) < len(level.by_node):
-            yield from _resolve(top, scratch, depth - 1, budget)
+            yield from _resolve(graph, top, scratch, depth - 1, budget)
 
 
 def _readings(level: LevelGraph, registry: Registry) -> Iterator[list[Group]]:
@@ -97,12 +100,3 @@ def _readings(level: LevelGraph, registry: Registry) -> Iterator[list[Group]]:
         yield [
             Group(tuple(sorted(c, key=lambda n: ordering.rank[n])), False, level.mask_of(c)) for c in chosen
         ]
-
-
-def _compact(level: LevelGraph, registry: Registry) -> LevelGraph:
-    while len(level.by_node) > 1:
-        decision = decide(level, registry.ordering)
-        if not decision:
-            break
-        level = level.compact([(registry.add(g), g, exits) for g, exits in decision])
-    return level

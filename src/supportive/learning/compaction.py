@@ -117,6 +117,14 @@ class Compaction:
         """The last level: where compaction stopped."""
         return self.levels[-1]
 
+    @classmethod
+    def resumed(cls, graph: TaskGraph, level: LevelGraph, registry: Registry) -> Compaction:
+        """Compact onwards from ``level`` (a restriction of ``graph``'s, say), adding nodes to ``registry``."""
+        compaction = cls(graph)
+        compaction.registry = registry
+        compaction._continue(0, level)
+        return compaction
+
     def run(self) -> None:
         """Compact from scratch."""
         self.registry = Registry.of(self.graph)

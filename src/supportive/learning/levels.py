@@ -17,6 +17,8 @@ from dataclasses import dataclass, field
 
 import networkx as nx
 
+from supportive.learning.reachability import reachable
+
 __all__ = ["Group", "LevelGraph", "Ordering"]
 
 
@@ -261,22 +263,11 @@ def _trimmed(by_node: dict[int, list[tuple[int, int]]], like: LevelGraph) -> Lev
         for src, dst in edges:
             out.setdefault(src, []).append(dst)
             back.setdefault(dst, []).append(src)
-    forward = _reach(like.initial, out)
-    backward = _reach(like.terminal & forward, back)
+    forward = reachable(like.initial, out)
+    backward = reachable(like.terminal & forward, back)
     alive = forward & backward
     if not alive & like.initial:
         return None
     kept = {n: [(s, d) for s, d in edges if s in alive and d in alive] for n, edges in by_node.items()}
     kept = {n: edges for n, edges in kept.items() if edges}
     return LevelGraph(kept, like.initial & alive, like.terminal & alive, like.state_mask, like.node_mask)
-
-
-def _reach(starts: Iterable[int], step: dict[int, list[int]]) -> set[int]:
-    seen = set(starts)
-    stack = list(seen)
-    while stack:
-        for nxt in step.get(stack.pop(), ()):
-            if nxt not in seen:
-                seen.add(nxt)
-                stack.append(nxt)
-    return seen

@@ -15,12 +15,10 @@ from supportive.learning.naming import named
 from supportive.seeding import Seed
 from supportive.tasks.htn import (
     HTN,
-    ActionNode,
-    ChainNode,
-    CliqueNode,
     Node,
     canonical,
     count_orderings,
+    internal_nodes,
     iter_orderings,
     sample_ordering,
 )
@@ -65,13 +63,6 @@ class MacroAction:
         return all(action in available for action in self.actions)
 
 
-def _internal(node: Node) -> Iterator[ChainNode | CliqueNode]:
-    if not isinstance(node, ActionNode):
-        yield node
-        for child in node.children:
-            yield from _internal(child)
-
-
 def macro_actions(htn: HTN, *, min_size: int = 2) -> list[MacroAction]:
     """Every chain and clique of ``htn`` performing at least ``min_size`` actions, outermost first.
 
@@ -89,7 +80,7 @@ def macro_library(htns: Iterable[HTN], *, min_size: int = 2) -> list[MacroAction
     macros = []
     for htn in htns:
         for root in htn.roots:
-            for node in _internal(named(root)):
+            for node in internal_nodes(named(root)):
                 key = canonical(node)
                 if len(node.leaves) < min_size or key in seen:
                     continue

@@ -17,6 +17,7 @@ from typing import Any
 
 from supportive.io.captaincook import Recipe
 from supportive.learning.learner import learn
+from supportive.learning.reachability import reachable
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel
 
 __all__ = [
@@ -111,26 +112,15 @@ def _root_precedences(top: TopLevel, n_roots: int) -> Iterator[tuple[int, int]]:
     into: dict[int, list[int]] = defaultdict(list)
     for src, _, dst in top.edges:
         into[dst].append(src)
-    alive = _reach(top.terminal, into)
+    alive = reachable(top.terminal, into)
     for first in range(n_roots):
         out: dict[int, list[int]] = defaultdict(list)
         for src, root, dst in top.edges:
             if root != first:
                 out[src].append(dst)
-        before_first = _reach(top.initial, out)
+        before_first = reachable(top.initial, out)
         unordered = {root for src, root, dst in top.edges if src in before_first and dst in alive}
         yield from ((first, second) for second in range(n_roots) if second not in unordered | {first})
-
-
-def _reach(starts: Iterable[int], step: Mapping[int, list[int]]) -> set[int]:
-    seen = set(starts)
-    stack = list(seen)
-    while stack:
-        for nxt in step.get(stack.pop(), ()):
-            if nxt not in seen:
-                seen.add(nxt)
-                stack.append(nxt)
-    return seen
 
 
 def precedence_scores(learned: Iterable[Pair], published: Iterable[Pair]) -> PrecedenceScore:

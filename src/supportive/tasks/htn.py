@@ -32,6 +32,7 @@ __all__ = [
     "TopLevel",
     "canonical",
     "count_orderings",
+    "internal_nodes",
     "iter_orderings",
     "leaf_actions",
     "mean_action_depth",
@@ -204,6 +205,14 @@ def _admits_at(node: Node, leaves: Sequence[Leaf], start: int) -> bool:
 def _block_matches(node: Node, leaves: Sequence[Leaf], start: int) -> bool:
     block = leaves[start : start + len(node.leaves)]
     return sorted(block) == sorted(node.leaves) and _admits_at(node, leaves, start)
+
+
+def internal_nodes(node: Node) -> Iterator[ChainNode | CliqueNode]:
+    """Every chain and clique under ``node`` (itself included), outermost first."""
+    if not isinstance(node, ActionNode):
+        yield node
+        for child in node.children:
+            yield from internal_nodes(child)
 
 
 def node_count(node: Node) -> int:
