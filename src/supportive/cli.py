@@ -130,21 +130,7 @@ def captaincook(
 
     reports = captaincook_report(load_captaincook(data))
     if as_json:
-        rows = [
-            {
-                "recipe": r.recipe,
-                "demonstrations": r.demonstrations,
-                "actions": r.actions,
-                "known_paths": r.known_paths,
-                "complete": r.complete,
-                "roots": r.roots,
-                "admits_demonstrations": r.admits_demonstrations,
-                "precision": r.score.precision,
-                "recall": r.score.recall,
-                "f1": r.score.f1,
-            }
-            for r in reports
-        ]
+        rows = [r.as_dict() for r in reports]
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
     table = Table(title="CaptainCook4D: implied precedences vs the published task graphs")

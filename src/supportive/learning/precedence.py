@@ -72,6 +72,21 @@ class RecipeReport:
     score: PrecedenceScore
     admits_demonstrations: bool
 
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form (one row of ``supportive captaincook --json``)."""
+        return {
+            "recipe": self.recipe,
+            "demonstrations": self.demonstrations,
+            "actions": self.actions,
+            "known_paths": self.known_paths,
+            "complete": self.complete,
+            "roots": self.roots,
+            "admits_demonstrations": self.admits_demonstrations,
+            "precision": self.score.precision,
+            "recall": self.score.recall,
+            "f1": self.score.f1,
+        }
+
 
 def implied_precedences(htn: HTN) -> frozenset[Pair]:
     """Pairs ``(a, b)`` of leaves such that ``a`` comes before ``b`` in every execution ``htn`` admits.
