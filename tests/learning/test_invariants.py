@@ -9,7 +9,7 @@ import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from supportive.learning import HTNLearner
+from supportive.learning import HTNLearner, invariant_violations
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
@@ -68,8 +68,10 @@ def internal_nodes(node: Node) -> Iterator[Node]:
 
 
 def assert_invariants_1_and_2(learner: HTNLearner) -> None:
+    """An enumeration oracle, independent of :func:`invariant_violations` (which must agree with it)."""
     htn: HTN = learner.htn_
     graph = learner.task_graph_
+    assert invariant_violations(graph, htn) == []
     for demo in graph.demonstrations:
         assert htn.admits_leaves([graph.subgoals[s] for s in demo]), (
             "invariant 1: a demonstration is rejected"
@@ -96,6 +98,7 @@ def test_all_orderings_recover_the_structure(structure: Node) -> None:
     assert learner.htn_.complete
     assert canonical(learner.htn_.roots[0]) == canonical(structure), "invariant 3"
     assert learner.htn_.count_orderings() == count_orderings(structure)
+    assert invariant_violations(learner.task_graph_, learner.htn_, structure) == []
     assert_invariants_1_and_2(learner)
 
 
@@ -127,3 +130,19 @@ def test_partial_fit_equals_fit(structure: Node, seed: int, k: int) -> None:
         assert incremental.htn_.top_level == batch.htn_.top_level
         assert incremental.ctg_.n_edges == batch.ctg_.n_edges
         assert incremental.stats_.task_graph == batch.stats_.task_graph
+
+
+def test_violations_are_reported() -> None:
+    learner = HTNLearner().fit([list("abcd"), list("acbd")])
+    graph = learner.task_graph_
+    interleaved = HTN(
+        "t", (ChainNode((ActionNode("a"), CliqueNode((ActionNode("b"), ActionNode("d"))), ActionNode("c"))),)
+    )
+    problems = invariant_violations(graph, interleaved)
+    assert any(p.startswith("invariant 1") for p in problems)
+    assert any(p.startswith("invariant 2") for p in problems)
+    flat = HTN("t", (CliqueNode(tuple(ActionNode(x) for x in "abcd")),))
+    structure = ChainNode((ActionNode("a"), CliqueNode((ActionNode("b"), ActionNode("c"))), ActionNode("d")))
+    assert invariant_violations(graph, flat, structure) == [
+        "invariant 3: all valid orderings are known but the structure was not recovered"
+    ]

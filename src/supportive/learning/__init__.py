@@ -4,6 +4,7 @@ from supportive.learning.ambiguity import resolve_ambiguity
 from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
 from supportive.learning.coverage import admitted_path_count
+from supportive.learning.invariants import invariant_violations
 from supportive.learning.learner import HTNLearner, LearningStats, learn
 from supportive.learning.macros import MacroAction, macro_actions, macro_library
 
@@ -14,6 +15,7 @@ __all__ = [
     "MacroAction",
     "admitted_path_count",
     "conjugate_task_graph",
+    "invariant_violations",
     "learn",
     "macro_actions",
     "macro_library",
