@@ -1,5 +1,6 @@
 from __future__ import annotations
 
+import itertools
 import math
 
 import pytest
@@ -18,6 +19,7 @@ from supportive.tasks.htn import (
     node_count,
     node_edges,
     sample_ordering,
+    successor_pairs,
     to_leaves,
 )
 
@@ -77,3 +79,14 @@ def test_partial_htn_admits_through_its_top_level() -> None:
     assert htn.admits(["a", "b", "c"]) and htn.admits(["c", "a", "b"])
     assert not htn.admits(["a", "c", "b"]) and not htn.admits(["a", "b"])
     assert htn.count_orderings() == 2
+
+
+def test_successor_pairs_match_enumeration() -> None:
+    node = ChainNode((A, CliqueNode((ChainNode((B, C)), D)), ActionNode("e")))
+    seen = set()
+    for order in iter_orderings(node):
+        seen.update(itertools.pairwise(order))
+    assert successor_pairs(node) == seen
+    top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)))
+    htn = HTN("t", (ChainNode((A, B)), C), top)
+    assert htn.successor_pairs() == {(("a", 1), ("b", 1)), (("b", 1), ("c", 1)), (("c", 1), ("a", 1))}

@@ -32,13 +32,16 @@ __all__ = [
     "TopLevel",
     "canonical",
     "count_orderings",
+    "first_leaves",
     "internal_nodes",
     "iter_orderings",
+    "last_leaves",
     "leaf_actions",
     "mean_action_depth",
     "node_count",
     "node_edges",
     "sample_ordering",
+    "successor_pairs",
     "to_leaves",
 ]
 
@@ -215,6 +218,39 @@ def internal_nodes(node: Node) -> Iterator[ChainNode | CliqueNode]:
             yield from internal_nodes(child)
 
 
+def first_leaves(node: Node) -> frozenset[Leaf]:
+    """Leaves that can be performed first in ``node``."""
+    if isinstance(node, ActionNode):
+        return frozenset((node.leaf,))
+    if isinstance(node, ChainNode):
+        return first_leaves(node.children[0])
+    return frozenset().union(*(first_leaves(c) for c in node.children))
+
+
+def last_leaves(node: Node) -> frozenset[Leaf]:
+    """Leaves that can be performed last in ``node``."""
+    if isinstance(node, ActionNode):
+        return frozenset((node.leaf,))
+    if isinstance(node, ChainNode):
+        return last_leaves(node.children[-1])
+    return frozenset().union(*(last_leaves(c) for c in node.children))
+
+
+def successor_pairs(node: Node) -> set[tuple[Leaf, Leaf]]:
+    """Pairs ``(u, v)`` such that ``v`` immediately follows ``u`` in some sequence ``node`` admits: the
+    transitions a flat (non-hierarchical) model of the task needs."""
+    pairs: set[tuple[Leaf, Leaf]] = set()
+    for inner in internal_nodes(node):
+        children = inner.children
+        if isinstance(inner, ChainNode):
+            links = itertools.pairwise(children)
+        else:
+            links = ((a, b) for a in children for b in children if a is not b)  # type: ignore[assignment]
+        for a, b in links:
+            pairs.update((u, v) for u in last_leaves(a) for v in first_leaves(b))
+    return pairs
+
+
 def node_count(node: Node) -> int:
     """Nodes in the tree under ``node``, leaves included."""
     if isinstance(node, ActionNode):
@@ -343,6 +379,22 @@ class HTN:
     def canonical(self) -> tuple[object, ...]:
         """Hashable form, equal for equivalent hierarchies (see :func:`canonical`)."""
         return tuple(canonical(root) for root in self.roots)
+
+    def successor_pairs(self) -> set[tuple[Leaf, Leaf]]:
+        """Pairs ``(u, v)`` such that ``v`` immediately follows ``u`` in some sequence the HTN admits."""
+        pairs = set().union(*(successor_pairs(root) for root in self.roots))
+        if self.top_level is not None:
+            following: dict[int, set[int]] = {}
+            for _, root, dst in self.top_level.edges:
+                following.setdefault(root, set()).update(
+                    r for src, r, _ in self.top_level.edges if src == dst
+                )
+            for root, nexts in following.items():
+                for nxt in nexts:
+                    pairs.update(
+                        (u, v) for u in last_leaves(self.roots[root]) for v in first_leaves(self.roots[nxt])
+                    )
+        return pairs
 
     def node_count(self) -> int:
         """Nodes in all trees, leaves included."""
