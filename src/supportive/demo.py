@@ -6,13 +6,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
 from rich.console import Console
 from rich.panel import Panel
 from rich.table import Table
 
 from supportive import examples
+from supportive.inference import HierarchicalHMM, ObservationModel
 from supportive.io.tree import htn_tree
 from supportive.learning.learner import HTNLearner, learn
+from supportive.learning.naming import known_names
 from supportive.learning.precedence import implied_precedences
 from supportive.tasks.htn import (
     HTN,
@@ -27,7 +30,7 @@ from supportive.tasks.htn import (
 )
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["SubtaskFinding", "run_demo", "subtask_findings"]
+__all__ = ["SubtaskFinding", "WatchedStep", "run_demo", "subtask_findings", "watch", "watch_held_out"]
 
 
 @dataclass(frozen=True)
@@ -156,5 +159,71 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
         console.print(f"\n[bold]Alternative readings[/] ({len(htn.alternatives)}), best first:")
         for alternative in htn.alternatives[:3]:
             console.print(htn_tree(alternative, spec.texts()))
+    if all(a.observations for a in spec.actions) and len(spec.demonstrations) > 1:
+        watch_held_out(console, spec)
     console.print(Panel.fit("Try it on your own task:  supportive learn my-task.yaml --format json"))
     return learner
+
+
+@dataclass(frozen=True)
+class WatchedStep:
+    """What the robot believed at the last moment of one action of a watched demonstration."""
+
+    truth: str
+    subgoal: tuple[str, float]
+    subtask: tuple[str, float]
+    next_subgoal: tuple[str, float]
+
+
+def watch(spec: TaskSpec, held_out: int = -1, seed: int = 7, mean_duration: float = 4.0) -> list[WatchedStep]:
+    """Learn from every demonstration but one, then replay that one as a stream of contact events (drawn from
+    the task's observation model) through the hierarchical HMM, and report the belief at the end of each action."""
+    demos = list(spec.demonstrations)
+    watched = demos.pop(held_out)
+    htn = HTNLearner(names=known_names(spec.structure)).fit(demos, spec.name).htn_
+    model = ObservationModel.from_spec(spec)
+    running = HierarchicalHMM(htn, model, mean_duration=mean_duration).filter()
+    rng = np.random.default_rng(seed)
+    steps = []
+    for action in watched.actions:
+        for _ in range(int(rng.geometric(1.0 / mean_duration))):
+            belief = running.update(model.sample(action, rng))
+        steps.append(
+            WatchedStep(
+                truth=action,
+                subgoal=running.top(belief.subgoals, running.subgoal_labels, 1)[0],
+                subtask=running.top(belief.enclosing, running.enclosing_labels, 1)[0],
+                next_subgoal=running.top(belief.next_subgoals, running.subgoal_labels, 1)[0],
+            )
+        )
+    return steps
+
+
+def watch_held_out(console: Console, spec: TaskSpec) -> None:
+    """Print :func:`watch` as a table."""
+    held_out = spec.demonstrations[-1]
+    steps = watch(spec)
+    console.print(
+        f"\n[bold]Watching a teammate[/]: demonstration {held_out.id} ({held_out.agent or 'someone'}) was held out "
+        "of learning and is replayed as contact events (which objects touch). After each action, the hierarchical "
+        "HMM's belief about the current action, the subtask it belongs to, and what comes next:"
+    )
+    table = Table(show_lines=False)
+    for column in ("truth", "believed action", "subtask", "expected next"):
+        table.add_column(column)
+    hits = 0
+    for step in steps:
+        right = step.subgoal[0] == step.truth
+        hits += right
+        colour = "green" if right else "yellow"
+        table.add_row(
+            step.truth,
+            f"[{colour}]{step.subgoal[0]}[/] {step.subgoal[1]:.2f}",
+            f"{step.subtask[0]} {step.subtask[1]:.2f}",
+            f"{step.next_subgoal[0]} {step.next_subgoal[1]:.2f}",
+        )
+    console.print(table)
+    console.print(
+        f"  right action at the end of {hits} of {len(steps)} actions; pegs, bolts and nuts look alike, so the "
+        "subtask column is where the hierarchy earns its keep."
+    )

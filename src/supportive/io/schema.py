@@ -10,7 +10,7 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StringConstraints, model_validator
 
-__all__ = ["ActionIn", "DemonstrationIn", "NodeIn", "StepIn", "TaskIn"]
+__all__ = ["DEFAULT_EVENT_PROBABILITY", "ActionIn", "DemonstrationIn", "NodeIn", "StepIn", "TaskIn"]
 
 Name = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1)]
 
@@ -23,11 +23,25 @@ class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
+DEFAULT_EVENT_PROBABILITY = 0.9
+"""Probability given to an observation listed without one."""
+
+
 class ActionIn(_Strict):
-    """``{id, text}``."""
+    """``{id, text, observations}``: observations are contact events, as a list (each holding with probability
+    0.9 while the action runs) or a mapping from event to probability."""
 
     id: Name
     text: str | None = None
+    observations: list[Name] | dict[str, Annotated[float, Field(gt=0.0, lt=1.0)]] | None = None
+
+    def events(self) -> tuple[tuple[str, float], ...]:
+        """The observations as ``(event, probability)`` pairs, sorted by event."""
+        if self.observations is None:
+            return ()
+        if isinstance(self.observations, list):
+            return tuple(sorted((e, DEFAULT_EVENT_PROBABILITY) for e in set(self.observations)))
+        return tuple(sorted(self.observations.items()))
 
 
 class StepIn(_Strict):

@@ -174,7 +174,7 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
     def fail(problem: str, loc: list[str | int]) -> TaskFileError:
         return TaskFileError(problem, path=path, place=_place(loc), line=_line(text, loc))
 
-    actions = tuple(Action(a.id, a.text) for a in model.actions or ())
+    actions = tuple(Action(a.id, a.text, a.events()) for a in model.actions or ())
     declared = {a.id for a in actions}
     seen_actions: set[str] = set()
     for index, action in enumerate(actions):
@@ -296,6 +296,15 @@ def _node_to_data(node: Node) -> object:
     return data
 
 
+def _action_to_data(action: Action) -> dict[str, object]:
+    data: dict[str, object] = {"id": action.id}
+    if action.text:
+        data["text"] = action.text
+    if action.observations:
+        data["observations"] = dict(action.observations)
+    return data
+
+
 def _step_to_data(step: Step) -> object:
     if step.start is None and step.end is None and step.state is None:
         return step.action
@@ -313,7 +322,7 @@ def task_to_dict(spec: TaskSpec) -> dict[str, Any]:
     """The task as plain data in the file schema (shorthands used where nothing is lost)."""
     data: dict[str, Any] = {"name": spec.name}
     if spec.actions:
-        data["actions"] = [{"id": a.id, "text": a.text} if a.text else {"id": a.id} for a in spec.actions]
+        data["actions"] = [_action_to_data(a) for a in spec.actions]
     if spec.structure is not None:
         data["structure"] = _node_to_data(spec.structure)
     if spec.demonstrations:

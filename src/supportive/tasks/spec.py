@@ -12,10 +12,15 @@ __all__ = ["Action", "Demonstration", "Step", "TaskSpec"]
 
 @dataclass(frozen=True)
 class Action:
-    """A primitive skill (an option, §2.0.0.2): an id used everywhere and a text for people."""
+    """A primitive skill (an option, §2.0.0.2): an id used everywhere and a text for people.
+
+    ``observations`` maps contact events (Semantic Event Chains, §2.1.7.1: e.g. ``"hand-peg"`` for the hand
+    touching a peg) to the probability that the event holds at a moment while the action is performed.
+    """
 
     id: str
     text: str | None = None
+    observations: tuple[tuple[str, float], ...] = ()
 
     @property
     def label(self) -> str:

@@ -1,0 +1,210 @@
+"""Goal inference (§2.1.7.1): flat and hierarchical HMMs over a task's subgoals, as estimators and online
+filters.
+
+Hidden state: the subgoal the observed agent is working on. Each moment it either goes on with it (probability
+``stay``, learned from how long subgoals last) or finishes it and starts another, as the task model allows (see
+:mod:`supportive.inference.transitions`). Each moment's contact events are scored by an
+:class:`~supportive.inference.observations.ObservationModel`.
+
+Filtering is the forward algorithm with the belief renormalised every step and the normaliser accumulated in log
+space, so it stays exact and finite over any number of steps; one update costs the same at step 10 as at step
+10,000. The belief over an internal node of the HTN (a subtask such as "attach the rear left leg") is the mass of
+its leaves.
+"""
+
+from __future__ import annotations
+
+import itertools
+from abc import ABC, abstractmethod
+from collections.abc import Iterable, Sequence
+from functools import cached_property
+from typing import Self
+
+import numpy as np
+
+from supportive.errors import LearningError
+from supportive.inference.observations import ObservationModel
+from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions, TaskLayout
+from supportive.learning.naming import named
+from supportive.tasks.htn import HTN, ActionNode, Leaf
+
+__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM"]
+
+
+class Belief:
+    """What the filter believes after one observation.
+
+    Attributes:
+        step: How many observations have been seen.
+        subgoals: Probability of each subgoal (in :attr:`GoalFilter.subgoal_labels` order) being the current one.
+        log_likelihood: log P(all observations so far).
+    """
+
+    def __init__(
+        self, step: int, subgoals: np.ndarray, arriving: np.ndarray, layout: TaskLayout, ll: float
+    ) -> None:
+        self.step = step
+        self.subgoals = subgoals
+        self.log_likelihood = ll
+        self._arriving = arriving
+        self._layout = layout
+
+    @cached_property
+    def subtasks(self) -> np.ndarray:
+        """Probability of each internal node of the HTN (in :attr:`GoalFilter.subtask_labels` order) being
+        under way: the mass of its leaves."""
+        return np.asarray(self._layout.membership @ self.subgoals)
+
+    @cached_property
+    def enclosing(self) -> np.ndarray:
+        """Probability of each internal node being the *immediate* parent of the current subgoal (entry 0: the
+        subgoal sits directly at the top of a partial hierarchy; entry j + 1: node j). Unlike
+        :attr:`subtasks`, these add up to one."""
+        parents = self._layout.parent_of_leaf + 1
+        return np.bincount(parents, weights=self.subgoals, minlength=len(self._layout.nodes) + 1)
+
+    @cached_property
+    def next_subgoals(self) -> np.ndarray:
+        """Probability of each subgoal being the next one started."""
+        total = self._arriving.sum()
+        return self._arriving / total if total > 0 else self._arriving
+
+
+class _SubgoalHMM(ABC):
+    """What the flat and the hierarchical HMM share; they differ only in their transitions."""
+
+    def __init__(
+        self,
+        htn: HTN,
+        observations: ObservationModel | None = None,
+        *,
+        mean_duration: float = 5.0,
+    ) -> None:
+        if mean_duration < 1.0:
+            raise LearningError(f"mean_duration is in steps and must be at least 1, got {mean_duration}")
+        self.htn = HTN(htn.task, tuple(named(r) for r in htn.roots), htn.top_level, htn.alternatives)
+        self.observations = observations
+        self.mean_duration = mean_duration
+        self.layout_ = TaskLayout.of(self.htn)
+        self.transitions_ = self._transitions(self.htn, self.layout_)
+        self.stay_ = 1.0 - 1.0 / mean_duration
+
+    @abstractmethod
+    def _transitions(self, htn: HTN, layout: TaskLayout) -> FlatTransitions | HierarchicalTransitions:
+        """How mass moves between subgoals in this model."""
+
+    # ------------------------------------------------------------------ estimator API
+    def fit(self, sequences: Sequence[Sequence[Iterable[str]]], labels: Sequence[Sequence[str]]) -> Self:
+        """Learn the observation model and how long subgoals last from labelled demonstrations.
+
+        Args:
+            sequences: Observation sequences (each observation: the contact events that hold).
+            labels: For each sequence, the action being performed at each step.
+        """
+        self.observations = ObservationModel.fit(sequences, labels)
+        runs = [1 + sum(1 for a, b in itertools.pairwise(tags) if a != b) for tags in labels if tags]
+        steps = sum(len(tags) for tags in labels)
+        self.mean_duration = max(1.0, steps / max(1, sum(runs)))
+        self.stay_ = 1.0 - 1.0 / self.mean_duration
+        return self
+
+    def filter(self) -> GoalFilter:
+        """A fresh online filter."""
+        if self.observations is None:
+            raise LearningError("no observation model: pass one, or call fit() on labelled demonstrations")
+        return GoalFilter(self.layout_, self.transitions_, self.observations, self.stay_)
+
+    def predict_proba(self, sequence: Iterable[Iterable[str]]) -> np.ndarray:
+        """Filtered probability of each subgoal at each step (rows: steps)."""
+        running = self.filter()
+        return np.array([running.update(o).subgoals for o in sequence])
+
+    def predict(self, sequence: Iterable[Iterable[str]]) -> list[Leaf]:
+        """The most probable current subgoal at each step."""
+        leaves = self.layout_.leaves
+        return [leaves[i] for i in self.predict_proba(sequence).argmax(axis=1)]
+
+    def score(self, sequence: Iterable[Iterable[str]]) -> float:
+        """log P(sequence) under the model."""
+        running = self.filter()
+        for observation in sequence:
+            running.update(observation)
+        return running.log_likelihood
+
+
+class FlatHMM(_SubgoalHMM):
+    """A traditional HMM over subgoals: a dense transition matrix, uniform over each subgoal's valid successors.
+
+    >>> from supportive.learning import HTNLearner
+    >>> htn = HTNLearner().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_
+    >>> model = ObservationModel({"knife": {"hand-knife": .9}, "carrots": {"knife-carrot": .9}, "celery": {"knife-celery": .9}})
+    >>> [a for a, _ in FlatHMM(htn, model).predict([{"hand-knife"}, {"knife-celery"}])]
+    ['knife', 'celery']
+    """
+
+    def _transitions(self, htn: HTN, layout: TaskLayout) -> FlatTransitions:
+        return FlatTransitions(htn, layout)
+
+
+class HierarchicalHMM(_SubgoalHMM):
+    """A hierarchical HMM assembled from the CC-HTN: moves decided by chains and cliques (see
+    :class:`~supportive.inference.transitions.HierarchicalTransitions`)."""
+
+    def _transitions(self, htn: HTN, layout: TaskLayout) -> HierarchicalTransitions:
+        return HierarchicalTransitions(htn, layout)
+
+
+class GoalFilter:
+    """Online filter: ``update(observation) -> Belief`` in constant time per step.
+
+    One update scores the observation under every action, moves the belief one step (one transition product,
+    whose result also gives the next-subgoal prediction) and renormalises. The belief over subtasks is computed
+    when it is first asked for.
+    """
+
+    def __init__(
+        self,
+        layout: TaskLayout,
+        transitions: FlatTransitions | HierarchicalTransitions,
+        observations: ObservationModel,
+        stay: float,
+    ) -> None:
+        missing = sorted({a for a, _ in layout.leaves} - set(observations.actions))
+        if missing:
+            raise LearningError(f"the observation model has no row for action(s) {', '.join(missing)}")
+        self.layout = layout
+        self.transitions = transitions
+        self.observations = observations
+        self.stay = stay
+        self._action_of_leaf = np.array([observations.action_index[a] for a, _ in layout.leaves])
+        self.subgoal_labels = tuple(ActionNode(a, k).label for a, k in layout.leaves)
+        self.subtask_labels = tuple(node.name or node.kind for node in layout.nodes)
+        self.enclosing_labels = ("(top level)", *self.subtask_labels)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget every observation."""
+        self._belief = self.transitions.start.copy()
+        self._arriving = self.transitions.start.copy()
+        self.step = 0
+        self.log_likelihood = 0.0
+
+    def update(self, observation: Iterable[str]) -> Belief:
+        """Take one moment's contact events into account."""
+        prior = self._belief * self.stay + self._arriving if self.step else self._belief
+        scores = self.observations.log_likelihood(observation)[self._action_of_leaf]
+        peak = scores.max()
+        posterior = prior * np.exp(scores - peak)
+        total = posterior.sum()
+        if not total > 0.0:
+            raise LearningError(f"step {self.step + 1}: the observation is impossible under the model")
+        self._belief = posterior / total
+        self._arriving = self.transitions(self._belief * (1.0 - self.stay))
+        self.log_likelihood += float(np.log(total) + peak)
+        self.step += 1
+        return Belief(self.step, self._belief, self._arriving, self.layout, self.log_likelihood)
+
+    def top(self, values: np.ndarray, labels: Sequence[str], k: int = 3) -> list[tuple[str, float]]:
+        """The ``k`` most probable entries of a belief vector, with their labels."""
+        order = np.argsort(-values, kind="stable")[:k]
+        return [(labels[i], float(values[i])) for i in order]
