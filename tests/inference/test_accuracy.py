@@ -17,7 +17,7 @@ def test_hierarchical_is_at_least_as_accurate_as_flat(profile: str) -> None:
         spec = generate_task(30, seed, profile=profile)
         assert spec.structure is not None
         model = synthetic_model(
-            [a.id for a in spec.actions], overlap=0.8, noise=0.15, strength=0.6, seed=seed
+            [a.id for a in spec.actions], overlap=0.8, spurious=1.0, strength=0.6, seed=seed
         )
         stream = synthetic_stream(spec.structure, model, executions=3, seed=seed)
         for name, accuracy in inference_accuracy(
@@ -33,7 +33,7 @@ def test_hierarchical_is_at_least_as_accurate_as_flat(profile: str) -> None:
 def test_clear_observations_are_read_almost_perfectly() -> None:
     spec = generate_task(20, 1)
     assert spec.structure is not None
-    model = synthetic_model([a.id for a in spec.actions], overlap=0.0, noise=0.01, strength=0.95, seed=1)
+    model = synthetic_model([a.id for a in spec.actions], overlap=0.0, spurious=0.1, strength=0.95, seed=1)
     stream = synthetic_stream(spec.structure, model, executions=2, seed=1)
     result = inference_accuracy(HTN("t", (spec.structure,)), model, stream.observations, stream.truth)
     assert result["hierarchical"].subgoal > 0.95 and result["hierarchical"].steps == len(stream.truth)

@@ -89,7 +89,7 @@ def test_filter_is_stable_over_ten_thousand_steps() -> None:
     structure = random_structure(40, 3)
     htn = HTN("t", (structure,))
     actions = [a for a, _ in htn.leaves]
-    model = synthetic_model(actions, overlap=0.5, noise=0.1, seed=3)
+    model = synthetic_model(actions, overlap=0.5, spurious=1.0, seed=3)
     stream = synthetic_stream(structure, model, executions=60, seed=3)
     assert len(stream.observations) > 10_000
     for cls in (FlatHMM, HierarchicalHMM):

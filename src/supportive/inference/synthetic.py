@@ -2,7 +2,8 @@
 
 Each action gets a few contact events. ``overlap`` is the share of an action's events drawn from a pool that
 other actions use too (0: every action has its own events; near 1: actions are told apart only by
-combinations); ``noise`` is how often an event the action does not produce shows up anyway. An agent performs
+combinations); ``spurious`` is how many events an action does not produce show up anyway at a moment, on
+average (sensor noise: a stray contact), whatever the size of the vocabulary. An agent performs
 valid orderings of the task back to back, spending a geometric number of steps (mean ``mean_duration``) on each
 subgoal.
 """
@@ -25,7 +26,7 @@ def synthetic_model(
     *,
     events_per_action: int = 3,
     overlap: float = 0.3,
-    noise: float = 0.02,
+    spurious: float = 0.3,
     strength: float = 0.85,
     seed: Seed = None,
 ) -> ObservationModel:
@@ -34,11 +35,11 @@ def synthetic_model(
     Args:
         events_per_action: Contact events each action produces.
         overlap: Share of those events taken from a pool shared with other actions (0 ≤ overlap ≤ 1).
-        noise: Probability that an event an action does not produce is observed anyway.
+        spurious: Expected number of events an action does not produce that are observed anyway at a moment.
         strength: Probability that an event the action produces is observed at a given moment.
     """
-    if not 0.0 <= overlap <= 1.0 or events_per_action < 1:
-        raise LearningError("overlap must be in [0, 1] and events_per_action at least 1")
+    if not 0.0 <= overlap <= 1.0 or events_per_action < 1 or spurious <= 0.0:
+        raise LearningError("overlap must be in [0, 1], events_per_action at least 1 and spurious above 0")
     rng = rng_from(seed)
     shared = events_per_action + 2  # a small pool: shared events really confuse actions
     probabilities: dict[str, dict[str, float]] = {}
@@ -48,7 +49,8 @@ def synthetic_model(
         for j in rng.choice(shared, size=min(n_shared, shared), replace=False):
             row[f"shared~{j}"] = strength
         probabilities[action] = row
-    return ObservationModel(probabilities, noise)
+    vocabulary = len({e for row in probabilities.values() for e in row})
+    return ObservationModel(probabilities, noise=min(0.2, spurious / vocabulary))
 
 
 @dataclass(frozen=True)

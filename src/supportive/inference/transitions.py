@@ -185,6 +185,8 @@ class HierarchicalTransitions:
         """Mass arriving at each subgoal, given the mass leaving each."""
         for factor in reversed(self.factors):
             leaving = factor @ leaving
+        if len(self.factors) == 1:
+            return np.asarray(leaving)
         arriving: np.ndarray = np.maximum(leaving, 0.0)  # the clique shortcut subtracts; clip rounding
         return arriving  # the clique shortcut subtracts; clip rounding below zero
 
