@@ -15,7 +15,7 @@ from typing import Annotated
 import typer
 from rich.console import Console
 
-from supportive.errors import SupportiveError, TaskFileError
+from supportive.errors import ExperimentError, SupportiveError, TaskFileError
 
 __all__ = ["app", "main"]
 
@@ -166,6 +166,52 @@ def demo() -> None:
     from supportive.demo import run_demo
 
     run_demo(out)
+
+
+@app.command()
+def reproduce(
+    name: Annotated[str, typer.Argument(help="Experiment to run (e.g. edge-reduction), or 'all'.")],
+    trials: Annotated[
+        int | None, typer.Option("--trials", "-n", min=1, help="Trials per experiment (default: a full run).")
+    ] = None,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same metrics).")] = 0,
+    workers: Annotated[
+        int | None,
+        typer.Option(
+            "--workers",
+            "-w",
+            min=1,
+            help="Worker processes on a local dask cluster (default: 1, in process).",
+        ),
+    ] = None,
+    scheduler: Annotated[
+        str | None, typer.Option("--scheduler", help="Run on an existing dask cluster: tcp://HOST:PORT.")
+    ] = None,
+    output: Annotated[
+        Path | None,
+        typer.Option("--output", "-o", help="Directory to write (default: out/reproduce/<name>)."),
+    ] = None,
+) -> None:
+    """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
+    this run's."""
+    from rich.table import Table
+
+    from supportive.experiments import reproduce as run_reproduce
+
+    if workers is not None and scheduler is not None:
+        raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
+    results = run_reproduce(name, trials, seed, workers or 1, scheduler, output)
+    for result in results:
+        files = ", ".join(path.name for path in result.files)
+        out.print(
+            f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}"
+        )
+        table = Table(title=f"{result.experiment}: this run beside the thesis")
+        for column in ("quantity", "this run", "thesis"):
+            table.add_column(column, justify="left")
+        for row in result.headline:
+            table.add_row(*row)
+        out.print(table)
 
 
 def main() -> None:

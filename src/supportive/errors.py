@@ -10,9 +10,11 @@ from pathlib import Path
 
 __all__ = [
     "DatasetError",
+    "ExperimentError",
     "ExportError",
     "GenerationError",
     "LearningError",
+    "MissingExtraError",
     "SupportiveError",
     "TaskFileError",
     "TaskGraphError",
@@ -93,4 +95,27 @@ class TooManyOrderingsError(GenerationError, LearningError):
         super().__init__(
             f"the structure admits {shown} orderings, more than the limit of {limit}: "
             "sample demonstrations instead, or raise the limit"
+        )
+
+
+class ExperimentError(SupportiveError, ValueError):
+    """An experiment run was asked for something it cannot do (an unknown experiment, a bad trial count, both
+    ``workers`` and ``scheduler``, a scheduler it cannot reach, …)."""
+
+
+class MissingExtraError(SupportiveError, ImportError):
+    """A feature needs an optional dependency (an extra) that is not installed.
+
+    Args:
+        feature: What needs it (``"running on a dask cluster"``).
+        module: The module that failed to import.
+        extra: The extra that installs it (``"distributed"``).
+    """
+
+    def __init__(self, feature: str, module: str, extra: str) -> None:
+        self.feature = feature
+        self.module = module
+        self.extra = extra
+        super().__init__(
+            f"{feature} needs {module}, which is not installed: pip install 'supportive[{extra}]'"
         )

@@ -1,0 +1,53 @@
+"""Reproduce the thesis's experiments: a registry by name, a runner (in process, on a dask LocalCluster or
+on an existing dask cluster), and for each run ``metrics.json`` + ``report.md`` + PNG plots with the thesis's
+numbers side by side.
+
+>>> from supportive.experiments import names, run_experiment
+>>> names()
+('edge-reduction',)
+>>> result = run_experiment("edge-reduction", trials=2, progress=False)
+>>> "1.99" in result.report and "2.84" in result.report
+True
+"""
+
+from supportive.experiments.registry import (
+    ALL,
+    Experiment,
+    HeadlineRow,
+    Metrics,
+    TrialResult,
+    get,
+    names,
+    register,
+    unregister,
+)
+from supportive.experiments.runner import (
+    DEFAULT_OUTPUT,
+    RunResult,
+    default_output,
+    reproduce,
+    run_all,
+    run_experiment,
+)
+from supportive.experiments.trials import Trial, spawn_trials, trial_seeds
+
+__all__ = [
+    "ALL",
+    "DEFAULT_OUTPUT",
+    "Experiment",
+    "HeadlineRow",
+    "Metrics",
+    "RunResult",
+    "Trial",
+    "TrialResult",
+    "default_output",
+    "get",
+    "names",
+    "register",
+    "reproduce",
+    "run_all",
+    "run_experiment",
+    "spawn_trials",
+    "trial_seeds",
+    "unregister",
+]

@@ -1,0 +1,184 @@
+"""Where trials run: in this process, on a dask LocalCluster of worker processes, or on an existing dask
+cluster.
+
+dask is imported only when it is needed (it is the ``distributed`` extra). Whatever runs them, results come
+back in trial order, so a run's results never depend on the number of workers.
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Any, Protocol
+
+from supportive.errors import ExperimentError, MissingExtraError
+from supportive.experiments.registry import TrialResult
+from supportive.experiments.trials import Trial
+
+__all__ = [
+    "CONNECT_TIMEOUT",
+    "Executor",
+    "InProcess",
+    "OnDask",
+    "check_backend",
+    "import_distributed",
+    "open_executor",
+]
+
+CONNECT_TIMEOUT = 30.0
+"""Seconds to wait for an existing dask scheduler to answer, and then for it to have a worker."""
+
+_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx|inproc)://\S+$")
+
+
+class Executor(Protocol):
+    """Runs a trial function over trials and returns the results in trial order."""
+
+    description: str
+
+    def map(
+        self, function: Callable[[Trial], TrialResult], trials: Sequence[Trial], done: Callable[[], None]
+    ) -> list[TrialResult]:
+        """Run ``function`` on every trial, calling ``done()`` after each one finishes.
+
+        Returns:
+            The results, in the order of ``trials``.
+        """
+        ...
+
+
+@dataclass
+class InProcess:
+    """Runs the trials one after another in this process."""
+
+    description: str = "in process"
+
+    def map(
+        self, function: Callable[[Trial], TrialResult], trials: Sequence[Trial], done: Callable[[], None]
+    ) -> list[TrialResult]:
+        """Run ``function`` on every trial, in order (see :class:`Executor`)."""
+        results = []
+        for trial in trials:
+            results.append(function(trial))
+            done()
+        return results
+
+
+@dataclass
+class OnDask:
+    """Runs the trials as tasks of a ``dask.distributed`` client, whichever cluster it is connected to."""
+
+    client: Any
+    description: str
+
+    def map(
+        self, function: Callable[[Trial], TrialResult], trials: Sequence[Trial], done: Callable[[], None]
+    ) -> list[TrialResult]:
+        """Submit every trial, collect the results as they finish and return them in trial order."""
+        distributed = import_distributed()
+        futures = self.client.map(function, list(trials), pure=False)
+        position = {future.key: index for index, future in enumerate(futures)}
+        found: dict[int, TrialResult] = {}
+        try:
+            for future in distributed.as_completed(futures, loop=self.client.loop):
+                found[position[future.key]] = future.result()
+                done()
+        finally:
+            self.client.cancel(futures)
+        return [found[index] for index in range(len(futures))]
+
+
+def import_distributed() -> ModuleType:
+    """``dask.distributed``, imported now.
+
+    Raises:
+        MissingExtraError: when dask.distributed is not installed (``pip install 'supportive[distributed]'``).
+    """
+    try:
+        import dask.distributed as distributed
+    except ImportError:
+        raise MissingExtraError(
+            "running trials on more than one worker", "dask.distributed", "distributed"
+        ) from None
+    return distributed
+
+
+def check_backend(workers: int, scheduler: str | None) -> None:
+    """Check the choice of workers and scheduler before anything starts.
+
+    Raises:
+        ExperimentError: for fewer than one worker, both ``workers`` (other than 1) and ``scheduler``, or a
+            scheduler address that is not ``PROTOCOL://HOST:PORT``.
+    """
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ExperimentError(f"workers must be an int >= 1, got {workers!r}")
+    if scheduler is not None:
+        if workers != 1:
+            raise ExperimentError(
+                "give either a number of workers (a local cluster) or a scheduler address (an existing "
+                "cluster), not both"
+            )
+        if not _ADDRESS.match(scheduler):
+            raise ExperimentError(f"scheduler address {scheduler!r}: expected tcp://HOST:PORT")
+
+
+@contextmanager
+def open_executor(workers: int = 1, scheduler: str | None = None) -> Iterator[Executor]:
+    """An executor for ``workers`` processes or the dask scheduler at ``scheduler``; closed on exit.
+
+    * ``workers == 1`` and no scheduler: :class:`InProcess` (dask is not imported).
+    * ``workers > 1``: a ``dask.distributed.LocalCluster`` of ``workers`` processes with one thread each,
+      listening on 127.0.0.1 only, without a dashboard; shut down on exit.
+    * ``scheduler="tcp://HOST:PORT"``: a client of that existing cluster (its workers need ``supportive``
+      installed); only the client is closed on exit.
+
+    Raises:
+        ExperimentError: for a bad choice (see :func:`check_backend`) or a scheduler that cannot be reached or
+            has no worker.
+        MissingExtraError: when dask.distributed is needed and not installed.
+    """
+    check_backend(workers, scheduler)
+    if scheduler is None and workers == 1:
+        yield InProcess()
+        return
+    distributed = import_distributed()
+    if scheduler is not None:
+        try:
+            client = distributed.Client(scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False)
+        except (OSError, TimeoutError) as exc:
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            raise ExperimentError(f"cannot connect to the dask scheduler at {scheduler}: {reason}") from None
+        try:
+            try:
+                client.wait_for_workers(1, timeout=CONNECT_TIMEOUT)
+            except (OSError, TimeoutError):
+                raise ExperimentError(
+                    f"the dask scheduler at {scheduler} has no worker after {CONNECT_TIMEOUT:g} s"
+                ) from None
+            yield OnDask(client, f"dask scheduler {scheduler}")
+        finally:
+            client.close()
+        return
+    cluster = distributed.LocalCluster(
+        n_workers=workers,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address=None,
+        # No dashboard; the scheduler's small HTTP endpoint (health, metrics) takes any free port on 127.0.0.1
+        # instead of 8787, so that runs never collide with another cluster on this machine.
+        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        silence_logs=logging.ERROR,
+    )
+    try:
+        client = distributed.Client(cluster, set_as_default=False)
+        try:
+            yield OnDask(client, f"dask LocalCluster, {workers} worker processes")
+        finally:
+            client.close()
+    finally:
+        cluster.close()

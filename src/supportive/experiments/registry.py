@@ -1,0 +1,158 @@
+"""The registry of experiments, by name.
+
+An :class:`Experiment` says what the thesis reports and how to reproduce it: how to make its trials, a
+module-level (picklable) function that runs one trial and returns plain JSON data, and how to turn the trials'
+results into metrics, a markdown report (this run's numbers beside the thesis's) and plots.
+
+The built-in experiments register themselves the first time the registry is asked for a name.
+
+>>> "edge-reduction" in names()
+True
+>>> get("edge-reduction").reference
+'§2.1.7.2–2.1.7.3, Figure 2.5'
+"""
+
+from __future__ import annotations
+
+import importlib
+import re
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TypeAlias
+
+from supportive.errors import ExperimentError
+from supportive.experiments.trials import Trial
+
+__all__ = [
+    "ALL",
+    "Experiment",
+    "HeadlineRow",
+    "Metrics",
+    "TrialResult",
+    "get",
+    "names",
+    "register",
+    "unregister",
+]
+
+ALL = "all"
+"""The name that stands for every registered experiment (never an experiment's own name)."""
+
+TrialResult: TypeAlias = dict[str, Any]
+"""What one trial returns: a JSON object (plain dicts, lists, str, int, float, bool, None)."""
+
+Metrics: TypeAlias = dict[str, Any]
+"""What an experiment's ``summarize`` returns, and what ``metrics.json`` holds: plain JSON data."""
+
+HeadlineRow: TypeAlias = tuple[str, str, str]
+"""One line of a run's short summary: (quantity, this run, the thesis)."""
+
+_NAME = re.compile(r"^[a-z0-9]+(?:-[a-z0-9]+)*$")
+_BUILTINS = ("supportive.experiments.edge_reduction",)
+_registry: dict[str, Experiment] = {}
+_builtins_loaded = False
+
+
+@dataclass(frozen=True)
+class Experiment:
+    """One of the thesis's experiments, and how to reproduce it.
+
+    Attributes:
+        name: Registry name: lowercase words joined by hyphens (``edge-reduction``); not ``all``.
+        title: One line for people.
+        reference: Where the thesis reports it (section, figure).
+        thesis: The thesis's own numbers where it gives them (plain JSON data), for the report.
+        default_trials: Trials of a full run (the thesis's sample size).
+        make_trials: ``(trials, seed) -> trials``; every trial gets its own seed (see
+            :func:`~supportive.experiments.trials.spawn_trials`).
+        run_trial: Runs ONE trial and returns plain JSON data. A module-level function, so that it can be
+            sent to worker processes.
+        summarize: Trial results, in trial order -> metrics (plain JSON data, no timings: the same trials
+            give the same metrics).
+        report: Metrics -> a markdown report with this run's numbers beside the thesis's.
+        plots: ``(metrics, directory) -> files`` written there (PNG).
+        headline: Metrics -> a few (quantity, this run, the thesis) rows for a terminal summary.
+    """
+
+    name: str
+    title: str
+    reference: str
+    thesis: Mapping[str, Any]
+    default_trials: int
+    make_trials: Callable[[int, int], Sequence[Trial]] = field(repr=False)
+    run_trial: Callable[[Trial], TrialResult] = field(repr=False)
+    summarize: Callable[[Sequence[TrialResult]], Metrics] = field(repr=False)
+    report: Callable[[Mapping[str, Any]], str] = field(repr=False)
+    plots: Callable[[Mapping[str, Any], Path], list[Path]] = field(repr=False)
+    headline: Callable[[Mapping[str, Any]], list[HeadlineRow]] = field(repr=False)
+
+    def __post_init__(self) -> None:
+        if not _NAME.match(self.name) or self.name == ALL:
+            raise ExperimentError(
+                f"experiment name {self.name!r}: expected lowercase words joined by hyphens, not {ALL!r}"
+            )
+        if self.default_trials < 1:
+            raise ExperimentError(
+                f"experiment {self.name}: default_trials must be >= 1, got {self.default_trials}"
+            )
+
+
+def _load_builtins() -> None:
+    global _builtins_loaded
+    if not _builtins_loaded:
+        _builtins_loaded = True
+        for module in _BUILTINS:
+            importlib.import_module(module)
+
+
+def register(experiment: Experiment, *, replace: bool = False) -> Experiment:
+    """Add ``experiment`` to the registry under its name and return it.
+
+    Args:
+        experiment: The experiment.
+        replace: Replace an experiment registered under the same name instead of refusing.
+
+    Raises:
+        ExperimentError: when the name is taken and ``replace`` is false.
+    """
+    if not replace and experiment.name in _registry and _registry[experiment.name] is not experiment:
+        raise ExperimentError(f"an experiment named {experiment.name!r} is already registered")
+    _registry[experiment.name] = experiment
+    return experiment
+
+
+def unregister(name: str) -> None:
+    """Remove the experiment registered as ``name``.
+
+    Raises:
+        ExperimentError: when no experiment has that name.
+    """
+    _load_builtins()
+    if name not in _registry:
+        raise ExperimentError(_unknown(name))
+    del _registry[name]
+
+
+def get(name: str) -> Experiment:
+    """The experiment registered as ``name``.
+
+    Raises:
+        ExperimentError: when no experiment has that name (the message lists the known names).
+    """
+    _load_builtins()
+    try:
+        return _registry[name]
+    except KeyError:
+        raise ExperimentError(_unknown(name)) from None
+
+
+def names() -> tuple[str, ...]:
+    """The registered experiments' names, sorted."""
+    _load_builtins()
+    return tuple(sorted(_registry))
+
+
+def _unknown(name: str) -> str:
+    known = ", ".join([ALL, *sorted(_registry)])
+    return f"unknown experiment {name!r}: known experiments are {known}"

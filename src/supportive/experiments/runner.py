@@ -1,0 +1,252 @@
+"""Run an experiment: make its trials, run them (here or on dask), summarise, write the files.
+
+A run with output directory ``DIR`` writes:
+
+* ``DIR/metrics.json``: the metrics, as plain JSON with sorted keys and no timings, so the same experiment,
+  trials and seed give the same bytes whether one process or a cluster of any size ran the trials;
+* ``DIR/report.md``: the markdown report, this run's numbers beside the thesis's;
+* the experiment's PNG plots;
+* ``DIR/run.json``: how this run went (wall time, workers or scheduler, versions), which differs from run to
+  run by design.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+from supportive.errors import ExperimentError
+from supportive.experiments.execution import Executor, check_backend, open_executor
+from supportive.experiments.output import METRICS_FILE, REPORT_FILE, RUN_FILE, dump_json, write_text
+from supportive.experiments.progress import progress_bar
+from supportive.experiments.registry import ALL, Experiment, HeadlineRow, Metrics, TrialResult, get, names
+
+__all__ = ["DEFAULT_OUTPUT", "RunResult", "default_output", "reproduce", "run_all", "run_experiment"]
+
+DEFAULT_OUTPUT = Path("out/reproduce")
+"""Where ``supportive reproduce`` writes when not told: ``out/reproduce/<name>``."""
+
+_RESERVED = ("experiment", "title", "reference", "thesis", "seed", "trials")
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """What a run produced.
+
+    Attributes:
+        experiment: The experiment's name.
+        trials: Number of trials run.
+        seed: The run's seed.
+        backend: Where the trials ran (``"in process"``, ``"dask LocalCluster, 2 worker processes"``, …).
+        results: Each trial's result, in trial order.
+        metrics: The metrics, exactly as in ``metrics.json``.
+        report: The markdown report.
+        headline: A few (quantity, this run, the thesis) rows for a terminal summary.
+        output: The directory written, or ``None`` when nothing was written.
+        files: The files written (metrics, report, plots, run info).
+        seconds: Wall time of the trials and the summary.
+    """
+
+    experiment: str
+    trials: int
+    seed: int
+    backend: str
+    results: tuple[TrialResult, ...]
+    metrics: Metrics
+    report: str
+    headline: tuple[HeadlineRow, ...]
+    output: Path | None
+    files: tuple[Path, ...]
+    seconds: float
+
+
+def default_output(name: str) -> Path:
+    """The default output directory of ``supportive reproduce NAME``: ``out/reproduce/<name>``, or
+    ``out/reproduce`` for ``all`` (each experiment then writes into its own ``<name>/`` below it)."""
+    return DEFAULT_OUTPUT if name == ALL else DEFAULT_OUTPUT / name
+
+
+def run_experiment(
+    name: str,
+    trials: int | None = None,
+    seed: int = 0,
+    workers: int = 1,
+    scheduler: str | None = None,
+    output: str | Path | None = None,
+    progress: bool = True,
+) -> RunResult:
+    """Run the experiment registered as ``name``.
+
+    Args:
+        name: A registered experiment (see :func:`~supportive.experiments.registry.names`).
+        trials: Number of trials; the experiment's ``default_trials`` (a full run) when ``None``.
+        seed: The run's seed (int >= 0); each trial's own seed is spawned from it.
+        workers: 1 runs the trials in this process; more starts a dask ``LocalCluster`` of that many worker
+            processes (one thread each, on 127.0.0.1, no dashboard) for the run.
+        scheduler: Address of an existing dask scheduler (``tcp://HOST:PORT``) to run the trials on instead;
+            its workers need ``supportive`` installed. Not together with ``workers`` > 1.
+        output: Directory for ``metrics.json``, ``report.md``, the plots and ``run.json``; ``None`` writes
+            nothing.
+        progress: Show a progress bar (only ever on a terminal).
+
+    Raises:
+        ExperimentError: for an unknown name, bad arguments, an unreachable scheduler or an unwritable output.
+        MissingExtraError: when dask (for ``workers`` > 1 or ``scheduler``) or matplotlib (for the plots) is
+            not installed.
+
+    >>> result = run_experiment("edge-reduction", trials=2, progress=False)
+    >>> result.trials, result.metrics["experiment"], [t["subgoals"] for t in result.metrics["tasks"]]
+    (2, 'edge-reduction', [10, 100])
+    """
+    experiment = get(name)
+    check_backend(workers, scheduler)
+    count = _trial_count(experiment, trials)
+    with open_executor(workers, scheduler) as executor:
+        return _run(experiment, executor, count, seed, _directory(output), progress)
+
+
+def run_all(
+    trials: int | None = None,
+    seed: int = 0,
+    workers: int = 1,
+    scheduler: str | None = None,
+    output: str | Path | None = None,
+    progress: bool = True,
+) -> list[RunResult]:
+    """Run every registered experiment, in name order, on one executor; experiment ``x`` writes into
+    ``output/x/``. Arguments as for :func:`run_experiment` (``trials`` applies to each experiment)."""
+    experiments = [get(name) for name in names()]
+    check_backend(workers, scheduler)
+    counts = [_trial_count(experiment, trials) for experiment in experiments]
+    directory = _directory(output)
+    with open_executor(workers, scheduler) as executor:
+        return [
+            _run(
+                experiment,
+                executor,
+                count,
+                seed,
+                None if directory is None else directory / experiment.name,
+                progress,
+            )
+            for experiment, count in zip(experiments, counts, strict=True)
+        ]
+
+
+def reproduce(
+    name: str,
+    trials: int | None = None,
+    seed: int = 0,
+    workers: int = 1,
+    scheduler: str | None = None,
+    output: str | Path | None = None,
+    progress: bool = True,
+) -> list[RunResult]:
+    """:func:`run_all` when ``name`` is ``"all"``, else :func:`run_experiment` (as a one-item list). What
+    ``supportive reproduce`` calls; ``output`` defaults to :func:`default_output`."""
+    directory = default_output(name) if output is None else Path(output)
+    if name == ALL:
+        return run_all(trials, seed, workers, scheduler, directory, progress)
+    return [run_experiment(name, trials, seed, workers, scheduler, directory, progress)]
+
+
+def _trial_count(experiment: Experiment, trials: int | None) -> int:
+    if trials is None:
+        return experiment.default_trials
+    if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
+        raise ExperimentError(f"trials must be an int >= 1, got {trials!r}")
+    return trials
+
+
+def _directory(output: str | Path | None) -> Path | None:
+    return None if output is None else Path(output)
+
+
+def _run(
+    experiment: Experiment,
+    executor: Executor,
+    trials: int,
+    seed: int,
+    output: Path | None,
+    progress: bool,
+) -> RunResult:
+    started_at = datetime.now(UTC)
+    started = time.perf_counter()
+    specs = experiment.make_trials(trials, seed)
+    with progress_bar(experiment.name, len(specs), enabled=progress) as advance:
+        results = executor.map(experiment.run_trial, specs, advance)
+    for index, result in enumerate(results):
+        if not isinstance(result, dict):
+            raise ExperimentError(
+                f"experiment {experiment.name}: trial {index} returned {type(result).__name__}, not a dict"
+            )
+    summary = experiment.summarize(results)
+    clash = sorted(set(summary) & set(_RESERVED))
+    if clash:
+        raise ExperimentError(f"experiment {experiment.name}: summarize() may not set {', '.join(clash)}")
+    document: dict[str, Any] = {
+        "experiment": experiment.name,
+        "title": experiment.title,
+        "reference": experiment.reference,
+        "thesis": dict(experiment.thesis),
+        "seed": seed,
+        "trials": len(specs),
+        **summary,
+    }
+    text = dump_json(document)
+    metrics: Metrics = json.loads(text)  # what report and plots see is exactly what the file holds
+    report = experiment.report(metrics)
+    headline = tuple(experiment.headline(metrics))
+    seconds = time.perf_counter() - started
+    files: list[Path] = []
+    if output is not None:
+        files.append(write_text(output / METRICS_FILE, text))
+        files.append(write_text(output / REPORT_FILE, report))
+        files.extend(experiment.plots(metrics, output))
+        info = _run_info(
+            experiment, executor, len(specs), seed, started_at, seconds, time.perf_counter() - started
+        )
+        files.append(write_text(output / RUN_FILE, dump_json(info, what="run info")))
+    return RunResult(
+        experiment=experiment.name,
+        trials=len(specs),
+        seed=seed,
+        backend=executor.description,
+        results=tuple(results),
+        metrics=metrics,
+        report=report,
+        headline=headline,
+        output=output,
+        files=tuple(files),
+        seconds=seconds,
+    )
+
+
+def _run_info(
+    experiment: Experiment,
+    executor: Executor,
+    trials: int,
+    seed: int,
+    started_at: datetime,
+    seconds: float,
+    total: float,
+) -> Mapping[str, Any]:
+    from supportive import __version__
+
+    return {
+        "experiment": experiment.name,
+        "trials": trials,
+        "seed": seed,
+        "backend": executor.description,
+        "started": started_at.isoformat(timespec="seconds"),
+        "seconds": round(seconds, 3),
+        "seconds_with_files": round(total, 3),
+        "python": platform.python_version(),
+        "supportive": __version__,
+    }

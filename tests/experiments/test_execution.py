@@ -1,0 +1,118 @@
+"""Where trials run. The dask tests start real LocalClusters on 127.0.0.1 (a few seconds each)."""
+
+from __future__ import annotations
+
+import logging
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from supportive.errors import ExperimentError, MissingExtraError
+from supportive.experiments import execution, run_experiment
+from supportive.experiments.execution import check_backend, import_distributed, open_executor
+
+TRIALS = 4
+QUIET_HTTP = {"dashboard_address": "127.0.0.1:0"}  # the scheduler's HTTP endpoint on any free local port
+
+
+@pytest.fixture(scope="module")
+def external_cluster() -> Iterator[Any]:
+    """A separate LocalCluster, standing in for a real cluster that ``--scheduler`` connects to."""
+    distributed = pytest.importorskip("dask.distributed")
+    cluster = distributed.LocalCluster(
+        n_workers=1,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address=None,
+        scheduler_kwargs=QUIET_HTTP,
+        silence_logs=logging.ERROR,
+    )
+    try:
+        yield cluster
+    finally:
+        cluster.close()
+
+
+@pytest.fixture(scope="module")
+def in_process(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    output = tmp_path_factory.mktemp("w1")
+    run_experiment("edge-reduction", trials=TRIALS, seed=5, workers=1, output=output, progress=False)
+    return output
+
+
+def test_local_cluster_gives_identical_metrics(in_process: Path, tmp_path: Path) -> None:
+    result = run_experiment(
+        "edge-reduction", trials=TRIALS, seed=5, workers=2, output=tmp_path, progress=False
+    )
+    assert result.backend == "dask LocalCluster, 2 worker processes"
+    assert [r["index"] for r in result.results] == list(range(TRIALS))
+    assert (tmp_path / "metrics.json").read_bytes() == (in_process / "metrics.json").read_bytes()
+    assert (tmp_path / "report.md").read_text() == (in_process / "report.md").read_text()
+    assert "LocalCluster" in (tmp_path / "run.json").read_text()
+
+
+def test_existing_scheduler_gives_identical_metrics(
+    in_process: Path, tmp_path: Path, external_cluster: Any
+) -> None:
+    address = external_cluster.scheduler_address
+    assert address.startswith("tcp://127.0.0.1:")
+    result = run_experiment(
+        "edge-reduction", trials=TRIALS, seed=5, scheduler=address, output=tmp_path, progress=False
+    )
+    assert result.backend == f"dask scheduler {address}"
+    assert (tmp_path / "metrics.json").read_bytes() == (in_process / "metrics.json").read_bytes()
+
+
+def test_unreachable_scheduler(monkeypatch: pytest.MonkeyPatch) -> None:
+    pytest.importorskip("dask.distributed")
+    monkeypatch.setattr(execution, "CONNECT_TIMEOUT", 0.5)
+    with (
+        pytest.raises(ExperimentError, match=r"cannot connect to the dask scheduler at tcp://127\.0\.0\.1:9"),
+        open_executor(scheduler="tcp://127.0.0.1:9"),
+    ):
+        pass  # pragma: no cover
+
+
+def test_scheduler_without_workers(monkeypatch: pytest.MonkeyPatch) -> None:
+    distributed = pytest.importorskip("dask.distributed")
+    monkeypatch.setattr(execution, "CONNECT_TIMEOUT", 0.5)
+    with distributed.LocalCluster(
+        n_workers=0,
+        host="127.0.0.1",
+        dashboard_address=None,
+        scheduler_kwargs=QUIET_HTTP,
+        silence_logs=logging.ERROR,
+    ) as cluster:
+        address = cluster.scheduler_address
+        with pytest.raises(ExperimentError, match="has no worker"), open_executor(scheduler=address):
+            pass  # pragma: no cover
+
+
+@pytest.mark.parametrize(
+    ("workers", "scheduler", "message"),
+    [
+        (0, None, "workers must be an int >= 1"),
+        (2, "tcp://127.0.0.1:8786", "not both"),
+        (1, "127.0.0.1:8786", "expected tcp://HOST:PORT"),
+        (1, "tcp://", "expected tcp://HOST:PORT"),
+    ],
+)
+def test_bad_backends(workers: int, scheduler: str | None, message: str) -> None:
+    with pytest.raises(ExperimentError, match=message):
+        check_backend(workers, scheduler)
+    with pytest.raises(ExperimentError, match=message):
+        run_experiment("edge-reduction", trials=1, workers=workers, scheduler=scheduler, progress=False)
+
+
+def test_one_worker_needs_no_dask(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)  # import fails as if not installed
+    with open_executor(1) as executor:
+        assert executor.description == "in process"
+    with pytest.raises(MissingExtraError, match=r"pip install 'supportive\[distributed\]'"):
+        import_distributed()
+    with pytest.raises(MissingExtraError, match=r"supportive\[distributed\]"):
+        run_experiment("edge-reduction", trials=1, workers=2, progress=False)

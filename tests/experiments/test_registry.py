@@ -1,0 +1,110 @@
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+from supportive.errors import ExperimentError
+from supportive.experiments import ALL, Experiment, get, names, register, run_experiment, unregister
+
+Toy = Callable[..., Experiment]
+
+
+@pytest.fixture
+def registered(toy: Toy) -> Iterator[str]:
+    experiment = register(toy())
+    yield experiment.name
+    unregister(experiment.name)
+
+
+def test_builtin_edge_reduction_is_registered() -> None:
+    assert "edge-reduction" in names()
+    assert names() == tuple(sorted(names()))
+    experiment = get("edge-reduction")
+    assert experiment.default_trials == 76
+    assert experiment.thesis["mean_action_depth"] == {"min": 1.99, "max": 3.61, "mean": 2.84}
+    assert "Figure 2.5" in experiment.reference
+
+
+def test_unknown_name_lists_the_known_ones() -> None:
+    with pytest.raises(ExperimentError, match=r"unknown experiment 'nope'.*all, .*edge-reduction"):
+        get("nope")
+    with pytest.raises(ExperimentError, match="unknown experiment"):
+        unregister("nope")
+
+
+def test_register_get_unregister(registered: str, toy: Toy) -> None:
+    assert registered in names()
+    assert get(registered).title == "A toy"
+    with pytest.raises(ExperimentError, match="already registered"):
+        register(toy())
+    replacement = register(toy(title="Another toy"), replace=True)
+    assert get(registered) is replacement
+    unregister(registered)
+    assert registered not in names()
+    register(toy())  # the fixture unregisters it again
+
+
+@pytest.mark.parametrize("name", [ALL, "Toy", "two words", "-toy", "toy-", ""])
+def test_bad_names_are_refused(name: str, toy: Toy) -> None:
+    with pytest.raises(ExperimentError, match="expected lowercase words"):
+        toy(name)
+
+
+def test_default_trials_must_be_positive(toy: Toy) -> None:
+    with pytest.raises(ExperimentError, match="default_trials"):
+        toy(default_trials=0)
+
+
+def test_run_in_process_orders_results_and_writes_files(registered: str, tmp_path: Path) -> None:
+    result = run_experiment(registered, seed=3, output=tmp_path, progress=False)
+    assert result.trials == 5 and result.backend == "in process"
+    assert [r["index"] for r in result.results] == list(range(5))
+    metrics = json.loads((tmp_path / "metrics.json").read_text())
+    assert metrics == result.metrics
+    assert metrics["experiment"] == registered and metrics["seed"] == 3 and metrics["trials"] == 5
+    assert metrics["thesis"] == {"answer": 42} and metrics["indices"] == list(range(5))
+    assert (tmp_path / "report.md").read_text() == result.report and "thesis: 42" in result.report
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert "seconds" in run and "seconds" not in (tmp_path / "metrics.json").read_text()
+    assert {p.name for p in result.files} == {"metrics.json", "report.md", "run.json"}
+    assert result.headline == (("draws", "5", "–"),)
+    again = run_experiment(registered, seed=3, progress=False)
+    assert again.metrics == result.metrics and again.files == () and again.output is None
+    other = run_experiment(registered, seed=4, progress=False)
+    assert other.metrics["draws"] != result.metrics["draws"]
+
+
+def test_summary_may_not_overwrite_the_run_keys(toy: Toy) -> None:
+    experiment = register(toy("toy-clash", summarize=lambda results: {"seed": 1}))
+    try:
+        with pytest.raises(ExperimentError, match="may not set seed"):
+            run_experiment(experiment.name, trials=1, progress=False)
+    finally:
+        unregister(experiment.name)
+
+
+def test_trials_must_return_json_objects(toy: Toy) -> None:
+    experiment = register(toy("toy-list", run_trial=lambda trial: [trial.index]))
+    try:
+        with pytest.raises(ExperimentError, match="returned list, not a dict"):
+            run_experiment(experiment.name, trials=2, progress=False)
+    finally:
+        unregister(experiment.name)
+
+
+def test_metrics_must_be_plain_json(toy: Toy) -> None:
+    experiment = register(toy("toy-set", summarize=lambda results: {"odd": {1, 2}}))
+    try:
+        with pytest.raises(ExperimentError, match="not plain JSON"):
+            run_experiment(experiment.name, trials=1, progress=False)
+    finally:
+        unregister(experiment.name)
+
+
+@pytest.mark.parametrize("trials", [0, -1])
+def test_bad_trial_counts(trials: int) -> None:
+    with pytest.raises(ExperimentError, match="trials must be an int >= 1"):
+        run_experiment("edge-reduction", trials=trials, progress=False)
