@@ -116,6 +116,7 @@ def test_demo_says_what_was_and_was_not_learned(capsys, monkeypatch) -> None:  #
     assert "✓ Screw seat" in out
     assert "✗ Fasten nuts and bolts (any order, 6 of 24 orders seen)" in out
     assert "288 of 768" in out
+    assert "Watching a teammate" in out and "right action at the end of" in out
 
 
 def test_captaincook_json(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
@@ -148,3 +149,41 @@ def test_generate_is_seeded_and_learnable(tmp_path: Path, capsys, monkeypatch) -
     assert code == 0
     code, out, _ = run(["learn", str(target), "-f", "json"], capsys, monkeypatch)
     assert code == 0 and json.loads(out)["stats"]["demonstrations"] == 3
+
+
+def test_infer_prints_one_json_line_per_observation(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    stream = tmp_path / "stream.jsonl"
+    stream.write_text(
+        '["hand-left_frame"]\n["hand-left_frame", "left_frame-table"]\n{"events": ["hand-peg", "peg-left_frame"], "time": 3.5}\n'
+    )
+    code, out, _ = run(
+        ["infer", str(examples.path("ikea-chair")), "--observations", str(stream), "--top", "2"],
+        capsys,
+        monkeypatch,
+    )
+    assert code == 0
+    lines = [json.loads(line) for line in out.splitlines()]
+    assert [r["step"] for r in lines] == [1, 2, 3]
+    assert lines[0]["subgoals"][0][0] == "get_left_frame"
+    assert lines[2]["subtasks"][0][0] == "Add left pegs" and lines[2]["time"] == 3.5
+    assert len(lines[1]["next"]) == 2
+    code, flat, _ = run(
+        ["infer", str(examples.path("ikea-chair")), "-O", str(stream), "--model", "flat"], capsys, monkeypatch
+    )
+    assert code == 0 and len(flat.splitlines()) == 3
+
+
+def test_infer_bad_inputs_exit_2(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    bad = tmp_path / "bad.jsonl"
+    bad.write_text('["a"]\n[1]\n')
+    code, out, err = run(["infer", str(examples.path("ikea-chair")), "-O", str(bad)], capsys, monkeypatch)
+    assert (
+        code == 2
+        and out == ""
+        and err.strip()
+        == f"supportive: error: {bad}:2: expected a list of contact events (non-empty strings)"
+    )
+    good = tmp_path / "good.jsonl"
+    good.write_text("[]\n")
+    code, _, err = run(["infer", str(examples.path("blocks-v")), "-O", str(good)], capsys, monkeypatch)
+    assert code == 2 and "without 'observations'" in err and len(err.strip().splitlines()) == 1

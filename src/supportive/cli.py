@@ -91,6 +91,48 @@ def learn(
     _write_text(text, output)
 
 
+class InferenceModel(StrEnum):
+    """Goal-inference models."""
+
+    hierarchical = "hierarchical"
+    flat = "flat"
+
+
+@app.command()
+def infer(
+    file: Annotated[Path, typer.Argument(help="Task file whose actions declare their 'observations'.")],
+    observations: Annotated[
+        Path, typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml.")
+    ],
+    model: Annotated[
+        InferenceModel, typer.Option("--model", help="Which HMM.")
+    ] = InferenceModel.hierarchical,
+    top: Annotated[int, typer.Option("--top", min=1, help="How many entries of each belief to print.")] = 3,
+    mean_duration: Annotated[
+        float, typer.Option("--mean-duration", min=1.0, help="Mean observations per subgoal.")
+    ] = 5.0,
+) -> None:
+    """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
+    each: top subgoals, enclosing subtasks and next subgoals, with probabilities)."""
+    from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
+    from supportive.io.observation_file import parse_observation_file
+    from supportive.io.taskfile import parse_task_file
+    from supportive.learning.learner import learn as learn_htn
+
+    spec = parse_task_file(file)
+    if not spec.demonstrations:
+        raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
+    stream = parse_observation_file(observations)
+    events = ObservationModel.from_spec(spec)
+    kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
+    running = kind(learn_htn(spec).htn_, events, mean_duration=mean_duration).filter()
+    for moment, time in stream:
+        record = running.summary(running.update(moment), top)
+        if time is not None:
+            record["time"] = time
+        sys.stdout.write(json.dumps(record) + "\n")
+
+
 @app.command()
 def generate(
     actions: Annotated[int, typer.Option("--actions", "-n", min=2, help="Number of primitive actions.")] = 20,

@@ -12,9 +12,11 @@ __all__ = [
     "DatasetError",
     "ExperimentError",
     "ExportError",
+    "FileFormatError",
     "GenerationError",
     "LearningError",
     "MissingExtraError",
+    "ObservationFileError",
     "SupportiveError",
     "TaskFileError",
     "TaskGraphError",
@@ -26,8 +28,8 @@ class SupportiveError(Exception):
     """Root of every error `supportive` raises on purpose."""
 
 
-class TaskFileError(SupportiveError, ValueError):
-    """A task file (YAML, JSON or CSV) is unreadable or breaks the schema.
+class FileFormatError(SupportiveError, ValueError):
+    """A file the user gave is unreadable or malformed; the message says where.
 
     Args:
         problem: What is wrong and, where it helps, what was expected.
@@ -57,6 +59,14 @@ class TaskFileError(SupportiveError, ValueError):
         if self.place:
             where += f": {self.place}"
         return f"{where}: {self.problem}"
+
+
+class TaskFileError(FileFormatError):
+    """A task file (YAML, JSON or CSV) is unreadable or breaks the schema."""
+
+
+class ObservationFileError(FileFormatError):
+    """An observation stream (contact events per moment) is unreadable or malformed."""
 
 
 class TaskGraphError(SupportiveError, ValueError):

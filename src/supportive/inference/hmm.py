@@ -208,3 +208,18 @@ class GoalFilter:
         """The ``k`` most probable entries of a belief vector, with their labels."""
         order = np.argsort(-values, kind="stable")[:k]
         return [(labels[i], float(values[i])) for i in order]
+
+    def summary(self, belief: Belief, k: int = 3) -> dict[str, object]:
+        """A belief as plain data: the ``k`` most probable current subgoals, enclosing subtasks and next
+        subgoals, each as ``[label, probability]``."""
+
+        def pairs(values: np.ndarray, labels: Sequence[str]) -> list[list[object]]:
+            return [[label, round(p, 6)] for label, p in self.top(values, labels, k)]
+
+        return {
+            "step": belief.step,
+            "subgoals": pairs(belief.subgoals, self.subgoal_labels),
+            "subtasks": pairs(belief.enclosing, self.enclosing_labels),
+            "next": pairs(belief.next_subgoals, self.subgoal_labels),
+            "log_likelihood": round(belief.log_likelihood, 6),
+        }

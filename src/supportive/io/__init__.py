@@ -1,5 +1,6 @@
 """Files in and out: task files (YAML/JSON/CSV), learned HTNs (JSON, DOT, HDDL, text tree), datasets."""
 
+from supportive.io.observation_file import parse_observation_file
 from supportive.io.taskfile import (
     dump_task,
     format_of,
@@ -12,6 +13,7 @@ from supportive.io.taskfile import (
 __all__ = [
     "dump_task",
     "format_of",
+    "parse_observation_file",
     "parse_task_file",
     "parse_task_string",
     "task_to_dict",
