@@ -39,8 +39,8 @@ def per_update(model: FlatHMM | HierarchicalHMM, observations: list[frozenset[st
 
 def peer(model: FlatHMM, observations: list[frozenset[str]], prefixes: list[int]) -> dict[str, float]:
     symbols = {o: i for i, o in enumerate(dict.fromkeys(observations))}
-    emissions = np.exp(np.array([model.observations.log_likelihood(o) for o in symbols]).T)  # type: ignore[union-attr]
-    emissions = emissions[[model.observations.action_index[a] for a, _ in model.layout_.leaves]]  # type: ignore[union-attr]
+    emissions = np.exp(np.array([model.observations_.log_likelihood(o) for o in symbols]).T)  # type: ignore[union-attr]
+    emissions = emissions[[model.observations_.action_index[a] for a, _ in model.layout_.leaves]]  # type: ignore[union-attr]
     emissions /= emissions.sum(axis=1, keepdims=True)
     n = model.layout_.n_leaves
     hmm = CategoricalHMM(n_components=n, n_features=len(symbols), init_params="", params="")

@@ -112,7 +112,7 @@ def test_estimator_api() -> None:
         sequences.append(list(stream.observations))
         labels.append([a for a, _ in stream.truth])
     model = HierarchicalHMM(htn).fit(sequences, labels)
-    assert model.mean_duration == pytest.approx(5.0, rel=0.3)
+    assert model.mean_duration_ == pytest.approx(5.0, rel=0.3) and model.observations_ is not None
     probabilities = model.predict_proba(sequences[0])
     assert probabilities.shape == (len(sequences[0]), 4)
     assert np.allclose(probabilities.sum(axis=1), 1.0)

@@ -87,6 +87,8 @@ class _SubgoalHMM(ABC):
         self.mean_duration = mean_duration
         self.layout_ = TaskLayout.of(self.htn)
         self.transitions_ = self._transitions(self.htn, self.layout_)
+        self.observations_ = observations
+        self.mean_duration_ = mean_duration
         self.stay_ = 1.0 - 1.0 / mean_duration
 
     @abstractmethod
@@ -101,18 +103,18 @@ class _SubgoalHMM(ABC):
             sequences: Observation sequences (each observation: the contact events that hold).
             labels: For each sequence, the action being performed at each step.
         """
-        self.observations = ObservationModel.fit(sequences, labels)
+        self.observations_ = ObservationModel.fit(sequences, labels)
         runs = [1 + sum(1 for a, b in itertools.pairwise(tags) if a != b) for tags in labels if tags]
         steps = sum(len(tags) for tags in labels)
-        self.mean_duration = max(1.0, steps / max(1, sum(runs)))
-        self.stay_ = 1.0 - 1.0 / self.mean_duration
+        self.mean_duration_ = max(1.0, steps / max(1, sum(runs)))
+        self.stay_ = 1.0 - 1.0 / self.mean_duration_
         return self
 
     def filter(self) -> GoalFilter:
         """A fresh online filter."""
-        if self.observations is None:
+        if self.observations_ is None:
             raise LearningError("no observation model: pass one, or call fit() on labelled demonstrations")
-        return GoalFilter(self.layout_, self.transitions_, self.observations, self.stay_)
+        return GoalFilter(self.layout_, self.transitions_, self.observations_, self.stay_)
 
     def predict_proba(self, sequence: Iterable[Iterable[str]]) -> np.ndarray:
         """Filtered probability of each subgoal at each step (rows: steps)."""
