@@ -8,6 +8,7 @@ import pytest
 from supportive.errors import ExperimentError
 from supportive.experiments import get, run_experiment
 from supportive.experiments.edge_reduction import make_trials, measure_task, model_sizes, run_trial, summarize
+from supportive.experiments.edge_reduction.report import verdict
 from supportive.experiments.edge_reduction.summary import bin_of
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.generate import THESIS_DEPTH_RANGE, as_demonstrations, sample_orderings
@@ -39,7 +40,13 @@ def test_clique_and_chain_edge_counts() -> None:
         clique = model_sizes(HTN("c", (CliqueNode(_leaves("abcdefgh"[:k])),)))
         assert (clique["flat_edges"], clique["htn_edges"], clique["depth"]) == (k * (k - 1), k, 1.0)
         chain = model_sizes(HTN("c", (ChainNode(_leaves("abcdefgh"[:k])),)))
-        assert (chain["flat_edges"], chain["htn_edges"], chain["order_edges"]) == (k - 1, 2 * k - 1, k - 1)
+        assert (chain["flat_edges"], chain["htn_edges"]) == (k - 1, k - 1)
+        assert set(chain) == {"flat_edges", "htn_edges", "depth", "roots", "complete"}
+    # transitions into and out of a clique: one CC-HTN edge each instead of one per member
+    sizes = model_sizes(
+        HTN("c", (ChainNode((ActionNode("a"), CliqueNode(_leaves("bcd")), ActionNode("e"))),))
+    )
+    assert (sizes["flat_edges"], sizes["htn_edges"]) == (3 + 6 + 3, 2 + 3)
 
 
 def test_summary_of_clique_tasks() -> None:
@@ -49,10 +56,20 @@ def test_summary_of_clique_tasks() -> None:
     ]
     metrics = summarize(results)
     truth = [r["ground_truth"] for r in results]
-    assert all(t["flat_edges"] >= t["htn_edges"] for t in truth)
-    assert metrics["models"]["ground_truth"]["flat_edges"] >= metrics["models"]["ground_truth"]["htn_edges"]
-    assert metrics["models"]["ground_truth"]["flat_per_htn"] > 1
-    assert all(b["ground_truth"]["flat_edges"] >= b["ground_truth"]["htn_edges"] for b in metrics["bins"])
+    # every task has a clique of >= 3 children: strictly fewer CC-HTN edges
+    assert [(t["flat_edges"], t["htn_edges"]) for t in truth] == [
+        (4 + 12 + 4 + 3 + 6, 3 + 4 + 3),  # chain[a, {bcde}, f, {ghi}]
+        (30, 6),
+        (6 + 15 + 20 + 5, 2 + 3 + 5),  # chain[{abc}, {defgh}, i]
+        (1 + 4 * 3 + 1 * 4 + 4 * 1, 1 + 5),  # clique{[ab], c, d, e, f}
+        (6 + 9 + 6 + 9 + 6, 2 + 3 * 3),
+    ]
+    summary = metrics["models"]["ground_truth"]
+    assert (summary["fewer_edges"], summary["more_edges"]) == (5, 0)
+    assert summary["flat_per_htn"] == round(
+        sum(t["flat_edges"] for t in truth) / sum(t["htn_edges"] for t in truth), 4
+    )
+    assert all(b["ground_truth"]["flat_edges"] > b["ground_truth"]["htn_edges"] for b in metrics["bins"])
     for model in ("learned", "ground_truth", "all_orderings"):
         depth = metrics["models"][model]["depth"]
         assert 0 <= depth["min"] <= depth["mean"] <= depth["max"] <= 3
@@ -73,7 +90,11 @@ def test_summary_of_generated_tasks() -> None:
     metrics = summarize(results)
     assert sum(b["ground_truth"]["tasks"] for b in metrics["bins"]) == 5
     assert [b["label"] for b in metrics["bins"]] == ["10–19", "30–39", "50–59", "70–79", "90–100"]
+    for model in ("ground_truth", "all_orderings"):  # complete hierarchies never need more edges
+        summary = metrics["models"][model]
+        assert summary["more_edges"] == 0 and summary["flat_per_htn"] >= 1
     for r in results:
+        assert r["ground_truth"]["htn_edges"] <= r["ground_truth"]["flat_edges"]
         low, high = THESIS_DEPTH_RANGE  # the generator redraws tasks outside the thesis's range
         assert low <= r["ground_truth"]["depth"] <= high
         assert 0 <= r["learned"]["depth"] <= high
@@ -110,6 +131,10 @@ def test_report_and_plots(tmp_path: Path) -> None:
     report = (tmp_path / "report.md").read_text()
     for number in ("1.99", "3.61", "2.84", "76 tasks", "Figure 2.5", "dramatic reduction"):
         assert number in report
+    # the counting rule, with the thesis's words
+    for phrase in ("|E| = |V|^2 - |V|", "(|E| = 1)", "k − 1", "k² − k flat edges against k", "2 + 3 = 5"):
+        assert phrase in report
+    assert "order edges" not in report
     for label in (
         "(a) learned from the demonstrations",
         "(b) ground-truth structure",
@@ -124,3 +149,48 @@ def test_report_and_plots(tmp_path: Path) -> None:
     assert metrics["thesis"] == json.loads(json.dumps(get("edge-reduction").thesis))
     assert metrics["trials"] == 3 and len(metrics["tasks"]) == 3
     assert ("tasks, subgoals", "3, 10–100", "76, 10–100") in result.headline
+    truth = metrics["models"]["ground_truth"]
+    assert (
+        "flat ÷ CC-HTN edges, (b) ground truth",
+        f"{truth['flat_per_htn']:.2f}",
+        "dramatic reduction (Fig. 2.5)",
+    ) in (result.headline)
+    assert "tree_links" not in truth and "order_edges" not in truth
+
+
+def _metrics(bins: list[tuple[float, float]]) -> dict[str, object]:
+    def sizes(flat: float, htn: float) -> dict[str, object]:
+        return {
+            "tasks": 1,
+            "flat_edges": flat,
+            "htn_edges": htn,
+            "flat_per_htn": flat / htn,
+            "fewer_edges": int(htn < flat),
+            "more_edges": int(htn > flat),
+        }
+
+    entries = [
+        {
+            "label": f"{10 * i}–{10 * i + 9}",
+            "learned": sizes(*b),
+            "ground_truth": sizes(*b),
+            "all_orderings": None,
+        }
+        for i, b in enumerate(bins, start=1)
+    ]
+    total = sizes(sum(f for f, _ in bins), sum(h for _, h in bins))
+    total["tasks"] = len(bins)
+    return {"models": {"learned": total, "ground_truth": total, "all_orderings": None}, "bins": entries}
+
+
+def test_verdict_is_worded_from_the_numbers() -> None:
+    growing = verdict(_metrics([(20, 10), (100, 20)]), "ground_truth")
+    assert "as claimed" in growing and "not as claimed" not in growing and "constant factor" not in growing
+    assert "from +10.0 (10–19 subgoals) to +80.0 (20–29)" in growing and "from 2.00 to 5.00" in growing
+    constant = verdict(_metrics([(20, 10), (100, 50)]), "ground_truth")
+    assert "as claimed — but by a roughly constant factor" in constant
+    more = verdict(_metrics([(20, 25), (100, 50)]), "learned")
+    assert "not as claimed (the CC-HTN needs more edges in 1 size bins)" in more
+    flat_gap = verdict(_metrics([(20, 10), (15, 5)]), "ground_truth")
+    assert flat_gap.endswith("the gap does not grow with size, so not as claimed.")
+    assert verdict(_metrics([(20, 10)]), "all_orderings") == "(c) learned from all valid orderings: no task."

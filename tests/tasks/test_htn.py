@@ -4,7 +4,10 @@ import itertools
 import math
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
+from supportive.generate import random_structure
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
@@ -14,6 +17,7 @@ from supportive.tasks.htn import (
     admits,
     canonical,
     count_orderings,
+    internal_nodes,
     iter_orderings,
     mean_action_depth,
     node_count,
@@ -68,8 +72,41 @@ def test_repeated_actions_are_numbered() -> None:
 def test_sizes_and_depth() -> None:
     node = ChainNode((A, CliqueNode((B, C)), D))
     assert node_count(node) == 6
-    assert node_edges(node) == 3 + 2 + 2  # parent links + chain "then" links + clique parent links
+    assert node_edges(node) == 2 + 2  # chain: a -> clique -> d; clique: b and c to the clique node
+    assert len(successor_pairs(node)) == 2 + 2 + 2  # a -> b, c; b <-> c; b, c -> d
     assert mean_action_depth([node]) == pytest.approx((1 + 2 + 2 + 1) / 4)
+    assert HTN("t", (node,)).edge_count() == 4
+
+
+def test_edges_of_chains_cliques_and_transitions_into_cliques() -> None:
+    # §2.1.7.3: a clique of |V| subgoals needs |V|^2 - |V| flat edges but |V| in the CC-HTN
+    for k in range(3, 12):
+        clique = CliqueNode(tuple(ActionNode(f"x{i}") for i in range(k)))
+        assert (node_edges(clique), len(successor_pairs(clique))) == (k, k * k - k)
+        chain = ChainNode(tuple(ActionNode(f"x{i}") for i in range(k)))
+        assert (node_edges(chain), len(successor_pairs(chain))) == (k - 1, k - 1)
+    assert (node_edges(CliqueNode((A, B))), len(successor_pairs(CliqueNode((A, B))))) == (2, 2)
+    assert node_edges(A) == len(successor_pairs(A)) == 0
+    # each transition into or out of a clique: one edge instead of one per member
+    e = ActionNode("e")
+    node = ChainNode((A, CliqueNode((B, C, D)), e))
+    assert len(successor_pairs(node)) == 3 + 6 + 3
+    assert node_edges(node) == 2 + 3
+    # a partial hierarchy adds its top-level transitions
+    top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)))
+    assert HTN("t", (ChainNode((A, B)), C), top).edge_count() == 1 + 0 + 4
+
+
+@given(st.integers(5, 60), st.integers(0, 10_000), st.sampled_from(["ikea", "uniform"]))
+def test_cc_htn_never_needs_more_edges_than_the_flat_model(n: int, seed: int, profile: str) -> None:
+    # Flat pairs of different internal nodes differ (their least common ancestor differs), and each node of
+    # k >= 2 children has at least k - 1 (chain) or k(k - 1) >= k (clique) of them: never fewer than its edges.
+    structure = random_structure(n, seed, profile=profile)
+    htn = HTN("t", (structure,))
+    edges, flat = htn.edge_count(), len(htn.successor_pairs())
+    assert edges <= flat
+    if any(isinstance(x, CliqueNode) and len(x.children) >= 3 for x in internal_nodes(structure)):
+        assert edges < flat
 
 
 def test_partial_htn_admits_through_its_top_level() -> None:

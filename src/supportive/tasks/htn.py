@@ -259,11 +259,23 @@ def node_count(node: Node) -> int:
 
 
 def node_edges(node: Node) -> int:
-    """Edges the tree needs to state its ordering: one per parent–child link, plus one between consecutive
-    children of a chain (a clique's children need none: any order is allowed)."""
+    """Transitions the tree under ``node`` needs to state its ordering, counted as §2.1.7.3 counts them.
+
+    A chain of k children needs k − 1 (one between consecutive children; entering and leaving the chain is
+    its parent's single edge, whatever the chain holds); a clique of k children needs k (one between each
+    member and the clique node: any member may start or end it); a primitive needs none. Summed over every
+    chain and clique. So a clique of k primitives costs k against the flat model's k² − k
+    (``len(successor_pairs(node))``), a chain of k primitives k − 1 against k − 1, and a transition into or
+    out of a clique one edge instead of one per member.
+
+    >>> a, b, c, d, e = (ActionNode(x) for x in "abcde")
+    >>> node = ChainNode((a, CliqueNode((b, c, d)), e))
+    >>> node_edges(node), len(successor_pairs(node))
+    (5, 12)
+    """
     if isinstance(node, ActionNode):
         return 0
-    own = len(node.children) + (len(node.children) - 1 if isinstance(node, ChainNode) else 0)
+    own = len(node.children) - 1 if isinstance(node, ChainNode) else len(node.children)
     return own + sum(node_edges(child) for child in node.children)
 
 
@@ -401,7 +413,8 @@ class HTN:
         return sum(node_count(root) for root in self.roots)
 
     def edge_count(self) -> int:
-        """Tree edges (see :func:`node_edges`) plus the top-level transitions of a partial hierarchy."""
+        """Transitions the CC-HTN needs: :func:`node_edges` summed over the roots, plus, for a partial
+        hierarchy, the transitions of its top level (``len(top_level.edges)``)."""
         extra = len(self.top_level.edges) if self.top_level is not None else 0
         return sum(node_edges(root) for root in self.roots) + extra
 

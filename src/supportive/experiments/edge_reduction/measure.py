@@ -8,8 +8,9 @@ For each task (§2.1.7.2: 10–100 subgoals, 4 random execution paths) the trial
   ``orderings_limit`` of them (invariant 3 says this recovers the structure; ``recovered`` checks it),
 
 and for each model: the edges of the flat task model over the same subgoals (``HTN.successor_pairs``, the
-immediate-successor transitions a flat HMM needs), the CC-HTN's edges (``HTN.edge_count``: parent–child links,
-chain order and the top-level transitions of a partial hierarchy) and the mean depth of a primitive.
+immediate-successor transitions a flat HMM needs), the CC-HTN's edges (``HTN.edge_count``, counted as
+§2.1.7.3 counts them: k − 1 for a chain of k children, k for a clique of k children, plus the top-level
+transitions of a partial hierarchy) and the mean depth of a primitive.
 """
 
 from __future__ import annotations
@@ -83,23 +84,22 @@ def run_trial(trial: Trial) -> dict[str, Any]:
 def model_sizes(htn: HTN) -> dict[str, Any]:
     """Sizes of one model of a task, as plain data.
 
-    Keys: ``flat_edges`` (immediate-successor pairs, the flat model), ``htn_edges`` (:meth:`HTN.edge_count`),
-    ``tree_links`` (its parent–child links) and ``order_edges`` (the rest: chain order and top-level
-    transitions), ``depth`` (mean primitive depth), ``roots`` and ``complete``.
+    Keys: ``flat_edges`` (immediate-successor pairs, the flat model), ``htn_edges`` (:meth:`HTN.edge_count`,
+    the CC-HTN), ``depth`` (mean primitive depth), ``roots`` and ``complete``.
 
-    >>> from supportive.tasks.htn import ActionNode, CliqueNode
+    >>> from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode
     >>> clique = CliqueNode(tuple(ActionNode(a) for a in "abcd"))
     >>> sizes = model_sizes(HTN("t", (clique,)))
     >>> sizes["flat_edges"], sizes["htn_edges"], sizes["depth"]
     (12, 4, 1.0)
+    >>> task = ChainNode((ActionNode("a"), CliqueNode(tuple(ActionNode(x) for x in "bcd")), ActionNode("e")))
+    >>> sizes = model_sizes(HTN("t", (task,)))
+    >>> sizes["flat_edges"], sizes["htn_edges"]
+    (12, 5)
     """
-    edges = htn.edge_count()
-    links = htn.node_count() - len(htn.roots)
     return {
         "flat_edges": len(htn.successor_pairs()),
-        "htn_edges": edges,
-        "tree_links": links,
-        "order_edges": edges - links,
+        "htn_edges": htn.edge_count(),
         "depth": round(htn.mean_action_depth(), 6),
         "roots": len(htn.roots),
         "complete": htn.complete,

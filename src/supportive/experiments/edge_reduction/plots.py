@@ -44,8 +44,6 @@ def _edges(metrics: Mapping[str, Any], path: Path) -> Path:
             ax.scatter(xs, ys, s=14, color=colour, alpha=0.45, label=f"{label} (per task)")
             bx, by = _bin_means(metrics, model, key)
             ax.plot(bx, by, color=colour, marker="o", linewidth=2, label=f"{label} (mean per 10 subgoals)")
-        bx, by = _bin_means(metrics, model, "order_edges")
-        ax.plot(bx, by, color="tab:blue", linestyle="--", linewidth=1.2, label="CC-HTN order edges (mean)")
         ax.set_title(LABELS[model])
         ax.set_xlabel("subgoals")
         ax.grid(alpha=0.3)

@@ -42,27 +42,26 @@ def _mean(values: Sequence[float]) -> float:
 def summarize_model(records: Sequence[Mapping[str, Any]]) -> dict[str, Any] | None:
     """Means over tasks of one model's sizes (see :func:`~.measure.model_sizes`); ``None`` for no task.
 
-    ``flat_per_htn`` is total flat edges over total CC-HTN edges (above 1: the CC-HTN needs fewer);
-    ``flat_per_order_edge`` the same against the CC-HTN's order edges only.
+    ``flat_per_htn`` is total flat edges over total CC-HTN edges (above 1: the CC-HTN needs fewer; ``None``
+    when the CC-HTNs have no edge); ``fewer_edges`` and ``more_edges`` count the tasks whose CC-HTN needs
+    fewer, and more, edges than their flat model.
 
-    >>> summarize_model([{"flat_edges": 12, "htn_edges": 4, "tree_links": 4, "order_edges": 0, "depth": 1.0,
-    ...                   "complete": True}])["flat_per_htn"]
-    3.0
+    >>> summarize_model([{"flat_edges": 12, "htn_edges": 4, "depth": 1.0, "complete": True},
+    ...                  {"flat_edges": 12, "htn_edges": 5, "depth": 1.5, "complete": True}])["flat_per_htn"]
+    2.6667
     """
     if not records:
         return None
     flat = [r["flat_edges"] for r in records]
     htn = [r["htn_edges"] for r in records]
-    order = [r["order_edges"] for r in records]
     depth = [r["depth"] for r in records]
     return {
         "tasks": len(records),
         "flat_edges": _mean(flat),
         "htn_edges": _mean(htn),
-        "tree_links": _mean([r["tree_links"] for r in records]),
-        "order_edges": _mean(order),
         "flat_per_htn": round(sum(flat) / sum(htn), 4) if sum(htn) else None,
-        "flat_per_order_edge": round(sum(flat) / sum(order), 4) if sum(order) else None,
+        "fewer_edges": sum(h < f for f, h in zip(flat, htn, strict=True)),
+        "more_edges": sum(h > f for f, h in zip(flat, htn, strict=True)),
         "depth": {"mean": _mean(depth), "min": round(min(depth), 4), "max": round(max(depth), 4)},
         "complete": sum(bool(r["complete"]) for r in records),
     }
