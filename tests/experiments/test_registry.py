@@ -108,3 +108,48 @@ def test_metrics_must_be_plain_json(toy: Toy) -> None:
 def test_bad_trial_counts(trials: int) -> None:
     with pytest.raises(ExperimentError, match="trials must be an int >= 1"):
         run_experiment("edge-reduction", trials=trials, progress=False)
+
+
+def test_timings_stay_out_of_the_metrics(timed_toy: Toy, tmp_path: Path) -> None:
+    experiment = register(timed_toy())
+    try:
+        first = run_experiment(experiment.name, trials=4, seed=2, output=tmp_path / "a", progress=False)
+        second = run_experiment(experiment.name, trials=4, seed=2, output=tmp_path / "b", progress=False)
+        quiet = run_experiment(experiment.name, trials=4, seed=2, progress=False)
+    finally:
+        unregister(experiment.name)
+    metrics = (tmp_path / "a" / "metrics.json").read_bytes()
+    assert metrics == (tmp_path / "b" / "metrics.json").read_bytes()
+    assert b"seconds" not in metrics and b"timing" not in metrics
+    assert {p.name for p in first.files} == {
+        "metrics.json",
+        "report.md",
+        "run.json",
+        "timing.json",
+        "timing.md",
+    }
+    timing = json.loads((tmp_path / "a" / "timing.json").read_text())
+    assert timing["experiment"] == "toy-timed" and timing["seed"] == 2 and "run to run" in timing["note"]
+    assert [t["index"] for t in timing["trials"]] == [0, 1, 2, 3]
+    assert all(t["seconds"] >= 0 for t in timing["trials"])
+    assert list(first.timings) == timing["trials"] and len(second.timings) == 4
+    assert all("timing" not in r for r in first.results)
+    assert (tmp_path / "a" / "timing.md").read_text().endswith("4 trials\n")
+    assert quiet.files == () and len(quiet.timings) == 4 and quiet.metrics == first.metrics
+
+
+def test_no_timing_file_without_timings(registered: str, tmp_path: Path) -> None:
+    result = run_experiment(registered, trials=2, output=tmp_path, progress=False)
+    assert result.timings == () and not (tmp_path / "timing.json").exists()
+
+
+def test_timings_must_be_plain_json(toy: Toy, tmp_path: Path) -> None:
+    experiment = register(
+        toy("toy-bad-timing", run_trial=lambda trial: {"index": 0, "draw": 1, "timing": {1}})
+    )
+    try:
+        with pytest.raises(ExperimentError, match="timings are not plain JSON"):
+            run_experiment(experiment.name, trials=1, output=tmp_path, progress=False)
+    finally:
+        unregister(experiment.name)
+    assert not (tmp_path / "metrics.json").exists()  # refused before anything is written

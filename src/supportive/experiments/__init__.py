@@ -1,10 +1,11 @@
 """Reproduce the thesis's experiments: a registry by name, a runner (in process, on a dask LocalCluster or
 on an existing dask cluster), and for each run ``metrics.json`` + ``report.md`` + PNG plots with the thesis's
-numbers side by side.
+numbers side by side. A trial's wall-clock measurements, under its reserved ``"timing"`` key, go to
+``timing.json`` instead of the metrics.
 
 >>> from supportive.experiments import names, run_experiment
 >>> names()
-('edge-reduction',)
+('edge-reduction', 'goal-inference')
 >>> result = run_experiment("edge-reduction", trials=2, progress=False)
 >>> "1.99" in result.report and "2.84" in result.report
 True
@@ -12,6 +13,7 @@ True
 
 from supportive.experiments.registry import (
     ALL,
+    TIMING_KEY,
     Experiment,
     HeadlineRow,
     Metrics,
@@ -34,6 +36,7 @@ from supportive.experiments.trials import Trial, spawn_trials, trial_seeds
 __all__ = [
     "ALL",
     "DEFAULT_OUTPUT",
+    "TIMING_KEY",
     "Experiment",
     "HeadlineRow",
     "Metrics",

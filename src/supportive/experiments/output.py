@@ -1,5 +1,5 @@
-"""The files a run writes: ``metrics.json`` (deterministic), ``report.md`` and ``run.json`` (timings and
-where it ran)."""
+"""The files a run writes: ``metrics.json`` (deterministic), ``report.md``, ``run.json`` (wall time and
+where it ran) and, when trials measured wall-clock times, ``timing.json``."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import Any
 
 from supportive.errors import ExperimentError
 
-__all__ = ["METRICS_FILE", "REPORT_FILE", "RUN_FILE", "dump_json", "write_text"]
+__all__ = ["METRICS_FILE", "REPORT_FILE", "RUN_FILE", "TIMING_FILE", "dump_json", "write_text"]
 
 METRICS_FILE = "metrics.json"
 """The metrics: the same trials give the same bytes, however many workers ran them."""
@@ -18,6 +18,9 @@ REPORT_FILE = "report.md"
 """The markdown report: this run's numbers beside the thesis's."""
 RUN_FILE = "run.json"
 """How the run went: wall time, workers, scheduler, versions. Differs from run to run by design."""
+TIMING_FILE = "timing.json"
+"""The trials' wall-clock measurements (their ``"timing"``), in trial order. Differs from run to run by
+design."""
 
 
 def dump_json(data: Mapping[str, Any], *, what: str = "metrics") -> str:

@@ -26,6 +26,7 @@ from supportive.experiments.trials import Trial
 
 __all__ = [
     "ALL",
+    "TIMING_KEY",
     "Experiment",
     "HeadlineRow",
     "Metrics",
@@ -42,6 +43,11 @@ ALL = "all"
 TrialResult: TypeAlias = dict[str, Any]
 """What one trial returns: a JSON object (plain dicts, lists, str, int, float, bool, None)."""
 
+TIMING_KEY = "timing"
+"""The reserved key of a trial result that holds its wall-clock measurements (plain JSON data), which differ
+from run to run: the runner keeps them out of ``summarize`` and ``metrics.json`` (see
+:attr:`Experiment.timing_report`)."""
+
 Metrics: TypeAlias = dict[str, Any]
 """What an experiment's ``summarize`` returns, and what ``metrics.json`` holds: plain JSON data."""
 
@@ -49,7 +55,7 @@ HeadlineRow: TypeAlias = tuple[str, str, str]
 """One line of a run's short summary: (quantity, this run, the thesis)."""
 
 _NAME = re.compile(r"^[a-z0-9]+(?:-[a-z0-9]+)*$")
-_BUILTINS = ("supportive.experiments.edge_reduction",)
+_BUILTINS = ("supportive.experiments.edge_reduction", "supportive.experiments.goal_inference")
 _registry: dict[str, Experiment] = {}
 _builtins_loaded = False
 
@@ -66,13 +72,20 @@ class Experiment:
         default_trials: Trials of a full run (the thesis's sample size).
         make_trials: ``(trials, seed) -> trials``; every trial gets its own seed (see
             :func:`~supportive.experiments.trials.spawn_trials`).
-        run_trial: Runs ONE trial and returns plain JSON data. A module-level function, so that it can be
-            sent to worker processes.
-        summarize: Trial results, in trial order -> metrics (plain JSON data, no timings: the same trials
-            give the same metrics).
+        run_trial: Runs ONE trial and returns plain JSON data (a dict; its key ``"timing"`` is reserved for
+            wall-clock measurements, see ``timing_report``). A module-level function, so that it can be sent
+            to worker processes.
+        summarize: Trial results without their ``"timing"``, in trial order -> metrics (plain JSON data, no
+            timings: the same trials give the same metrics).
         report: Metrics -> a markdown report with this run's numbers beside the thesis's.
         plots: ``(metrics, directory) -> files`` written there (PNG).
         headline: Metrics -> a few (quantity, this run, the thesis) rows for a terminal summary.
+        timing_report: Optional ``(timings, directory) -> files``: writes the experiment's own files about its
+            wall-clock measurements (``timing.md``, ``timing.png``, …). A trial may return its measurements,
+            which are not deterministic, under the reserved key ``"timing"``; the runner removes that key
+            from every result before ``summarize``, writes the timings (in trial order, of the trials that
+            returned one) to ``timing.json`` and passes them here, read back from that file. Called only when
+            the run writes files and some trial returned timings.
     """
 
     name: str
@@ -86,6 +99,7 @@ class Experiment:
     report: Callable[[Mapping[str, Any]], str] = field(repr=False)
     plots: Callable[[Mapping[str, Any], Path], list[Path]] = field(repr=False)
     headline: Callable[[Mapping[str, Any]], list[HeadlineRow]] = field(repr=False)
+    timing_report: Callable[[list[dict[str, Any]], Path], list[Path]] | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         if not _NAME.match(self.name) or self.name == ALL:

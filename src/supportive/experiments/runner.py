@@ -7,7 +7,10 @@ A run with output directory ``DIR`` writes:
 * ``DIR/report.md``: the markdown report, this run's numbers beside the thesis's;
 * the experiment's PNG plots;
 * ``DIR/run.json``: how this run went (wall time, workers or scheduler, versions), which differs from run to
-  run by design.
+  run by design;
+* ``DIR/timing.json``, when trials returned wall-clock measurements under their reserved ``"timing"`` key:
+  those measurements, in trial order (they differ from run to run by design, and never reach ``summarize``
+  or ``metrics.json``), and whatever the experiment's ``timing_report`` writes from them.
 """
 
 from __future__ import annotations
@@ -23,9 +26,25 @@ from typing import Any
 
 from supportive.errors import ExperimentError
 from supportive.experiments.execution import Executor, check_backend, open_executor
-from supportive.experiments.output import METRICS_FILE, REPORT_FILE, RUN_FILE, dump_json, write_text
+from supportive.experiments.output import (
+    METRICS_FILE,
+    REPORT_FILE,
+    RUN_FILE,
+    TIMING_FILE,
+    dump_json,
+    write_text,
+)
 from supportive.experiments.progress import progress_bar
-from supportive.experiments.registry import ALL, Experiment, HeadlineRow, Metrics, TrialResult, get, names
+from supportive.experiments.registry import (
+    ALL,
+    TIMING_KEY,
+    Experiment,
+    HeadlineRow,
+    Metrics,
+    TrialResult,
+    get,
+    names,
+)
 
 __all__ = ["DEFAULT_OUTPUT", "RunResult", "default_output", "reproduce", "run_all", "run_experiment"]
 
@@ -44,12 +63,14 @@ class RunResult:
         trials: Number of trials run.
         seed: The run's seed.
         backend: Where the trials ran (``"in process"``, ``"dask LocalCluster, 2 worker processes"``, …).
-        results: Each trial's result, in trial order.
+        results: Each trial's result without its ``"timing"``, in trial order (what ``summarize`` saw).
+        timings: The ``"timing"`` of each trial that returned one, in trial order (as in ``timing.json``);
+            empty when no trial measured anything.
         metrics: The metrics, exactly as in ``metrics.json``.
         report: The markdown report.
         headline: A few (quantity, this run, the thesis) rows for a terminal summary.
         output: The directory written, or ``None`` when nothing was written.
-        files: The files written (metrics, report, plots, run info).
+        files: The files written (metrics, report, plots, run info, timings).
         seconds: Wall time of the trials and the summary.
     """
 
@@ -58,6 +79,7 @@ class RunResult:
     seed: int
     backend: str
     results: tuple[TrialResult, ...]
+    timings: tuple[dict[str, Any], ...]
     metrics: Metrics
     report: str
     headline: tuple[HeadlineRow, ...]
@@ -91,8 +113,8 @@ def run_experiment(
             processes (one thread each, on 127.0.0.1, no dashboard) for the run.
         scheduler: Address of an existing dask scheduler (``tcp://HOST:PORT``) to run the trials on instead;
             its workers need ``supportive`` installed. Not together with ``workers`` > 1.
-        output: Directory for ``metrics.json``, ``report.md``, the plots and ``run.json``; ``None`` writes
-            nothing.
+        output: Directory for ``metrics.json``, ``report.md``, the plots, ``run.json`` and, when trials
+            measured times, ``timing.json`` and the experiment's timing files; ``None`` writes nothing.
         progress: Show a progress bar (only ever on a terminal).
 
     Raises:
@@ -180,12 +202,14 @@ def _run(
     started = time.perf_counter()
     specs = experiment.make_trials(trials, seed)
     with progress_bar(experiment.name, len(specs), enabled=progress) as advance:
-        results = executor.map(experiment.run_trial, specs, advance)
-    for index, result in enumerate(results):
+        returned = executor.map(experiment.run_trial, specs, advance)
+    for index, result in enumerate(returned):
         if not isinstance(result, dict):
             raise ExperimentError(
                 f"experiment {experiment.name}: trial {index} returned {type(result).__name__}, not a dict"
             )
+    results, timings = _split_timings(returned)
+    timing_text = _timing_text(experiment, timings, seed) if timings else None
     summary = experiment.summarize(results)
     clash = sorted(set(summary) & set(_RESERVED))
     if clash:
@@ -213,12 +237,17 @@ def _run(
             experiment, executor, len(specs), seed, started_at, seconds, time.perf_counter() - started
         )
         files.append(write_text(output / RUN_FILE, dump_json(info, what="run info")))
+        if timing_text is not None:
+            files.append(write_text(output / TIMING_FILE, timing_text))
+            if experiment.timing_report is not None:
+                files.extend(experiment.timing_report(json.loads(timing_text)["trials"], output))
     return RunResult(
         experiment=experiment.name,
         trials=len(specs),
         seed=seed,
         backend=executor.description,
         results=tuple(results),
+        timings=tuple(timings),
         metrics=metrics,
         report=report,
         headline=headline,
@@ -226,6 +255,27 @@ def _run(
         files=tuple(files),
         seconds=seconds,
     )
+
+
+def _split_timings(returned: list[TrialResult]) -> tuple[list[TrialResult], list[dict[str, Any]]]:
+    """The trial results without their reserved ``"timing"`` key, and those timings in trial order."""
+    results = [{key: value for key, value in r.items() if key != TIMING_KEY} for r in returned]
+    timings = [r[TIMING_KEY] for r in returned if TIMING_KEY in r]
+    return results, timings
+
+
+def _timing_text(experiment: Experiment, timings: list[dict[str, Any]], seed: int) -> str:
+    """What ``timing.json`` holds (checked to be plain JSON before anything is written)."""
+    document = {
+        "experiment": experiment.name,
+        "seed": seed,
+        "note": (
+            "Wall-clock measurements of the trials, in trial order. They differ from run to run by design, "
+            "so they are kept out of metrics.json."
+        ),
+        "trials": timings,
+    }
+    return dump_json(document, what="timings")
 
 
 def _run_info(
