@@ -9,62 +9,42 @@ from pathlib import Path
 import pytest
 
 from supportive import examples
-from supportive.cli import main
 from supportive.io.htn_json import htn_from_dict
 
 
-def run(
-    args: list[str], capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
-) -> tuple[int, str, str]:
-    monkeypatch.setattr(sys, "argv", ["supportive", *args])
-    try:
-        main()
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    captured = capsys.readouterr()
-    return code, captured.out, captured.err
-
-
-def test_learn_prints_a_tree(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, out, _ = run(["learn", str(examples.path("blocks-v"))], capsys, monkeypatch)
+def test_learn_prints_a_tree(cli) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = cli(["learn", str(examples.path("blocks-v"))])
     assert code == 0
     assert "blocks-v (partial" in out or "blocks-v" in out
     assert "red — place the red block" in out
 
 
-def test_learn_json_to_stdout_and_file(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, out, _ = run(
-        ["learn", str(examples.path("knife-carrots-celery")), "--format", "json"], capsys, monkeypatch
-    )
+def test_learn_json_to_stdout_and_file(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = cli(["learn", str(examples.path("knife-carrots-celery")), "--format", "json"])
     assert code == 0
     data = json.loads(out)
     assert data["complete"] is True and data["stats"]["task_graph"]["paths"] == 2
     target = tmp_path / "htn.json"
-    code, out, _ = run(
-        ["learn", str(examples.path("two-glasses")), "-f", "json", "-o", str(target)], capsys, monkeypatch
-    )
+    code, out, _ = cli(["learn", str(examples.path("two-glasses")), "-f", "json", "-o", str(target)])
     assert code == 0 and out == ""
     assert len(htn_from_dict(json.loads(target.read_text())).alternatives) == 2
 
 
-def test_learn_dot_and_hddl(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, out, _ = run(["learn", str(examples.path("blocks-towers")), "--format", "dot"], capsys, monkeypatch)
+def test_learn_dot_and_hddl(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = cli(["learn", str(examples.path("blocks-towers")), "--format", "dot"])
     assert code == 0 and out.startswith("digraph htn {")
-    code, _, err = run(
-        ["learn", str(examples.path("knife-carrots-celery")), "--format", "hddl", "-o", str(tmp_path / "h")],
-        capsys,
-        monkeypatch,
+    code, _, err = cli(
+        ["learn", str(examples.path("knife-carrots-celery")), "--format", "hddl", "-o", str(tmp_path / "h")]
     )
     assert code == 0 and "domain.hddl" in err
     assert "(:method" in (tmp_path / "h" / "domain.hddl").read_text()
     assert "(:htn" in (tmp_path / "h" / "problem.hddl").read_text()
 
 
-def test_learn_reads_csv(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_learn_reads_csv(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
     path = tmp_path / "demos.csv"
     path.write_text("demonstration,step,action\nd1,1,knife\nd1,2,a\nd1,3,b\nd2,1,knife\nd2,2,b\nd2,3,a\n")
-    code, out, _ = run(["learn", str(path), "-f", "json"], capsys, monkeypatch)
+    code, out, _ = cli(["learn", str(path), "-f", "json"])
     assert code == 0 and json.loads(out)["roots"][0]["kind"] == "chain"
 
 
@@ -82,13 +62,11 @@ BAD = {
 
 
 @pytest.mark.parametrize("name", sorted(BAD))
-def test_bad_input_exits_2_with_one_line_and_writes_nothing(
-    name: str, tmp_path: Path, capsys, monkeypatch
-) -> None:  # type: ignore[no-untyped-def]
+def test_bad_input_exits_2_with_one_line_and_writes_nothing(name: str, tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
     path = tmp_path / name
     path.write_text(BAD[name])
     target = tmp_path / "out.json"
-    code, out, err = run(["learn", str(path), "-f", "json", "-o", str(target)], capsys, monkeypatch)
+    code, out, err = cli(["learn", str(path), "-f", "json", "-o", str(target)])
     assert code == 2
     assert out == ""
     lines = err.strip().splitlines()
@@ -97,20 +75,20 @@ def test_bad_input_exits_2_with_one_line_and_writes_nothing(
     assert not target.exists()
 
 
-def test_usage_errors_exit_2(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, _, _ = run(["learn"], capsys, monkeypatch)
+def test_usage_errors_exit_2(cli) -> None:  # type: ignore[no-untyped-def]
+    code, _, _ = cli(["learn"])
     assert code == 2
-    code, _, _ = run(["learn", str(examples.path("blocks-v")), "--format", "pdf"], capsys, monkeypatch)
+    code, _, _ = cli(["learn", str(examples.path("blocks-v")), "--format", "pdf"])
     assert code == 2
 
 
-def test_hddl_needs_an_output_directory(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, _, err = run(["learn", str(examples.path("blocks-v")), "-f", "hddl"], capsys, monkeypatch)
+def test_hddl_needs_an_output_directory(cli) -> None:  # type: ignore[no-untyped-def]
+    code, _, err = cli(["learn", str(examples.path("blocks-v")), "-f", "hddl"])
     assert code == 2 and "--output DIR" in err
 
 
-def test_demo_says_what_was_and_was_not_learned(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, out, _ = run(["demo"], capsys, monkeypatch)
+def test_demo_says_what_was_and_was_not_learned(cli) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = cli(["demo"])
     assert code == 0
     assert "Build frame" in out and "Attach seat" in out
     assert "✓ Screw seat" in out
@@ -119,8 +97,8 @@ def test_demo_says_what_was_and_was_not_learned(capsys, monkeypatch) -> None:  #
     assert "Watching a teammate" in out and "right action at the end of" in out
 
 
-def test_captaincook_json(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, out, _ = run(["captaincook", "--json"], capsys, monkeypatch)
+def test_captaincook_json(cli) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = cli(["captaincook", "--json"])
     assert code == 0
     rows = json.loads(out)
     assert len(rows) == 24 and all(r["admits_demonstrations"] for r in rows)
@@ -137,29 +115,25 @@ def test_console_script_has_no_traceback(tmp_path: Path) -> None:
     assert result.stderr.strip() == f"supportive: error: {path}:2: unknown key 'foo'"
 
 
-def test_generate_is_seeded_and_learnable(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    code, first, _ = run(["generate", "--actions", "30", "--seed", "5"], capsys, monkeypatch)
-    _, second, _ = run(["generate", "--actions", "30", "--seed", "5"], capsys, monkeypatch)
-    _, other, _ = run(["generate", "--actions", "30", "--seed", "6"], capsys, monkeypatch)
+def test_generate_is_seeded_and_learnable(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+    code, first, _ = cli(["generate", "--actions", "30", "--seed", "5"])
+    _, second, _ = cli(["generate", "--actions", "30", "--seed", "5"])
+    _, other, _ = cli(["generate", "--actions", "30", "--seed", "6"])
     assert code == 0 and first == second != other
     target = tmp_path / "task.json"
-    code, _, _ = run(
-        ["generate", "-n", "25", "--seed", "1", "-d", "3", "-o", str(target)], capsys, monkeypatch
-    )
+    code, _, _ = cli(["generate", "-n", "25", "--seed", "1", "-d", "3", "-o", str(target)])
     assert code == 0
-    code, out, _ = run(["learn", str(target), "-f", "json"], capsys, monkeypatch)
+    code, out, _ = cli(["learn", str(target), "-f", "json"])
     assert code == 0 and json.loads(out)["stats"]["demonstrations"] == 3
 
 
-def test_infer_prints_one_json_line_per_observation(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_infer_prints_one_json_line_per_observation(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
     stream = tmp_path / "stream.jsonl"
     stream.write_text(
         '["hand-left_frame"]\n["hand-left_frame", "left_frame-table"]\n{"events": ["hand-peg", "peg-left_frame"], "time": 3.5}\n'
     )
-    code, out, _ = run(
-        ["infer", str(examples.path("ikea-chair")), "--observations", str(stream), "--top", "2"],
-        capsys,
-        monkeypatch,
+    code, out, _ = cli(
+        ["infer", str(examples.path("ikea-chair")), "--observations", str(stream), "--top", "2"]
     )
     assert code == 0
     lines = [json.loads(line) for line in out.splitlines()]
@@ -167,16 +141,14 @@ def test_infer_prints_one_json_line_per_observation(tmp_path: Path, capsys, monk
     assert lines[0]["subgoals"][0][0] == "get_left_frame"
     assert lines[2]["subtasks"][0][0] == "Add left pegs" and lines[2]["time"] == 3.5
     assert len(lines[1]["next"]) == 2
-    code, flat, _ = run(
-        ["infer", str(examples.path("ikea-chair")), "-O", str(stream), "--model", "flat"], capsys, monkeypatch
-    )
+    code, flat, _ = cli(["infer", str(examples.path("ikea-chair")), "-O", str(stream), "--model", "flat"])
     assert code == 0 and len(flat.splitlines()) == 3
 
 
-def test_infer_bad_inputs_exit_2(tmp_path: Path, capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_infer_bad_inputs_exit_2(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
     bad = tmp_path / "bad.jsonl"
     bad.write_text('["a"]\n[1]\n')
-    code, out, err = run(["infer", str(examples.path("ikea-chair")), "-O", str(bad)], capsys, monkeypatch)
+    code, out, err = cli(["infer", str(examples.path("ikea-chair")), "-O", str(bad)])
     assert (
         code == 2
         and out == ""
@@ -185,5 +157,5 @@ def test_infer_bad_inputs_exit_2(tmp_path: Path, capsys, monkeypatch) -> None:  
     )
     good = tmp_path / "good.jsonl"
     good.write_text("[]\n")
-    code, _, err = run(["infer", str(examples.path("blocks-v")), "-O", str(good)], capsys, monkeypatch)
+    code, _, err = cli(["infer", str(examples.path("blocks-v")), "-O", str(good)])
     assert code == 2 and "without 'observations'" in err and len(err.strip().splitlines()) == 1

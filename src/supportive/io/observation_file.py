@@ -14,6 +14,7 @@ from typing import Any
 import yaml
 
 from supportive.errors import ObservationFileError
+from supportive.io.text import read_text
 
 __all__ = ["Moment", "parse_observation_file"]
 
@@ -28,12 +29,7 @@ def parse_observation_file(path: str | Path) -> list[Moment]:
         ObservationFileError: naming the file, the line or item, and the problem.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ObservationFileError("no such file", path=path) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ObservationFileError(f"cannot read: {exc}", path=path) from None
+    text = read_text(path, ObservationFileError)
     if not text.strip():
         raise ObservationFileError("file is empty", path=path)
     suffix = path.suffix.lower()

@@ -19,6 +19,7 @@ from pydantic import ValidationError
 
 from supportive.errors import TaskFileError
 from supportive.io.schema import NodeIn, TaskIn
+from supportive.io.text import read_text
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node
 from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
 
@@ -61,13 +62,7 @@ def parse_task_file(path: str | Path, format: Format | None = None) -> TaskSpec:
     """
     path = Path(path)
     fmt = format or format_of(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise TaskFileError("no such file", path=path) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise TaskFileError(f"cannot read: {exc}", path=path) from None
-    return parse_task_string(text, fmt, path=path)
+    return parse_task_string(read_text(path, TaskFileError), fmt, path=path)
 
 
 def parse_task_string(
