@@ -8,6 +8,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import dask.distributed as distributed
 import pytest
 
 from supportive.errors import ExperimentError, MissingExtraError
@@ -21,7 +22,6 @@ QUIET_HTTP = {"dashboard_address": "127.0.0.1:0"}  # the scheduler's HTTP endpoi
 @pytest.fixture(scope="module")
 def external_cluster() -> Iterator[Any]:
     """A separate LocalCluster, standing in for a real cluster that ``--scheduler`` connects to."""
-    distributed = pytest.importorskip("dask.distributed")
     cluster = distributed.LocalCluster(
         n_workers=1,
         threads_per_worker=1,
@@ -68,7 +68,6 @@ def test_existing_scheduler_gives_identical_metrics(
 
 
 def test_unreachable_scheduler(monkeypatch: pytest.MonkeyPatch) -> None:
-    pytest.importorskip("dask.distributed")
     monkeypatch.setattr(execution, "CONNECT_TIMEOUT", 0.5)
     with (
         pytest.raises(ExperimentError, match=r"cannot connect to the dask scheduler at tcp://127\.0\.0\.1:9"),
@@ -78,7 +77,6 @@ def test_unreachable_scheduler(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_scheduler_without_workers(monkeypatch: pytest.MonkeyPatch) -> None:
-    distributed = pytest.importorskip("dask.distributed")
     monkeypatch.setattr(execution, "CONNECT_TIMEOUT", 0.5)
     with distributed.LocalCluster(
         n_workers=0,

@@ -99,7 +99,6 @@ def test_same_seed_gives_identical_metrics(first_run: tuple[Path, Any], tmp_path
 
 
 def test_local_cluster_gives_identical_metrics(first_run: tuple[Path, Any], tmp_path: Path) -> None:
-    pytest.importorskip("dask.distributed")
     output, _ = first_run
     result = run_experiment(
         "goal-inference", trials=TRIALS, seed=SEED, workers=2, output=tmp_path, progress=False
