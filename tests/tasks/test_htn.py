@@ -15,6 +15,7 @@ from supportive.tasks.htn import (
     CliqueNode,
     TopLevel,
     admits,
+    allowed_next,
     canonical,
     count_orderings,
     internal_nodes,
@@ -127,3 +128,25 @@ def test_successor_pairs_match_enumeration() -> None:
     top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)))
     htn = HTN("t", (ChainNode((A, B)), C), top)
     assert htn.successor_pairs() == {(("a", 1), ("b", 1)), (("b", 1), ("c", 1)), (("c", 1), ("a", 1))}
+
+
+@given(st.integers(3, 9), st.integers(0, 10_000), st.sampled_from(["ikea", "uniform"]))
+def test_allowed_next_matches_enumeration(n: int, seed: int, profile: str) -> None:
+    from supportive.generate import random_structure
+
+    structure = random_structure(n, seed, profile=profile)
+    orders = list(iter_orderings(structure))
+    prefix_next: dict[frozenset[tuple[str, int]], set[tuple[str, int]]] = {}
+    for order in orders:
+        for k in range(len(order) + 1):
+            prefix_next.setdefault(frozenset(order[:k]), set()).update(order[k : k + 1])
+    for order in orders[:20]:
+        for k in range(len(order) + 1):
+            assert allowed_next(structure, order[:k]) == prefix_next[frozenset(order[:k])]
+
+
+def test_allowed_next_rejects_invalid_prefixes() -> None:
+    with pytest.raises(ValueError, match="later part"):
+        allowed_next(ChainNode((A, B, C)), [("b", 1)])
+    with pytest.raises(ValueError, match="under way"):
+        allowed_next(CliqueNode((ChainNode((A, B)), ChainNode((C, D)))), [("a", 1), ("c", 1)])

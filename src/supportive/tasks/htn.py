@@ -30,6 +30,7 @@ __all__ = [
     "Leaf",
     "Node",
     "TopLevel",
+    "allowed_next",
     "canonical",
     "count_orderings",
     "first_leaves",
@@ -249,6 +250,49 @@ def successor_pairs(node: Node) -> set[tuple[Leaf, Leaf]]:
         for a, b in links:
             pairs.update((u, v) for u in last_leaves(a) for v in first_leaves(b))
     return pairs
+
+
+def allowed_next(node: Node, done: Iterable[Leaf]) -> frozenset[Leaf]:
+    """Leaves that may be performed next, after the leaves in ``done`` (a valid prefix of one of ``node``'s
+    sequences): nothing when ``node`` is finished.
+
+    >>> task = ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))
+    >>> sorted(a for a, _ in allowed_next(task, [("knife", 1)]))
+    ['carrots', 'celery']
+
+    Raises:
+        ValueError: when ``done`` is not a valid prefix (a chain child started before the one ahead of it is
+            finished, or two clique children both half done).
+    """
+    return _allowed(node, frozenset(done))
+
+
+def _progress(node: Node, done: frozenset[Leaf]) -> int:
+    """0: not started, 1: under way, 2: finished."""
+    count = sum(leaf in done for leaf in node.leaves)
+    return 0 if count == 0 else 2 if count == len(node.leaves) else 1
+
+
+def _allowed(node: Node, done: frozenset[Leaf]) -> frozenset[Leaf]:
+    if isinstance(node, ActionNode):
+        return frozenset() if node.leaf in done else frozenset((node.leaf,))
+    states = [_progress(child, done) for child in node.children]
+    if isinstance(node, ChainNode):
+        for i, state in enumerate(states):
+            if state != 2:
+                if any(later for later in states[i + 1 :]):
+                    raise ValueError(
+                        f"{node.name or 'chain'}: a later part is started before an earlier one ends"
+                    )
+                return _allowed(node.children[i], done)
+        return frozenset()
+    under_way = [child for child, state in zip(node.children, states, strict=True) if state == 1]
+    if len(under_way) > 1:
+        raise ValueError(f"{node.name or 'clique'}: two parts are under way at once")
+    if under_way:
+        return _allowed(under_way[0], done)
+    fresh = [child for child, state in zip(node.children, states, strict=True) if state == 0]
+    return frozenset().union(*(_allowed(child, done) for child in fresh))
 
 
 def node_count(node: Node) -> int:
