@@ -203,6 +203,43 @@ def captaincook(
 
 
 @app.command()
+def teach(
+    file: Annotated[Path, typer.Argument(help="Task file (.yaml or .json); demonstrations are saved to it.")],
+    strategy: Annotated[
+        str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
+    ] = "distance",
+    after: Annotated[
+        str,
+        typer.Option("--ask-after", help="Ask after these step counts (0: at the start), comma-separated."),
+    ] = "1,3,5",
+    demonstrations: Annotated[
+        int | None, typer.Option("--demonstrations", "-d", min=1, help="Stop after this many.")
+    ] = None,
+    seed: Annotated[int, typer.Option("--seed", help="Seeds the choice among equally good questions.")] = 0,
+) -> None:
+    """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
+    from supportive.errors import LearningError
+    from supportive.learning.active import QuerySchedule, strategy_names
+    from supportive.teach import TeachingConsole
+
+    if strategy not in strategy_names():
+        raise LearningError(
+            f"--strategy: unknown strategy {strategy!r}; choose one of {', '.join(strategy_names())}"
+        )
+    try:
+        steps = tuple(int(x) for x in after.split(",") if x.strip())
+    except ValueError:
+        raise LearningError(f"--ask-after: expected step counts like 1,3,5, got {after!r}") from None
+    schedule = QuerySchedule(after_steps=steps, max_per_demonstration=len(steps))
+
+    def read() -> str:
+        return input("> ")
+
+    console = TeachingConsole(file, read, out.print, strategy, schedule, seed)
+    console.run(demonstrations)
+
+
+@app.command()
 def demo() -> None:
     """Learn the bundled IKEA chair task and show what the demonstrations did and did not pin down."""
     from supportive.demo import run_demo
