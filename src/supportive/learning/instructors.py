@@ -1,0 +1,329 @@
+"""Simulated instructors and pooled instruction (§2.2.10.1).
+
+The thesis models its pilot participants three ways, and :class:`SimulatedInstructor` copies them:
+
+* **A fixed preferred order.** Each instructor has a preferred demonstration path: a canonical base path with
+  small random perturbations, drawn once (from the seed) and kept for every demonstration and every query
+  strategy ("participants were likely to remain true to their initial demonstration sequence").
+* **Queries within reach are heeded.** When the robot asks for an action that can be performed within
+  ``horizon`` (3) steps by some valid continuation, the instructor changes plan to perform it at the earliest
+  allowable time, then goes back to her preference. Queries further away are ignored.
+* **Pooling.** Instructors teach separate learners; the pooled result is the union of the learned
+  environment-space graphs (:func:`pooled_task_graph`, :func:`pooled_learner`).
+
+>>> from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode
+>>> task = ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))
+>>> person = SimulatedInstructor(task, perturbation=0.0)
+>>> demonstrate(person)
+['knife', 'carrots', 'celery']
+>>> person.begin_demonstration()
+>>> person.next_action(("knife",), "celery")
+'celery'
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Sequence
+from typing import Any
+
+from supportive.errors import LearningError
+from supportive.learning.learner import HTNLearner
+from supportive.seeding import Seed, rng_from
+from supportive.tasks.htn import (
+    ActionNode,
+    ChainNode,
+    CliqueNode,
+    Leaf,
+    Node,
+    admits,
+    allowed_next,
+    to_leaves,
+)
+from supportive.tasks.task_graph import TaskGraph
+
+__all__ = ["SimulatedInstructor", "demonstrate", "pooled_learner", "pooled_task_graph"]
+
+
+class SimulatedInstructor:
+    """A virtual person who knows the true task and demonstrates it, answering the robot's queries.
+
+    **Preferred path.** Starting from ``base_path`` (default: the structure's leaves in order), one pass runs
+    over adjacent positions left to right; at each position the pair is swapped with probability
+    ``perturbation`` when the swapped path is still a valid ordering of the structure, and a swapped pair is
+    then stepped over, so a leaf moves at most one place. The result is always a valid ordering, drawn once
+    from ``seed`` and kept for the instructor's lifetime.
+
+    **Next action.** Without a pending plan the instructor performs, among the leaves allowed next, the one
+    earliest in her preferred path (so, untroubled, she performs exactly her preferred path).
+
+    **Queries.** A query for action ``q`` means its next performance (a repeated action's next occurrence).
+    It is heeded when that performance can come within ``horizon`` steps, i.e. when the fewest leaves that
+    must be done first number at most ``horizon - 1`` (:meth:`steps_to`). A heeded query becomes the plan:
+    over the next calls she performs those required leaves (in preference order among those allowed) and
+    then ``q``, the shortest valid prefix ending in ``q``, after which she follows her preference again. A
+    later heeded query replaces a pending plan (she answers the latest question); an ignored query leaves it
+    alone. Queries for an action not in the task, or whose performances are all done, are ignored.
+
+    A repeated action's k-th performance is the k-th one done (:func:`~supportive.tasks.htn.to_leaves`), so
+    only an action's next performance is ever chosen; the structure should number performances in an order
+    they can be done in (a ``LearningError`` says so when a demonstration gets stuck on that).
+
+    Answers are deterministic: the only randomness is the preferred path, so the same seed gives the same
+    path and the same answers.
+
+    Args:
+        structure: The true task (a nested chain/clique structure).
+        base_path: The canonical base path, action ids in order (default: the structure's leaves in order,
+            which must then number each repeated action's performances in that order).
+        perturbation: Probability of each adjacent swap, in [0, 1]; 0 keeps the base path exactly.
+        horizon: Most steps ahead (counting the queried action itself) a query is heeded; 0 ignores all.
+        seed: Seed or generator (see :mod:`supportive.seeding`).
+
+    Attributes:
+        preferred_path: The instructor's preferred demonstration, action ids in order.
+        preferred_leaves: The same as (action, occurrence) leaves.
+
+    Raises:
+        LearningError: when ``base_path`` is not a valid ordering of ``structure``, ``perturbation`` is not in
+            [0, 1] or ``horizon`` is negative.
+    """
+
+    def __init__(
+        self,
+        structure: Node,
+        base_path: Sequence[str] | None = None,
+        *,
+        perturbation: float = 0.2,
+        horizon: int = 3,
+        seed: Seed = None,
+    ) -> None:
+        if not 0.0 <= perturbation <= 1.0:
+            raise LearningError(f"perturbation must be in [0, 1], got {perturbation}")
+        if horizon < 0:
+            raise LearningError(f"horizon must be >= 0, got {horizon}")
+        if isinstance(base_path, str):
+            raise LearningError("base_path is a sequence of action ids, not a string")
+        base = to_leaves(a for a, _ in structure.leaves) if base_path is None else to_leaves(base_path)
+        if not admits(structure, base):
+            raise LearningError(
+                f"base_path {[a for a, _ in base]} is not a valid ordering of the task "
+                f"(expected an ordering of {sorted({a for a, _ in structure.leaves})})"
+            )
+        self.structure = structure
+        self.perturbation = perturbation
+        self.horizon = horizon
+        self.preferred_leaves: tuple[Leaf, ...] = _perturb(structure, base, perturbation, seed)
+        self.preferred_path: tuple[str, ...] = tuple(a for a, _ in self.preferred_leaves)
+        self._rank = {leaf: i for i, leaf in enumerate(self.preferred_leaves)}
+        self._ancestry = _ancestry(structure)
+        self._target: Leaf | None = None
+
+    def begin_demonstration(self) -> None:
+        """Start a new demonstration: forget any plan a query made in the previous one."""
+        self._target = None
+
+    def steps_to(self, done: Sequence[str], action: str) -> int | None:
+        """In how many steps ``action`` (its next performance) can be performed at the earliest after ``done``.
+
+        1 means it is allowed next; ``k`` means ``k - 1`` other leaves must be done first.
+
+        Args:
+            done: Actions done so far in this demonstration (a valid prefix).
+            action: The action asked about.
+
+        Returns:
+            The number of steps, or None when the action is not in the task or all its performances are done.
+
+        Raises:
+            LearningError: when ``done`` is not a valid prefix of the task.
+        """
+        leaves = self._check(done)
+        target = self._next_leaf(leaves, action)
+        if target is None:
+            return None
+        return len(self._required(target, frozenset(leaves))) + 1
+
+    def next_action(self, done: tuple[str, ...], query: str | None = None) -> str | None:
+        """The action the instructor performs next.
+
+        Args:
+            done: Actions done so far in this demonstration (a valid prefix). An empty ``done`` starts a new
+                demonstration, like :meth:`begin_demonstration`.
+            query: The robot's pending query (an action id), or None.
+
+        Returns:
+            The next action id, or None when the task is complete.
+
+        Raises:
+            LearningError: when ``done`` is not a valid prefix of the task.
+        """
+        leaves = self._check(done)
+        if not leaves:
+            self.begin_demonstration()
+        done_set = frozenset(leaves)
+        every = allowed_next(self.structure, leaves)
+        if not every:
+            self._target = None
+            return None
+        # Only an action's next performance can be done next: the k-th "stir" is the k-th stir performed.
+        counts = Counter(a for a, _ in leaves)
+        allowed = frozenset(leaf for leaf in every if leaf[1] == counts[leaf[0]] + 1)
+        if not allowed:
+            raise LearningError(
+                f"done {list(done)}: the task numbers performances of {sorted({a for a, _ in every})} out of "
+                "the order they can be performed in"
+            )
+        if self._target is not None and self._target in done_set:
+            self._target = None
+        if query is not None:
+            target = self._next_leaf(leaves, query)
+            if target is not None and len(self._required(target, done_set)) + 1 <= self.horizon:
+                self._target = target
+        if self._target is not None:
+            required = self._required(self._target, done_set)
+            candidates = allowed & required if required else allowed & {self._target}
+            if candidates:
+                return min(candidates, key=self._rank.__getitem__)[0]
+            self._target = None  # unreachable for a valid prefix; fall back to the preference
+        return min(allowed, key=self._rank.__getitem__)[0]
+
+    def _check(self, done: Sequence[str]) -> tuple[Leaf, ...]:
+        if isinstance(done, str):
+            raise LearningError("done is a sequence of action ids, not a string")
+        leaves = to_leaves(done)
+        unknown = [leaf for leaf in leaves if leaf not in self._rank]
+        if unknown:
+            raise LearningError(
+                f"done {list(done)}: {unknown[0][0]!r} (performance {unknown[0][1]}) is not in the task"
+            )
+        try:
+            allowed_next(self.structure, leaves)
+        except ValueError as exc:
+            raise LearningError(f"done {list(done)} is not a valid prefix of the task: {exc}") from exc
+        return leaves
+
+    def _next_leaf(self, leaves: Sequence[Leaf], action: str) -> Leaf | None:
+        leaf = (action, sum(a == action for a, _ in leaves) + 1)
+        return leaf if leaf in self._rank else None
+
+    def _required(self, target: Leaf, done: frozenset[Leaf]) -> frozenset[Leaf]:
+        """The leaves that must be done (fewest possible) before ``target`` can be performed.
+
+        Walking down from the root to ``target``: in a chain, every child before the one holding ``target``
+        must be finished; in a clique, a child under way (other than the one holding ``target``) must be
+        finished first. Those leaves, in some valid order, then ``target``, is the shortest way to it.
+        """
+        out: set[Leaf] = set()
+        for node, index in self._ancestry[target]:
+            for j, child in enumerate(node.children):
+                if j == index:
+                    if isinstance(node, ChainNode):
+                        break
+                    continue
+                undone = [leaf for leaf in child.leaves if leaf not in done]
+                if isinstance(node, ChainNode) or 0 < len(undone) < len(child.leaves):
+                    out.update(undone)
+        return frozenset(out)
+
+
+def _ancestry(structure: Node) -> dict[Leaf, list[tuple[ChainNode | CliqueNode, int]]]:
+    """For each leaf, its (ancestor, index of the child holding it) pairs from the root down."""
+    out: dict[Leaf, list[tuple[ChainNode | CliqueNode, int]]] = {}
+
+    def walk(node: Node, path: list[tuple[ChainNode | CliqueNode, int]]) -> None:
+        if isinstance(node, ActionNode):
+            out[node.leaf] = path
+            return
+        for i, child in enumerate(node.children):
+            walk(child, [*path, (node, i)])
+
+    walk(structure, [])
+    return out
+
+
+def _perturb(structure: Node, base: Sequence[Leaf], probability: float, seed: Seed) -> tuple[Leaf, ...]:
+    """One left-to-right pass of adjacent swaps, each kept only when the path stays valid."""
+    rng = rng_from(seed)
+    path = list(base)
+    i = 0
+    while i < len(path) - 1:
+        u, v = path[i], path[i + 1]
+        if probability > 0 and rng.random() < probability and u[0] != v[0]:
+            prefix = path[:i]
+            # Allowed leaves depend only on the set done, so the rest of the path stays valid.
+            if v in allowed_next(structure, prefix) and u in allowed_next(structure, [*prefix, v]):
+                path[i], path[i + 1] = v, u
+                i += 2
+                continue
+        i += 1
+    return tuple(path)
+
+
+def demonstrate(instructor: SimulatedInstructor) -> list[str]:
+    """A full demonstration with no queries: the instructor's preferred path.
+
+    >>> from supportive.tasks.htn import ActionNode, ChainNode
+    >>> demonstrate(SimulatedInstructor(ChainNode((ActionNode("a"), ActionNode("b")))))
+    ['a', 'b']
+    """
+    instructor.begin_demonstration()
+    done: list[str] = []
+    while (action := instructor.next_action(tuple(done), None)) is not None:
+        done.append(action)
+    return done
+
+
+def _action_sequences(graph: TaskGraph, where: str) -> list[list[str]]:
+    if graph.explicit_states:
+        raise LearningError(
+            f"{where}: pooling replays demonstrations with derived states only; this graph has explicit states"
+        )
+    return [[graph.subgoals[s][0] for s in demo] for demo in graph.demonstrations]
+
+
+def pooled_task_graph(graphs: Sequence[TaskGraph]) -> TaskGraph:
+    """The union of learned environment-space graphs: every graph's demonstrations replayed into a new graph.
+
+    States are derived from completed actions (the multiset of §2.1.2), so the union of two graphs is a graph
+    holding both; its known paths include each member's (and paths that combine them where they share states).
+
+    Args:
+        graphs: The graphs to pool (their demonstrations are replayed in order).
+
+    Raises:
+        LearningError: when a graph was built with explicit environment states.
+
+    >>> a, b = TaskGraph(), TaskGraph()
+    >>> _ = a.add(["x", "y"]); _ = b.add(["y", "x"])
+    >>> pooled_task_graph([a, b]).path_count()
+    2
+    """
+    pooled = TaskGraph()
+    for g, graph in enumerate(graphs):
+        for d, actions in enumerate(_action_sequences(graph, f"graph {g + 1}")):
+            pooled.add(actions, f"g{g + 1}.d{d + 1}")
+    return pooled
+
+
+def pooled_learner(learners: Sequence[HTNLearner], **options: Any) -> HTNLearner:
+    """A learner fitted on all the demonstrations the given learners saw, in order (pooled instruction).
+
+    Its task graph equals :func:`pooled_task_graph` of theirs, so its known-path count is at least each
+    member's.
+
+    Args:
+        learners: Fitted learners.
+        **options: Passed to :class:`HTNLearner` (default hyper-parameters otherwise).
+
+    Raises:
+        LearningError: when there is no learner, one is not fitted, or one's graph has explicit states.
+    """
+    demos: list[list[str]] = []
+    for i, learner in enumerate(learners):
+        if not hasattr(learner, "task_graph_"):
+            raise LearningError(f"learner {i + 1} is not fitted; fit it before pooling")
+        demos.extend(_action_sequences(learner.task_graph_, f"learner {i + 1}"))
+    if not demos:
+        raise LearningError("no demonstrations to pool: give at least one fitted learner")
+    return HTNLearner(**options).fit(demos, learners[0].task)
