@@ -95,6 +95,7 @@ def test_demo_says_what_was_and_was_not_learned(cli) -> None:  # type: ignore[no
     assert "✗ Fasten nuts and bolts (any order, 6 of 24 orders seen)" in out
     assert "288 of 768" in out
     assert "Watching a teammate" in out and "right action at the end of" in out
+    assert "Teaching with questions" in out and "“Can you place the" in out
 
 
 def test_captaincook_json(cli) -> None:  # type: ignore[no-untyped-def]

@@ -12,8 +12,11 @@ from rich.panel import Panel
 from rich.table import Table
 
 from supportive import examples
+from supportive.errors import LearningError
 from supportive.inference import HierarchicalHMM, ObservationModel
 from supportive.io.tree import htn_tree
+from supportive.learning.active import QuerySchedule, TeachingSession, run_session
+from supportive.learning.instructors import SimulatedInstructor
 from supportive.learning.learner import HTNLearner, learn
 from supportive.learning.naming import known_names
 from supportive.learning.precedence import implied_precedences
@@ -29,8 +32,19 @@ from supportive.tasks.htn import (
     to_leaves,
 )
 from supportive.tasks.spec import TaskSpec
+from supportive.teach import ask_in_words
 
-__all__ = ["SubtaskFinding", "WatchedStep", "run_demo", "subtask_findings", "watch", "watch_held_out"]
+__all__ = [
+    "SubtaskFinding",
+    "TeachingOutcome",
+    "WatchedStep",
+    "run_demo",
+    "subtask_findings",
+    "teach_tower",
+    "teach_with_questions",
+    "watch",
+    "watch_held_out",
+]
 
 
 @dataclass(frozen=True)
@@ -161,6 +175,7 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
             console.print(htn_tree(alternative, spec.texts()))
     if all(a.observations for a in spec.actions) and len(spec.demonstrations) > 1:
         watch_held_out(console, spec)
+    teach_with_questions(console)
     console.print(Panel.fit("Try it on your own task:  supportive learn my-task.yaml --format json"))
     return learner
 
@@ -197,6 +212,45 @@ def watch(spec: TaskSpec, held_out: int = -1, seed: int = 7, mean_duration: floa
             )
         )
     return steps
+
+
+@dataclass(frozen=True)
+class TeachingOutcome:
+    """A simulated teaching session: the questions asked and the valid orders the learner came to know."""
+
+    strategy: str
+    known_orders: int
+    questions: tuple[tuple[int, int, str, bool | None], ...]
+
+
+def teach_tower(strategy: str | None, demonstrations: int = 4, seed: int = 3) -> TeachingOutcome:
+    """A simulated instructor (§2.2.10.1) teaches block task 1 (red, six blocks in any order, blue) for a few
+    demonstrations, with the learner asking as in the pilot study (``strategy``) or never (None)."""
+    spec = examples.load("blocks-tower")
+    if spec.structure is None:
+        raise LearningError("the bundled blocks-tower example lost its ground-truth structure")
+    schedule = QuerySchedule.thesis(1) if strategy else QuerySchedule(after_steps=())
+    session = TeachingSession(spec.action_ids(), strategy or "random", schedule, seed)
+    run_session(session, SimulatedInstructor(spec.structure, seed=seed), demonstrations)
+    questions = tuple((q.demonstration + 1, q.step, q.action, q.honoured) for q in session.queries)
+    return TeachingOutcome(strategy or "none", session.learner.task_graph_.path_count(), questions)
+
+
+def teach_with_questions(console: Console) -> None:
+    """Print a short simulated teaching session with and without questions."""
+    texts = examples.load("blocks-tower").texts()
+    quiet, asking = teach_tower(None), teach_tower("distance")
+    console.print(
+        "\n[bold]Teaching with questions[/] (§2.2): a simulated person teaches the block tower (720 valid orders) "
+        "four times. Without questions the robot comes to know "
+        f"[bold]{quiet.known_orders}[/] valid orders; asking distance-based questions it knows "
+        f"[bold]{asking.known_orders}[/]:"
+    )
+    for demonstration, step, action, honoured in asking.questions:
+        answer = "yes" if honoured else "no, did something else"
+        console.print(
+            f"  demonstration {demonstration}, after step {step}: “{ask_in_words(action, texts)}” — {answer}"
+        )
 
 
 def watch_held_out(console: Console, spec: TaskSpec) -> None:

@@ -396,3 +396,12 @@ def test_errors() -> None:
 
     with pytest.raises(LearningError, match="did not finish within 5 steps"):
         run_session(TeachingSession(KCC), Endless(), 1, max_steps=5)
+
+
+def test_questions_buy_known_orders_in_the_demo_session() -> None:
+    from supportive.demo import teach_tower
+
+    quiet, asking = teach_tower(None), teach_tower("distance")
+    assert quiet.questions == ()
+    assert len(asking.questions) >= 6  # up to 3 per demonstration after the first
+    assert asking.known_orders > quiet.known_orders
