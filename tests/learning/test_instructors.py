@@ -12,6 +12,7 @@ from supportive.errors import LearningError
 from supportive.generate import random_structure
 from supportive.learning import HTNLearner
 from supportive.learning.instructors import (
+    PartialOrder,
     SimulatedInstructor,
     demonstrate,
     pooled_learner,
@@ -429,3 +430,43 @@ def test_pooling_edge_cases() -> None:
     explicit.add_demonstration(Demonstration((Step("a", state=frozenset({"x"})),), "d1"))
     with pytest.raises(LearningError, match="explicit states"):
         pooled_task_graph([explicit])
+
+
+# ---------------------------------------------------------------------------------------------- partial orders
+
+_A, _B, _C, _D = ("a", 1), ("b", 1), ("c", 1), ("d", 1)
+_DIAMOND = PartialOrder([_A, _B, _C, _D], [(_A, _B), (_A, _C), (_B, _D), (_C, _D)])
+
+
+def test_partial_order_allows_a_leaf_once_its_predecessors_are_done() -> None:
+    assert _DIAMOND.allowed_next([]) == {_A}
+    assert _DIAMOND.allowed_next([_A]) == {_B, _C}
+    assert _DIAMOND.allowed_next([_A, _C]) == {_B}
+    assert _DIAMOND.allowed_next([_A, _B, _C, _D]) == frozenset()
+    assert _DIAMOND.predecessors[_D] == {_A, _B, _C}  # transitive
+    with pytest.raises(ValueError):
+        _DIAMOND.allowed_next([_B])
+    assert _DIAMOND.admits([_A, _C, _B, _D]) and not _DIAMOND.admits([_A, _D, _B, _C])
+    assert _DIAMOND.linearize(["d", "c", "b", "a"]) == ("a", "c", "b", "d")
+    with pytest.raises(LearningError):
+        PartialOrder([_A, _B], [(_A, _B), (_B, _A)])
+
+
+def test_instructor_over_a_partial_order_follows_it_and_heeds_queries() -> None:
+    person = SimulatedInstructor(_DIAMOND, ["a", "b", "c", "d"], perturbation=0.0)
+    assert demonstrate(person) == ["a", "b", "c", "d"]
+    person.begin_demonstration()
+    assert person.next_action(("a",), "c") == "c"  # allowed next: heeded at once
+    assert person.steps_to(("a",), "d") == 3  # b and c first
+    assert person.steps_to((), "d") == 4
+    person.begin_demonstration()
+    assert person.next_action((), "d") == "a"  # 4 steps away: beyond the horizon of 3, ignored
+    with pytest.raises(LearningError):
+        SimulatedInstructor(_DIAMOND, ["a", "d", "b", "c"])
+
+
+def test_instructor_over_a_partial_order_perturbs_within_it() -> None:
+    for seed in range(20):
+        person = SimulatedInstructor(_DIAMOND, ["a", "b", "c", "d"], perturbation=1.0, seed=seed)
+        assert _DIAMOND.admits(person.preferred_leaves)
+        assert demonstrate(person) == list(person.preferred_path)

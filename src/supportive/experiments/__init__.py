@@ -5,7 +5,7 @@ numbers side by side. A trial's wall-clock measurements, under its reserved ``"t
 
 >>> from supportive.experiments import names, run_experiment
 >>> names()
-('edge-reduction', 'goal-inference')
+('active-learning', 'active-learning-blocks', 'captaincook', 'edge-reduction', 'goal-inference', 'transfer')
 >>> result = run_experiment("edge-reduction", trials=2, progress=False)
 >>> "1.99" in result.report and "2.84" in result.report
 True

@@ -55,7 +55,13 @@ HeadlineRow: TypeAlias = tuple[str, str, str]
 """One line of a run's short summary: (quantity, this run, the thesis)."""
 
 _NAME = re.compile(r"^[a-z0-9]+(?:-[a-z0-9]+)*$")
-_BUILTINS = ("supportive.experiments.edge_reduction", "supportive.experiments.goal_inference")
+_BUILTINS = (
+    "supportive.experiments.edge_reduction",
+    "supportive.experiments.goal_inference",
+    "supportive.experiments.active_learning",
+    "supportive.experiments.captaincook",
+    "supportive.experiments.transfer",
+)
 _registry: dict[str, Experiment] = {}
 _builtins_loaded = False
 

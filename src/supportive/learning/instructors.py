@@ -11,6 +11,9 @@ The thesis models its pilot participants three ways, and :class:`SimulatedInstru
 * **Pooling.** Instructors teach separate learners; the pooled result is the union of the learned
   environment-space graphs (:func:`pooled_task_graph`, :func:`pooled_learner`).
 
+The true task is a nested chain/clique structure or a :class:`PartialOrder` ("must come before" pairs, as
+in a published task graph: a leaf may come next when all its predecessors are done).
+
 >>> from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode
 >>> task = ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))
 >>> person = SimulatedInstructor(task, perturbation=0.0)
@@ -24,7 +27,7 @@ The thesis models its pilot participants three ways, and :class:`SimulatedInstru
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 from supportive.errors import LearningError
@@ -42,7 +45,126 @@ from supportive.tasks.htn import (
 )
 from supportive.tasks.task_graph import TaskGraph
 
-__all__ = ["SimulatedInstructor", "demonstrate", "pooled_learner", "pooled_task_graph"]
+__all__ = ["PartialOrder", "SimulatedInstructor", "demonstrate", "pooled_learner", "pooled_task_graph"]
+
+
+class PartialOrder:
+    """A task given as a partial order over its leaves: a leaf may come next when all its predecessors are done.
+
+    Args:
+        leaves: The task's leaves ``(action id, occurrence)``; a leaf named only in ``before`` is added.
+        before: Pairs ``(a, b)``: ``a`` must be performed before ``b``. Their transitive closure is used.
+
+    Attributes:
+        leaves: Every leaf, in a valid order (the given order, each leaf moved after its predecessors).
+        predecessors: For each leaf, every leaf that must come before it (transitively).
+
+    Raises:
+        LearningError: when the pairs form a cycle or a leaf repeats.
+
+    >>> order = PartialOrder([("knife", 1), ("carrots", 1), ("celery", 1)],
+    ...                      [(("knife", 1), ("carrots", 1)), (("knife", 1), ("celery", 1))])
+    >>> sorted(a for a, _ in order.allowed_next([("knife", 1)]))
+    ['carrots', 'celery']
+    >>> order.linearize(["celery", "knife", "carrots"])
+    ('knife', 'celery', 'carrots')
+    """
+
+    def __init__(self, leaves: Iterable[Leaf], before: Iterable[tuple[Leaf, Leaf]]) -> None:
+        given = list(leaves)
+        if len(set(given)) != len(given):
+            raise LearningError("a partial order's leaves must not repeat")
+        pairs = [(a, b) for a, b in before]
+        for a, b in pairs:
+            for leaf in (a, b):
+                if leaf not in given:
+                    given.append(leaf)
+        direct: dict[Leaf, set[Leaf]] = {leaf: set() for leaf in given}
+        for a, b in pairs:
+            direct[b].add(a)
+        closed: dict[Leaf, frozenset[Leaf]] = {}
+
+        def close(leaf: Leaf, path: frozenset[Leaf]) -> frozenset[Leaf]:
+            if leaf in path:
+                raise LearningError(
+                    f"the order is cyclic: {leaf[0]!r} (performance {leaf[1]}) precedes itself"
+                )
+            if leaf not in closed:
+                out: set[Leaf] = set()
+                for parent in direct[leaf]:
+                    out.add(parent)
+                    out |= close(parent, path | {leaf})
+                closed[leaf] = frozenset(out)
+            return closed[leaf]
+
+        for leaf in given:
+            close(leaf, frozenset())
+        self.predecessors: dict[Leaf, frozenset[Leaf]] = closed
+        self.leaves: tuple[Leaf, ...] = self._linear(given)
+
+    def allowed_next(self, done: Iterable[Leaf]) -> frozenset[Leaf]:
+        """The leaves that may be performed next after ``done``: nothing when every leaf is done.
+
+        Raises:
+            ValueError: when ``done`` holds an unknown leaf or one whose predecessors are not all done.
+        """
+        done_set = frozenset(done)
+        for leaf in done_set:
+            if leaf not in self.predecessors:
+                raise ValueError(f"{leaf[0]!r} (performance {leaf[1]}) is not in the task")
+            if not self.predecessors[leaf] <= done_set:
+                raise ValueError(f"{leaf[0]!r} (performance {leaf[1]}) is done before its predecessors")
+        return frozenset(
+            leaf for leaf in self.leaves if leaf not in done_set and self.predecessors[leaf] <= done_set
+        )
+
+    def required(self, target: Leaf, done: frozenset[Leaf]) -> frozenset[Leaf]:
+        """The leaves still to be done before ``target`` can be performed (its undone predecessors)."""
+        return self.predecessors[target] - done
+
+    def admits(self, path: Sequence[Leaf]) -> bool:
+        """True when ``path`` performs every leaf once, each after all its predecessors."""
+        if len(path) != len(self.leaves) or set(path) != set(self.leaves):
+            return False
+        seen: set[Leaf] = set()
+        for leaf in path:
+            if not self.predecessors[leaf] <= seen:
+                return False
+            seen.add(leaf)
+        return True
+
+    def linearize(self, preference: Sequence[str]) -> tuple[str, ...]:
+        """The valid ordering closest to ``preference`` (action ids, e.g. a real recording that may break the
+        order): at each step, among the leaves allowed, the one earliest in the preference (leaves it lacks
+        come last, in :attr:`leaves` order)."""
+        return tuple(a for a, _ in self._linear(to_leaves(preference)))
+
+    def _linear(self, preference: Sequence[Leaf]) -> tuple[Leaf, ...]:
+        rank = {leaf: i for i, leaf in enumerate(preference)}
+        known = list(self.predecessors)
+        order = {leaf: (rank.get(leaf, len(rank)), i) for i, leaf in enumerate(known)}
+        done: list[Leaf] = []
+        done_set: set[Leaf] = set()
+        while len(done) < len(known):
+            leaf = min(
+                (x for x in known if x not in done_set and self.predecessors[x] <= done_set),
+                key=order.__getitem__,
+            )
+            done.append(leaf)
+            done_set.add(leaf)
+        return tuple(done)
+
+
+KnownTask = Node | PartialOrder
+"""What an instructor knows: a nested chain/clique structure or a partial order over leaves."""
+
+
+def _allowed_next(task: KnownTask, done: Iterable[Leaf]) -> frozenset[Leaf]:
+    return task.allowed_next(done) if isinstance(task, PartialOrder) else allowed_next(task, done)
+
+
+def _admits(task: KnownTask, path: Sequence[Leaf]) -> bool:
+    return task.admits(path) if isinstance(task, PartialOrder) else admits(task, path)
 
 
 class SimulatedInstructor:
@@ -73,7 +195,8 @@ class SimulatedInstructor:
     path and the same answers.
 
     Args:
-        structure: The true task (a nested chain/clique structure).
+        structure: The true task: a nested chain/clique structure, or a :class:`PartialOrder` (a leaf may come
+            next when all its predecessors are done; a query then requires its undone predecessors first).
         base_path: The canonical base path, action ids in order (default: the structure's leaves in order,
             which must then number each repeated action's performances in that order).
         perturbation: Probability of each adjacent swap, in [0, 1]; 0 keeps the base path exactly.
@@ -91,7 +214,7 @@ class SimulatedInstructor:
 
     def __init__(
         self,
-        structure: Node,
+        structure: KnownTask,
         base_path: Sequence[str] | None = None,
         *,
         perturbation: float = 0.2,
@@ -105,7 +228,7 @@ class SimulatedInstructor:
         if isinstance(base_path, str):
             raise LearningError("base_path is a sequence of action ids, not a string")
         base = to_leaves(a for a, _ in structure.leaves) if base_path is None else to_leaves(base_path)
-        if not admits(structure, base):
+        if not _admits(structure, base):
             raise LearningError(
                 f"base_path {[a for a, _ in base]} is not a valid ordering of the task "
                 f"(expected an ordering of {sorted({a for a, _ in structure.leaves})})"
@@ -116,7 +239,9 @@ class SimulatedInstructor:
         self.preferred_leaves: tuple[Leaf, ...] = _perturb(structure, base, perturbation, seed)
         self.preferred_path: tuple[str, ...] = tuple(a for a, _ in self.preferred_leaves)
         self._rank = {leaf: i for i, leaf in enumerate(self.preferred_leaves)}
-        self._ancestry = _ancestry(structure)
+        self._ancestry: dict[Leaf, list[tuple[ChainNode | CliqueNode, int]]] = (
+            {} if isinstance(structure, PartialOrder) else _ancestry(structure)
+        )
         self._target: Leaf | None = None
 
     def begin_demonstration(self) -> None:
@@ -162,7 +287,7 @@ class SimulatedInstructor:
         if not leaves:
             self.begin_demonstration()
         done_set = frozenset(leaves)
-        every = allowed_next(self.structure, leaves)
+        every = _allowed_next(self.structure, leaves)
         if not every:
             self._target = None
             return None
@@ -198,7 +323,7 @@ class SimulatedInstructor:
                 f"done {list(done)}: {unknown[0][0]!r} (performance {unknown[0][1]}) is not in the task"
             )
         try:
-            allowed_next(self.structure, leaves)
+            _allowed_next(self.structure, leaves)
         except ValueError as exc:
             raise LearningError(f"done {list(done)} is not a valid prefix of the task: {exc}") from exc
         return leaves
@@ -214,6 +339,8 @@ class SimulatedInstructor:
         must be finished; in a clique, a child under way (other than the one holding ``target``) must be
         finished first. Those leaves, in some valid order, then ``target``, is the shortest way to it.
         """
+        if isinstance(self.structure, PartialOrder):
+            return self.structure.required(target, done)
         out: set[Leaf] = set()
         for node, index in self._ancestry[target]:
             for j, child in enumerate(node.children):
@@ -242,7 +369,7 @@ def _ancestry(structure: Node) -> dict[Leaf, list[tuple[ChainNode | CliqueNode, 
     return out
 
 
-def _perturb(structure: Node, base: Sequence[Leaf], probability: float, seed: Seed) -> tuple[Leaf, ...]:
+def _perturb(structure: KnownTask, base: Sequence[Leaf], probability: float, seed: Seed) -> tuple[Leaf, ...]:
     """One left-to-right pass of adjacent swaps, each kept only when the path stays valid."""
     rng = rng_from(seed)
     path = list(base)
@@ -252,7 +379,7 @@ def _perturb(structure: Node, base: Sequence[Leaf], probability: float, seed: Se
         if probability > 0 and rng.random() < probability and u[0] != v[0]:
             prefix = path[:i]
             # Allowed leaves depend only on the set done, so the rest of the path stays valid.
-            if v in allowed_next(structure, prefix) and u in allowed_next(structure, [*prefix, v]):
+            if v in _allowed_next(structure, prefix) and u in _allowed_next(structure, [*prefix, v]):
                 path[i], path[i + 1] = v, u
                 i += 2
                 continue

@@ -1,0 +1,180 @@
+"""Report, plots and terminal summary of the CaptainCook4D experiment."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from supportive.experiments.captaincook.measure import CONDITIONS, METRICS
+from supportive.experiments.plotting import new_figure, save_png
+from supportive.experiments.registry import HeadlineRow
+
+__all__ = ["CURVES_PLOT", "THESIS", "headline", "plots", "report"]
+
+CURVES_PLOT = "curves.png"
+
+THESIS: dict[str, Any] = {
+    "numbers": None,
+    "note": "The thesis has no CaptainCook4D experiment and prints no numbers for it",
+    "claims": [
+        "§2.2: a learner that asks for actions during demonstrations (active learning) comprehends the task's "
+        "structure better than one that only watches, from the same few demonstrations",
+        "§2.2.10: the feature-based strategies (distance, connectivity) do better than random queries",
+    ],
+}
+
+_LABELS = {"passive": "passive", "random": "random", "distance": "distance", "connectivity": "connectivity"}
+_COLOURS = {"passive": "black", "random": "tab:grey", "distance": "tab:blue", "connectivity": "tab:orange"}
+
+
+def _ci(cell: Mapping[str, Any], digits: int = 3) -> str:
+    if cell["mean"] is None:
+        return "–"
+    mean, low, high = cell["mean"], cell["low"], cell["high"]
+    if low == high:
+        return f"{mean:.{digits}f}"
+    return f"{mean:.{digits}f} [{low:.{digits}f}, {high:.{digits}f}]"
+
+
+def _signed(cell: Mapping[str, Any]) -> str:
+    mean, low, high = cell["mean"], cell["low"], cell["high"]
+    text = f"{mean:+.3f} [{low:+.3f}, {high:+.3f}]"
+    return f"**{text}**" if low > 0 or high < 0 else text
+
+
+def _verdict(metrics: Mapping[str, Any]) -> list[str]:
+    curves, deltas = metrics["curves"], metrics["delta_f1"]
+    few = [k for k in ("2", "3", "4") if k in curves]
+    lines = []
+    for strategy in CONDITIONS[1:]:
+        better = [k for k in few if deltas[k][strategy]["low"] > 0]
+        worse = [k for k in few if deltas[k][strategy]["high"] < 0]
+        if better and not worse:
+            word = f"better than passive at k = {', '.join(better)} (95% CI of the paired difference above 0)"
+        elif worse and not better:
+            word = f"worse than passive at k = {', '.join(worse)} (95% CI of the paired difference below 0)"
+        elif better or worse:
+            word = f"better at k = {', '.join(better) or '–'}, worse at k = {', '.join(worse) or '–'}"
+        else:
+            word = "not distinguishable from passive at k = 2–4"
+        lines.append(f"* **{strategy}**: F1 {word}.")
+    return lines
+
+
+def report(metrics: Mapping[str, Any]) -> str:
+    """The markdown report: curves per k, passive vs each strategy, beside the thesis's qualitative claims."""
+    curves = metrics["curves"]
+    demos = metrics["demonstrations"]
+    lines = [
+        f"# {metrics.get('title', 'CaptainCook4D learning curves')}",
+        "",
+        f"Seed {metrics.get('seed')}, {metrics.get('trials')} trials, {metrics['recipes_run']} recipes, "
+        f"{demos['min']}–{demos['max']} error-free recordings each (K).",
+        "",
+        '**Measured.** After each demonstration k = 1..K, the learned CC-HTN\'s implied "must come before" '
+        "pairs against the recipe's published task graph (transitive closure). Passive: the real recordings "
+        "in a trial-seeded order. Active: K demonstrations by a simulated instructor who follows the published "
+        "partial order, prefers one real recording (trial-seeded), heeds queries within "
+        f"{metrics['horizon']} steps; queries after steps {', '.join(map(str, metrics['schedule']['after_steps']))},"
+        " none in the first demonstration.",
+        "",
+        f"**The thesis.** {THESIS['note']}. Its qualitative claims:",
+        "",
+        *[f"* {claim}" for claim in THESIS["claims"]],
+        "",
+        "## F1 per demonstration (mean over recipes with ≥ k recordings, 95% CI over trials)",
+        "",
+        "| k | recipes | " + " | ".join(CONDITIONS) + " |",
+        "|---:|---:|" + "---:|" * len(CONDITIONS),
+    ]
+    for key, row in sorted(curves.items(), key=lambda item: int(item[0])):
+        cells = " | ".join(_ci(row[c]["f1"]) for c in CONDITIONS)
+        lines.append(f"| {key} | {row['recipes']} | {cells} |")
+    lines += [
+        "",
+        "## Δ F1, strategy − passive (paired by trial; bold: the CI excludes 0)",
+        "",
+        "| k | " + " | ".join(CONDITIONS[1:]) + " |",
+        "|---:|" + "---:|" * (len(CONDITIONS) - 1),
+    ]
+    for key, row in sorted(metrics["delta_f1"].items(), key=lambda item: int(item[0])):
+        lines.append(f"| {key} | " + " | ".join(_signed(row[s]) for s in CONDITIONS[1:]) + " |")
+    lines.append(
+        "| own K | " + " | ".join(_signed(metrics["delta_f1_at_own_k"][s]) for s in CONDITIONS[1:]) + " |"
+    )
+    for metric in ("precision", "recall"):
+        lines += [
+            "",
+            f"## {metric.capitalize()} per demonstration (means)",
+            "",
+            "| k | " + " | ".join(CONDITIONS) + " |",
+            "|---:|" + "---:|" * len(CONDITIONS),
+        ]
+        for key, row in sorted(curves.items(), key=lambda item: int(item[0])):
+            lines.append(
+                f"| {key} | " + " | ".join(f"{row[c][metric]['mean']:.3f}" for c in CONDITIONS) + " |"
+            )
+    last = metrics["at_own_k"]
+    lines += [
+        "",
+        "## After each recipe's K demonstrations (mean over all recipes)",
+        "",
+        "| condition | precision | recall | F1 |",
+        "|---|---:|---:|---:|",
+        *[f"| {c} | " + " | ".join(_ci(last[c][m]) for m in METRICS) + " |" for c in CONDITIONS],
+        "",
+        "Queries (all trials and recipes):",
+        "",
+        "| strategy | asked | heeded | distinct demonstrations |",
+        "|---|---:|---:|---:|",
+        *[
+            f"| {s} | {q['asked']} | {q['honoured']} | {q['distinct_demonstrations']} of "
+            f"{demos['total'] * (metrics.get('trials') or 1)} |"
+            for s, q in metrics["queries"].items()
+        ],
+        "",
+        "Every active demonstration respected the published order: "
+        + ("yes." if metrics["active_demonstrations_valid"] else "**no**."),
+        "",
+        "## Beside the thesis",
+        "",
+        *_verdict(metrics),
+        "",
+        "The thesis gives no CaptainCook4D numbers, so only the direction of its claims can be compared.",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
+    """``curves.png``: precision, recall and F1 vs demonstrations, one line per condition, 95% CIs."""
+    figure = new_figure(14.0, 4.5)
+    axes = figure.subplots(1, 3, sharex=True)
+    ks = sorted(int(k) for k in metrics["curves"])
+    for ax, metric in zip(axes, ("f1", "precision", "recall"), strict=True):
+        for cond in CONDITIONS:
+            cells = [metrics["curves"][str(k)][cond][metric] for k in ks]
+            means = [c["mean"] for c in cells]
+            ax.plot(ks, means, marker="o", color=_COLOURS[cond], label=_LABELS[cond])
+            ax.fill_between(
+                ks, [c["low"] for c in cells], [c["high"] for c in cells], color=_COLOURS[cond], alpha=0.12
+            )
+        ax.set_title(metric if metric != "f1" else "F1")
+        ax.set_xlabel("demonstrations k (recipes with ≥ k recordings)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("score vs published graph")
+    axes[0].legend(fontsize=8, loc="lower right")
+    figure.suptitle(f'CaptainCook4D: "must come before" pairs vs demonstrations, seed {metrics.get("seed")}')
+    return [save_png(figure, directory / CURVES_PLOT)]
+
+
+def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
+    """F1 at k = 2 and at each recipe's K, per condition."""
+    rows: list[HeadlineRow] = []
+    for cond in CONDITIONS:
+        at2 = metrics["curves"].get("2", metrics["curves"]["1"])[cond]["f1"]
+        rows.append((f"F1 at k = 2, {cond}", f"{at2['mean']:.3f}", "no numbers (qualitative)"))
+    for cond in CONDITIONS:
+        rows.append((f"F1 at own K, {cond}", f"{metrics['at_own_k'][cond]['f1']['mean']:.3f}", "–"))
+    return rows

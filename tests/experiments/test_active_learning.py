@@ -1,0 +1,133 @@
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from supportive.experiments import get, names, run_experiment
+from supportive.experiments.active_learning import blocks, food
+from supportive.experiments.active_learning.common import anova, interval, known_paths, teach
+from supportive.experiments.plotting import PNG_SIGNATURE
+from supportive.learning.active import QuerySchedule
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode
+
+
+def test_both_registered() -> None:
+    assert {"active-learning", "active-learning-blocks"} <= set(names())
+    assert get("active-learning").default_trials == 50
+    assert get("active-learning").reference == "§2.2.10.1, Figure 2.11"
+    assert get("active-learning-blocks").reference == "§2.2.7–2.2.10, Figure 2.10"
+
+
+@pytest.fixture(scope="module")
+def food_runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
+    a, b = tmp_path_factory.mktemp("al-a"), tmp_path_factory.mktemp("al-b")
+    run_experiment("active-learning", trials=2, seed=3, output=a, progress=False)
+    run_experiment("active-learning", trials=2, seed=3, output=b, progress=False)
+    return a, b
+
+
+@pytest.fixture(scope="module")
+def block_runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
+    a, b = tmp_path_factory.mktemp("alb-a"), tmp_path_factory.mktemp("alb-b")
+    run_experiment("active-learning-blocks", trials=2, seed=3, output=a, progress=False)
+    run_experiment("active-learning-blocks", trials=2, seed=3, output=b, progress=False)
+    return a, b
+
+
+def test_food_run_is_deterministic_and_writes_files(food_runs: tuple[Path, Path]) -> None:
+    a, b = food_runs
+    assert (a / "metrics.json").read_bytes() == (b / "metrics.json").read_bytes()
+    assert (a / "report.md").read_bytes() == (b / "report.md").read_bytes()
+    assert (a / "comprehension.png").read_bytes().startswith(PNG_SIGNATURE)
+
+
+def test_food_comprehension_percentages(food_runs: tuple[Path, Path]) -> None:
+    metrics = json.loads((food_runs[0] / "metrics.json").read_text())
+    assert metrics["trials"] == 2 and metrics["task_count"] == 12 and metrics["iterations"] == [4, 8, 12]
+    comprehension = metrics["comprehension"]
+    for condition in ("solo", "multi"):
+        for strategy in ("random", "distance", "connectivity"):
+            means = [v["mean"] for v in comprehension[condition][strategy]]
+            assert all(0.0 <= m <= 100.0 for m in means)
+            if condition == "multi":
+                assert means == sorted(means)
+    for strategy in ("random", "distance", "connectivity"):
+        # iteration 4 is instructor 1's learner in both conditions
+        assert comprehension["solo"][strategy][0] == comprehension["multi"][strategy][0]
+    for task in metrics["tasks"].values():
+        for condition in ("solo", "multi"):
+            for values in task[condition].values():
+                assert all(0.0 <= v <= 100.0 for v in values)
+                if condition == "multi":
+                    assert values == sorted(values)
+
+
+def test_food_trial_counts_never_exceed_orderings() -> None:
+    (trial,) = food.make_trials(1, 5)
+    result = food.run_trial(trial)
+    for task in result["tasks"].values():
+        for strategy in ("random", "distance", "connectivity"):
+            multi, solo = task[strategy]["multi"], task[strategy]["solo"]
+            assert multi == sorted(multi) and solo == sorted(solo) and multi[0] == solo[0]
+            assert 1 <= max(multi + solo) <= task["orderings"]
+
+
+def test_food_report_has_thesis_numbers(food_runs: tuple[Path, Path]) -> None:
+    text = (food_runs[0] / "report.md").read_text()
+    for number in ("25.9", "35.4", "42.9", "36.5", "54.1", "65.0", "54.6", "61.5", "65.4"):
+        assert number in text
+    for number in ("46.6", "61.2", "36.6", "52.0", "63.1", "76.6", "85.8"):
+        assert number in text
+    assert "Pooled instructors vs a solo instructor" in text
+
+
+def test_blocks_run_is_deterministic_and_reports(block_runs: tuple[Path, Path]) -> None:
+    a, b = block_runs
+    assert (a / "metrics.json").read_bytes() == (b / "metrics.json").read_bytes()
+    assert (a / "paths.png").read_bytes().startswith(PNG_SIGNATURE)
+    metrics = json.loads((a / "metrics.json").read_text())
+    assert [t["orderings"] for t in metrics["tasks"]] == [720, 24, 6]
+    for task in metrics["tasks"]:
+        for group in ("solo", "pairs", "triads"):
+            conditions = task["groups"][group]["conditions"]
+            assert conditions["passive"]["paths"]["mean"] <= conditions["random"]["paths"]["mean"]
+            for condition in conditions.values():
+                assert 1 <= condition["paths"]["mean"] <= condition["max"] <= task["orderings"]
+        # pooling never loses paths
+        solo, triads = (
+            task["groups"][g]["conditions"]["distance"]["paths"]["mean"] for g in ("solo", "triads")
+        )
+        assert solo <= triads
+    text = (a / "report.md").read_text()
+    for number in ("720", "11.508", "17.381", "85.597", "11.65", "5.667"):
+        assert number in text
+
+
+def test_blocks_trial_groups() -> None:
+    (trial,) = blocks.make_trials(1, 0)
+    result = blocks.run_trial(trial)
+    task = result["tasks"]["blocks-v"]
+    assert [len(task["random"][g]) for g in ("solo", "pairs", "triads")] == [6, 15, 20]
+    assert task["passive"]["solo"] == [1] * 6  # no queries: each instructor repeats her preferred path
+
+
+def test_helpers() -> None:
+    structure = ChainNode((ActionNode("a"), CliqueNode((ActionNode("b"), ActionNode("c"), ActionNode("d")))))
+    taught = teach(
+        structure,
+        ["a", "b", "c", "d"],
+        instructor_seed=1,
+        task=1,
+        strategy="distance",
+        strategy_index=1,
+        schedule=QuerySchedule((1,), max_per_demonstration=1, skip_first_demonstrations=1),
+        demonstrations=3,
+    )
+    assert len(taught.demonstrations) == 3 and list(taught.paths) == sorted(taught.paths)
+    assert known_paths(taught.demonstrations) == taught.paths[-1]
+    assert known_paths([("a", "b", "c", "d")], [("a", "c", "b", "d")]) == 2
+    assert interval([2.0, 2.0]) == {"mean": 2.0, "low": 2.0, "high": 2.0, "n": 2}
+    assert anova([[1, 1], [1, 1]])["F"] is None
+    assert anova([[1, 2], [5, 6], [9, 9]])["p"] < 0.05
