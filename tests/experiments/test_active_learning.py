@@ -110,7 +110,10 @@ def test_blocks_trial_groups() -> None:
     result = blocks.run_trial(trial)
     task = result["tasks"]["blocks-v"]
     assert [len(task["random"][g]) for g in ("solo", "pairs", "triads")] == [6, 15, 20]
-    assert task["passive"]["solo"] == [1] * 6  # no queries: each instructor repeats her preferred path
+    passive = task["passive"]["solo"]
+    assert (
+        min(passive) >= 1 and max(passive) > 1
+    )  # no queries, yet unprompted deviations vary the demonstrations
 
 
 def test_helpers() -> None:

@@ -470,3 +470,21 @@ def test_instructor_over_a_partial_order_perturbs_within_it() -> None:
         person = SimulatedInstructor(_DIAMOND, ["a", "b", "c", "d"], perturbation=1.0, seed=seed)
         assert _DIAMOND.admits(person.preferred_leaves)
         assert demonstrate(person) == list(person.preferred_path)
+
+
+def test_unprompted_deviation_varies_demonstrations_but_stays_valid() -> None:
+    from supportive import examples
+
+    structure = examples.load("blocks-tower").structure
+    assert structure is not None
+    steady = SimulatedInstructor(structure, seed=4)
+    drifting = SimulatedInstructor(structure, seed=4, deviation=0.3)
+    assert steady.preferred_path == drifting.preferred_path
+    seen = set()
+    for _ in range(8):
+        drifting.begin_demonstration()
+        path = demonstrate(drifting)
+        assert admits(structure, to_leaves(path))
+        seen.add(tuple(path))
+    assert len(seen) > 1
+    assert {tuple(demonstrate(steady)) for _ in range(3)} == {steady.preferred_path}

@@ -201,6 +201,9 @@ class SimulatedInstructor:
             which must then number each repeated action's performances in that order).
         perturbation: Probability of each adjacent swap, in [0, 1]; 0 keeps the base path exactly.
         horizon: Most steps ahead (counting the queried action itself) a query is heeded; 0 ignores all.
+        deviation: Per demonstration, the probability of each adjacent swap of the preferred path for that
+            demonstration only — the "tendency towards unprompted demonstration deviations" of §2.2.10.1
+            (0: every unprompted demonstration is the preferred path).
         seed: Seed or generator (see :mod:`supportive.seeding`).
 
     Attributes:
@@ -219,10 +222,13 @@ class SimulatedInstructor:
         *,
         perturbation: float = 0.2,
         horizon: int = 3,
+        deviation: float = 0.0,
         seed: Seed = None,
     ) -> None:
-        if not 0.0 <= perturbation <= 1.0:
-            raise LearningError(f"perturbation must be in [0, 1], got {perturbation}")
+        if not 0.0 <= perturbation <= 1.0 or not 0.0 <= deviation <= 1.0:
+            raise LearningError(
+                f"perturbation and deviation must be in [0, 1], got {perturbation}, {deviation}"
+            )
         if horizon < 0:
             raise LearningError(f"horizon must be >= 0, got {horizon}")
         if isinstance(base_path, str):
@@ -236,7 +242,9 @@ class SimulatedInstructor:
         self.structure = structure
         self.perturbation = perturbation
         self.horizon = horizon
-        self.preferred_leaves: tuple[Leaf, ...] = _perturb(structure, base, perturbation, seed)
+        self.deviation = deviation
+        self._rng = rng_from(seed)
+        self.preferred_leaves: tuple[Leaf, ...] = _perturb(structure, base, perturbation, self._rng)
         self.preferred_path: tuple[str, ...] = tuple(a for a, _ in self.preferred_leaves)
         self._rank = {leaf: i for i, leaf in enumerate(self.preferred_leaves)}
         self._ancestry: dict[Leaf, list[tuple[ChainNode | CliqueNode, int]]] = (
@@ -245,8 +253,12 @@ class SimulatedInstructor:
         self._target: Leaf | None = None
 
     def begin_demonstration(self) -> None:
-        """Start a new demonstration: forget any plan a query made in the previous one."""
+        """Start a new demonstration: forget any plan a query made in the previous one and, with a
+        ``deviation``, drift from the preferred path for this demonstration only (unprompted variation)."""
         self._target = None
+        if self.deviation > 0:
+            today = _perturb(self.structure, self.preferred_leaves, self.deviation, self._rng)
+            self._rank = {leaf: i for i, leaf in enumerate(today)}
 
     def steps_to(self, done: Sequence[str], action: str) -> int | None:
         """In how many steps ``action`` (its next performance) can be performed at the earliest after ``done``.
