@@ -23,11 +23,6 @@ from supportive.learning.instructors import SimulatedInstructor, demonstrate
 from supportive.learning.precedence import compare_recipe
 from supportive.tasks.htn import to_leaves
 
-try:
-    load_recipe("zoodles")
-except Exception:
-    pytest.skip("CaptainCook4D data not available", allow_module_level=True)
-
 SUBSET = ("zoodles", "panfriedtofu", "coffee")
 
 
