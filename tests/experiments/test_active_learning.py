@@ -7,8 +7,9 @@ import pytest
 
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.active_learning import blocks, food
-from supportive.experiments.active_learning.common import anova, interval, known_paths, teach
+from supportive.experiments.active_learning.common import anova, known_paths, teach
 from supportive.experiments.plotting import PNG_SIGNATURE
+from supportive.experiments.statistics import mean_ci
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode
 
@@ -131,6 +132,6 @@ def test_helpers() -> None:
     assert len(taught.demonstrations) == 3 and list(taught.paths) == sorted(taught.paths)
     assert known_paths(taught.demonstrations) == taught.paths[-1]
     assert known_paths([("a", "b", "c", "d")], [("a", "c", "b", "d")]) == 2
-    assert interval([2.0, 2.0]) == {"mean": 2.0, "low": 2.0, "high": 2.0, "n": 2}
+    assert mean_ci([2.0, 2.0]) == {"mean": 2.0, "low": 2.0, "high": 2.0, "n": 2}
     assert anova([[1, 1], [1, 1]])["F"] is None
     assert anova([[1, 2], [5, 6], [9, 9]])["p"] < 0.05

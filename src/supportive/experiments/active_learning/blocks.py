@@ -21,11 +21,11 @@ from supportive.experiments.active_learning.common import (
     NO_QUERIES,
     STRATEGIES,
     anova,
-    interval,
     known_paths,
     teach,
 )
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import count_orderings
@@ -173,16 +173,14 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 units = [p[condition][group] for p in per]
                 everything = [v for u in units for v in u]
                 conditions[condition] = {
-                    "paths": interval([_mean(u) for u in units], 3),
+                    "paths": mean_ci([_mean(u) for u in units], 3),
                     "max": max(everything),
                     "complete": round(sum(v == orderings for v in everything) / len(everything), 4),
                     "percent": round(100 * _mean(everything) / orderings, 2),
                 }
             gains = {
                 strategy: {
-                    "paths": interval(
-                        [_mean(p[strategy][group]) - _mean(p["random"][group]) for p in per], 3
-                    ),
+                    "paths": mean_ci([_mean(p[strategy][group]) - _mean(p["random"][group]) for p in per], 3),
                     "panels_better": sum(_mean(p[strategy][group]) > _mean(p["random"][group]) for p in per),
                 }
                 for strategy in ("distance", "connectivity")
@@ -208,10 +206,6 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         "base": results[0].get("base", BASE),
         "tasks": tasks,
     }
-
-
-def _ci(summary: Mapping[str, Any], digits: int = 1) -> str:
-    return f"{summary['mean']:.{digits}f} [{summary['low']:.{digits}f}, {summary['high']:.{digits}f}]"
 
 
 def _thesis_anova(thesis: Mapping[str, Any], group: str, number: int) -> str:
@@ -260,7 +254,9 @@ def report(metrics: Mapping[str, Any]) -> str:
             c = g["conditions"]
             complete = " / ".join(f"{100 * c[k]['complete']:.0f} %" for k in CONDITIONS)
             lines.append(
-                f"| {group} | " + " | ".join(_ci(c[k]["paths"]) for k in CONDITIONS) + f" | {complete} |"
+                f"| {group} | "
+                + " | ".join(format_ci(c[k]["paths"], 1) for k in CONDITIONS)
+                + f" | {complete} |"
             )
         lines += [
             "",
@@ -271,8 +267,8 @@ def report(metrics: Mapping[str, Any]) -> str:
             gains, test = g["gain_over_random"], g["anova"]
             median = "–" if test["median_F"] is None else f"{test['median_F']:.1f}"
             lines.append(
-                f"| {group} | {_ci(gains['distance']['paths'])} | {_thesis_gain(thesis, group, number, 'distance')} "
-                f"| {_ci(gains['connectivity']['paths'])} | {_thesis_gain(thesis, group, number, 'connectivity')} "
+                f"| {group} | {format_ci(gains['distance']['paths'], 1)} | {_thesis_gain(thesis, group, number, 'distance')} "
+                f"| {format_ci(gains['connectivity']['paths'], 1)} | {_thesis_gain(thesis, group, number, 'connectivity')} "
                 f"| {test['panels_significant']} of {panels}, F({test['df'][0]},{test['df'][1]}) = {median} "
                 f"| {_thesis_anova(thesis, group, number)} |"
             )
@@ -286,17 +282,9 @@ def verdict(metrics: Mapping[str, Any]) -> list[str]:
     for task in metrics["tasks"]:
         parts = []
         for group, g in ((k, task["groups"][k]) for k in GROUPS):
-            better = [
-                s
-                for s in ("distance", "connectivity")
-                if g["gain_over_random"][s]["paths"]["low"] is not None
-                and g["gain_over_random"][s]["paths"]["low"] > 0
-            ]
-            worse = [
-                s
-                for s in ("distance", "connectivity")
-                if (g["gain_over_random"][s]["paths"]["high"] or 0) < 0
-            ]
+            gains = {s: g["gain_over_random"][s]["paths"] for s in ("distance", "connectivity")}
+            better = [s for s, gain in gains.items() if above_zero(gain)]
+            worse = [s for s, gain in gains.items() if below_zero(gain)]
             text = f"{group}: " + (
                 f"{' and '.join(better)} beat random" if better else "no strategy beats random"
             )

@@ -34,7 +34,6 @@ __all__ = [
     "Taught",
     "anova",
     "instructor_rng",
-    "interval",
     "known_paths",
     "session_rng",
     "teach",
@@ -117,30 +116,6 @@ def known_paths(*taught: Sequence[Sequence[str]]) -> int:
         for d, actions in enumerate(demos):
             graph.add(list(actions), f"g{g + 1}.d{d + 1}")
     return graph.path_count()
-
-
-def interval(values: Sequence[float], digits: int = 4) -> dict[str, Any]:
-    """Mean and 95% confidence interval (Student's t over the values) as plain JSON.
-
-    >>> interval([1.0, 2.0, 3.0])
-    {'mean': 2.0, 'low': -0.4841, 'high': 4.4841, 'n': 3}
-    """
-    n = len(values)
-    if n == 0:
-        return {"mean": None, "low": None, "high": None, "n": 0}
-    mean = math.fsum(values) / n
-    half = 0.0
-    if n > 1:
-        from scipy.stats import t
-
-        sd = math.sqrt(math.fsum((v - mean) ** 2 for v in values) / (n - 1))
-        half = float(t.ppf(0.975, n - 1)) * sd / math.sqrt(n)
-    return {
-        "mean": round(mean, digits),
-        "low": round(mean - half, digits),
-        "high": round(mean + half, digits),
-        "n": n,
-    }
 
 
 def anova(groups: Sequence[Sequence[float]]) -> dict[str, Any]:

@@ -21,8 +21,9 @@ from functools import cache
 from typing import Any
 
 from supportive.examples import food
-from supportive.experiments.active_learning.common import STRATEGIES, interval, known_paths, teach
+from supportive.experiments.active_learning.common import STRATEGIES, known_paths, teach
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import count_orderings
@@ -150,7 +151,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     comprehension = {
         condition: {
             strategy: [
-                interval([per_trial(r, strategy, condition, i) for r in results], 2)
+                mean_ci([per_trial(r, strategy, condition, i) for r in results], 2)
                 for i in range(len(ITERATIONS))
             ]
             for strategy in STRATEGIES
@@ -160,7 +161,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     pooled_gain = {
         strategy: {
             str(n): {
-                "percent": interval(
+                "percent": mean_ci(
                     [per_trial(r, strategy, "multi", i) - per_trial(r, strategy, "solo", i) for r in results],
                     2,
                 ),
@@ -215,10 +216,6 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     }
 
 
-def _ci(summary: Mapping[str, Any]) -> str:
-    return f"{summary['mean']:.1f} [{summary['low']:.1f}, {summary['high']:.1f}]"
-
-
 def report(metrics: Mapping[str, Any]) -> str:
     """The markdown report: comprehension per strategy and iteration beside the thesis's, and pooled vs solo."""
     thesis = metrics["thesis"]["comprehension_percent"]
@@ -248,7 +245,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         for strategy in STRATEGIES:
             ours = metrics["comprehension"][condition][strategy]
             cells = " | ".join(
-                f"{_ci(ours[i])} | {thesis[condition][strategy][i]:.1f}" for i in range(len(its))
+                f"{format_ci(ours[i], 1)} | {thesis[condition][strategy][i]:.1f}" for i in range(len(its))
             )
             lines.append(f"| {strategy} | {cells} |")
     lines += [
@@ -265,7 +262,7 @@ def report(metrics: Mapping[str, Any]) -> str:
             gain = metrics["pooled_minus_solo"][strategy][str(n)]
             theirs = thesis["multi"][strategy][i] - thesis["solo"][strategy][i]
             lines.append(
-                f"| {strategy} | {n} | {_ci(gain['percent'])} | {gain['trials_better']} / {gain['trials_worse']} "
+                f"| {strategy} | {n} | {format_ci(gain['percent'], 1)} | {gain['trials_better']} / {gain['trials_worse']} "
                 f"| {theirs:+.1f} |"
             )
     lines += [
@@ -304,15 +301,15 @@ def verdict(metrics: Mapping[str, Any]) -> list[str]:
         )
     for strategy in STRATEGIES:
         gain = metrics["pooled_minus_solo"][strategy][str(metrics["iterations"][last])]["percent"]
-        if gain["low"] > 0:
+        if above_zero(gain):
             word = "beat"
-        elif gain["high"] < 0:
+        elif below_zero(gain):
             word = "fall behind"
         else:
             word = "are level with"
         out.append(
             f"* {strategy}: 3 pooled instructors {word} one instructor with the same 12 demonstrations "
-            f"({gain['mean']:+.1f} points, 95% CI {gain['low']:+.1f} to {gain['high']:+.1f})."
+            f"({format_ci(gain, 1, signed=True)} points, mean and 95% CI)."
         )
     return out
 

@@ -11,6 +11,7 @@ from supportive.experiments.active_learning.blocks import GROUPS
 from supportive.experiments.active_learning.common import STRATEGIES
 from supportive.experiments.active_learning.food import CONDITIONS, LABELS
 from supportive.experiments.plotting import new_figure, save_png
+from supportive.experiments.statistics import error_bar
 
 __all__ = ["BLOCKS_PLOT", "COMPREHENSION_PLOT", "blocks_plots", "food_plots"]
 
@@ -35,8 +36,9 @@ def blocks_plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
                 paths = task["groups"][group]["conditions"][condition]["paths"]
                 xs.append(g - 0.4 + width * (c + 0.5))
                 ys.append(paths["mean"])
-                low.append(paths["mean"] - paths["low"])
-                high.append(paths["high"] - paths["mean"])
+                below, above = error_bar(paths)
+                low.append(below)
+                high.append(above)
             ax.bar(xs, ys, width, yerr=[low, high], capsize=2, color=COLOURS[condition], label=condition)
         ax.set_xticks(range(len(GROUPS)), list(GROUPS))
         ax.set_title(f"Task {task['number']} ({task['orderings']} valid orderings)")
@@ -60,7 +62,8 @@ def food_plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
             ours = metrics["comprehension"][condition][strategy]
             xs = [n + (s - 1) * 0.12 for n in iterations]
             means = [v["mean"] for v in ours]
-            err = [[v["mean"] - v["low"] for v in ours], [v["high"] - v["mean"] for v in ours]]
+            bars = [error_bar(v) for v in ours]
+            err = [[b[0] for b in bars], [b[1] for b in bars]]
             ax.errorbar(
                 xs, means, yerr=err, marker="o", capsize=3, color=COLOURS[strategy], label=f"{strategy}"
             )

@@ -27,7 +27,8 @@ from typing import Any
 import numpy as np
 
 from supportive.errors import ExperimentError
-from supportive.experiments.active_learning.common import STRATEGIES, interval
+from supportive.experiments.active_learning.common import STRATEGIES
+from supportive.experiments.statistics import mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.io.captaincook import Recipe, load_captaincook
 from supportive.learning.active import QuerySchedule, TeachingSession, run_session
@@ -188,17 +189,17 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         only = [n for n in names if sizes[n] >= k]
         row: dict[str, Any] = {"k": k, "recipes": len(only)}
         for cond in CONDITIONS:
-            row[cond] = {m: interval(recipe_means(cond, m, k, only)) for m in METRICS}
+            row[cond] = {m: mean_ci(recipe_means(cond, m, k, only)) for m in METRICS}
         curves[str(k)] = row
         passive = recipe_means("passive", "f1", k, only)
         deltas[str(k)] = {
-            s: interval([a - p for a, p in zip(recipe_means(s, "f1", k, only), passive, strict=True)])
+            s: mean_ci([a - p for a, p in zip(recipe_means(s, "f1", k, only), passive, strict=True)])
             for s in STRATEGIES
         }
-    last = {cond: {m: interval(recipe_means(cond, m, 0, names)) for m in METRICS} for cond in CONDITIONS}
+    last = {cond: {m: mean_ci(recipe_means(cond, m, 0, names)) for m in METRICS} for cond in CONDITIONS}
     passive_last = recipe_means("passive", "f1", 0, names)
     last_delta = {
-        s: interval([a - p for a, p in zip(recipe_means(s, "f1", 0, names), passive_last, strict=True)])
+        s: mean_ci([a - p for a, p in zip(recipe_means(s, "f1", 0, names), passive_last, strict=True)])
         for s in STRATEGIES
     }
 

@@ -9,6 +9,7 @@ from typing import Any
 from supportive.experiments.captaincook.measure import CONDITIONS, METRICS
 from supportive.experiments.plotting import new_figure, save_png
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.statistics import above_zero, below_zero, error_bar, format_ci
 
 __all__ = ["CURVES_PLOT", "THESIS", "headline", "plots", "report"]
 
@@ -28,19 +29,9 @@ _LABELS = {"passive": "passive", "random": "random", "distance": "distance", "co
 _COLOURS = {"passive": "black", "random": "tab:grey", "distance": "tab:blue", "connectivity": "tab:orange"}
 
 
-def _ci(cell: Mapping[str, Any], digits: int = 3) -> str:
-    if cell["mean"] is None:
-        return "–"
-    mean, low, high = cell["mean"], cell["low"], cell["high"]
-    if low == high:
-        return f"{mean:.{digits}f}"
-    return f"{mean:.{digits}f} [{low:.{digits}f}, {high:.{digits}f}]"
-
-
 def _signed(cell: Mapping[str, Any]) -> str:
-    mean, low, high = cell["mean"], cell["low"], cell["high"]
-    text = f"{mean:+.3f} [{low:+.3f}, {high:+.3f}]"
-    return f"**{text}**" if low > 0 or high < 0 else text
+    text = format_ci(cell, 3, signed=True)
+    return f"**{text}**" if above_zero(cell) or below_zero(cell) else text
 
 
 def _verdict(metrics: Mapping[str, Any]) -> list[str]:
@@ -48,8 +39,8 @@ def _verdict(metrics: Mapping[str, Any]) -> list[str]:
     few = [k for k in ("2", "3", "4") if k in curves]
     lines = []
     for strategy in CONDITIONS[1:]:
-        better = [k for k in few if deltas[k][strategy]["low"] > 0]
-        worse = [k for k in few if deltas[k][strategy]["high"] < 0]
+        better = [k for k in few if above_zero(deltas[k][strategy])]
+        worse = [k for k in few if below_zero(deltas[k][strategy])]
         if better and not worse:
             word = f"better than passive at k = {', '.join(better)} (95% CI of the paired difference above 0)"
         elif worse and not better:
@@ -89,7 +80,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         "|---:|---:|" + "---:|" * len(CONDITIONS),
     ]
     for key, row in sorted(curves.items(), key=lambda item: int(item[0])):
-        cells = " | ".join(_ci(row[c]["f1"]) for c in CONDITIONS)
+        cells = " | ".join(format_ci(row[c]["f1"]) for c in CONDITIONS)
         lines.append(f"| {key} | {row['recipes']} | {cells} |")
     lines += [
         "",
@@ -122,7 +113,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "| condition | precision | recall | F1 |",
         "|---|---:|---:|---:|",
-        *[f"| {c} | " + " | ".join(_ci(last[c][m]) for m in METRICS) + " |" for c in CONDITIONS],
+        *[f"| {c} | " + " | ".join(format_ci(last[c][m]) for m in METRICS) + " |" for c in CONDITIONS],
         "",
         "Queries (all trials and recipes):",
         "",
@@ -157,9 +148,10 @@ def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
             cells = [metrics["curves"][str(k)][cond][metric] for k in ks]
             means = [c["mean"] for c in cells]
             ax.plot(ks, means, marker="o", color=_COLOURS[cond], label=_LABELS[cond])
-            ax.fill_between(
-                ks, [c["low"] for c in cells], [c["high"] for c in cells], color=_COLOURS[cond], alpha=0.12
-            )
+            bars = [error_bar(c) for c in cells]
+            low = [c["mean"] - b[0] for c, b in zip(cells, bars, strict=True)]
+            high = [c["mean"] + b[1] for c, b in zip(cells, bars, strict=True)]
+            ax.fill_between(ks, low, high, color=_COLOURS[cond], alpha=0.12)
         ax.set_title(metric if metric != "f1" else "F1")
         ax.set_xlabel("demonstrations k (recipes with ≥ k recordings)")
         ax.grid(alpha=0.3)

@@ -13,6 +13,7 @@ from supportive.experiments.goal_inference.thesis import THESIS
 from supportive.experiments.goal_inference.timing import MODELS, TIMING_PLOT, TIMING_REPORT, timing_summary
 from supportive.experiments.output import write_text
 from supportive.experiments.plotting import new_figure, save_png
+from supportive.experiments.statistics import error_bar
 
 __all__ = ["ACCURACY_PLOT", "plots", "timing_report"]
 
@@ -51,8 +52,8 @@ def _accuracy(metrics: Mapping[str, Any], path: Path) -> Path:
             for model in MODELS:
                 cells = [metrics["accuracy"][s["key"]][model][level] for s in settings]
                 ys = [c["mean"] for c in cells]
-                below = [c["mean"] - (c["mean"] if c["low"] is None else c["low"]) for c in cells]
-                above = [(c["mean"] if c["high"] is None else c["high"]) - c["mean"] for c in cells]
+                bars = [error_bar(c) for c in cells]
+                below, above = [b[0] for b in bars], [b[1] for b in bars]
                 shift = -0.008 if model == "flat" else 0.008
                 ax.errorbar(
                     [x + shift for x in xs],

@@ -18,6 +18,7 @@ from supportive.experiments.goal_inference.thesis import THESIS
 from supportive.experiments.goal_inference.timing import TIMING_PLOT, TIMING_REPORT
 from supportive.experiments.output import TIMING_FILE
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.statistics import above_zero, below_zero, format_ci
 
 __all__ = ["LABELS", "accuracy_verdict", "headline", "report", "setting_label", "timing_markdown"]
 
@@ -38,17 +39,6 @@ def setting_label(setting: Mapping[str, Any]) -> str:
     )
 
 
-def _number(value: float, signed: bool) -> str:
-    return format(round(value, 3) + 0.0, "+.3f" if signed else ".3f")  # + 0.0: no "-0.000"
-
-
-def _ci(summary: Mapping[str, Any], signed: bool = False) -> str:
-    mean = _number(summary["mean"], signed)
-    if summary["low"] is None:
-        return mean
-    return f"{mean} [{_number(summary['low'], signed)}, {_number(summary['high'], signed)}]"
-
-
 def _overlaps(metrics: Mapping[str, Any]) -> list[float]:
     return sorted({s["overlap"] for s in metrics["settings"]})
 
@@ -63,8 +53,8 @@ def accuracy_verdict(metrics: Mapping[str, Any]) -> list[str]:
     for level in LEVELS:
         deltas = {s["key"]: accuracy[s["key"]]["difference"][level] for s in settings}
         ahead = sum(d["mean"] >= 0 for d in deltas.values())
-        better = [setting_label(s) for s in settings if (deltas[s["key"]]["low"] or 0) > 0]
-        worse = [setting_label(s) for s in settings if (deltas[s["key"]]["high"] or 0) < 0]
+        better = [setting_label(s) for s in settings if above_zero(deltas[s["key"]])]
+        worse = [setting_label(s) for s in settings if below_zero(deltas[s["key"]])]
         by_overlap = []
         for overlap in _overlaps(metrics):
             keys = [s["key"] for s in settings if s["overlap"] == overlap]
@@ -103,7 +93,11 @@ def _accuracy_table(metrics: Mapping[str, Any]) -> list[str]:
         a = metrics["accuracy"][setting["key"]]
         cells = [setting_label(setting)]
         for level in LEVELS:
-            cells += [_ci(a["flat"][level]), _ci(a["hierarchical"][level]), _ci(a["difference"][level], True)]
+            cells += [
+                format_ci(a["flat"][level]),
+                format_ci(a["hierarchical"][level]),
+                format_ci(a["difference"][level], signed=True),
+            ]
         cells.append(f"{a['hierarchical_ahead']['subgoal']} / {a['flat_ahead']['subgoal']}")
         lines.append("| " + " | ".join(cells) + " |")
     return lines

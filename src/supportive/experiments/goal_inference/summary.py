@@ -17,8 +17,8 @@ from supportive.experiments.goal_inference.design import (
     SETTINGS,
     TIMED_SETTING,
 )
-from supportive.experiments.goal_inference.stats import mean_ci
 from supportive.experiments.goal_inference.timing import MODELS
+from supportive.experiments.statistics import mean_ci
 
 __all__ = ["LEVELS", "summarize", "summarize_setting", "summarize_sizes"]
 

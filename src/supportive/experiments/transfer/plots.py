@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from supportive.experiments.plotting import new_figure, save_png
+from supportive.experiments.statistics import error_bar
 from supportive.experiments.transfer.measure import CONDITIONS
 from supportive.experiments.transfer.report import LABELS
 
@@ -41,8 +42,9 @@ def _bars(metrics: Mapping[str, Any], path: Path) -> Path:
     for c in conditions:
         s = metrics["conditions"][c]["episodes"]
         means.append(s["mean"])
-        errors[0].append(0.0 if s["low"] is None else s["mean"] - s["low"])
-        errors[1].append(0.0 if s["high"] is None else s["high"] - s["mean"])
+        below, above = error_bar(s)
+        errors[0].append(below)
+        errors[1].append(above)
     xs = range(len(conditions))
     ax.bar(xs, means, yerr=errors, capsize=4, color=_COLOURS[: len(conditions)])
     ax.set_xticks(list(xs), [_SHORT[c] for c in conditions], fontsize=8)

@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.experiments.goal_inference.stats import mean_ci
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.statistics import format_ci, mean_ci
 from supportive.experiments.transfer.explore import (
     ALPHA,
     COMPLETION,
@@ -111,12 +111,6 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     }
 
 
-def _ci(summary: Mapping[str, Any]) -> str:
-    if summary["low"] is None:
-        return f"{summary['mean']:.1f}"
-    return f"{summary['mean']:.1f} [{summary['low']:.1f}, {summary['high']:.1f}]"
-
-
 def _pair(metrics: Mapping[str, Any], first: str, second: str) -> Mapping[str, Any]:
     return next(p for p in metrics["pairs"] if p["first"] == first and p["second"] == second)
 
@@ -169,7 +163,7 @@ def report(metrics: Mapping[str, Any]) -> str:
     for c in CONDITIONS:
         s = m["conditions"][c]
         lines.append(
-            f"| {LABELS[c]} | {_ci(s['episodes'])} | {s['censored']} | {s['macros']:g} | "
+            f"| {LABELS[c]} | {format_ci(s['episodes'], 1)} | {s['censored']} | {s['macros']:g} | "
             f"{s['macro_uses']:g} | {s['steps']:g} |"
         )
     lines += [
@@ -207,7 +201,7 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     """Mean episodes per condition and the (c) win counts, beside the thesis."""
     n = metrics["trials"]
     rows: list[HeadlineRow] = [
-        (f"episodes, {LABELS[c]}", _ci(metrics["conditions"][c]["episodes"]), "plotted, no values")
+        (f"episodes, {LABELS[c]}", format_ci(metrics["conditions"][c]["episodes"], 1), "plotted, no values")
         for c in ("none", "q", "cchtn")
     ]
     rows.append(("trials (c) < (b)", f"{_pair(metrics, 'cchtn', 'q')['fewer']} of {n}", "every trial"))
