@@ -65,6 +65,13 @@ def test_food_comprehension_percentages(food_runs: tuple[Path, Path]) -> None:
                     assert values == sorted(values)
 
 
+def test_food_instructors_differ_so_pooling_beats_one_instructor(food_runs: tuple[Path, Path]) -> None:
+    metrics = json.loads((food_runs[0] / "metrics.json").read_text())
+    assert metrics["base"] == "own"
+    for strategy in ("random", "distance", "connectivity"):
+        assert metrics["pooled_minus_solo"][strategy]["12"]["trials_better"] == 2
+
+
 def test_food_trial_counts_never_exceed_orderings() -> None:
     (trial,) = food.make_trials(1, 5)
     result = food.run_trial(trial)
