@@ -13,7 +13,7 @@ $(VENV)/.core: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.dev: pyproject.toml | $(BIN)/python
-	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench]'
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs]'
 	touch $(VENV)/.core $@
 
 demo: $(VENV)/.core

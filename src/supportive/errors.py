@@ -15,6 +15,7 @@ __all__ = [
     "FileFormatError",
     "GenerationError",
     "LearningError",
+    "MapFileError",
     "MissingExtraError",
     "ObservationFileError",
     "SupportiveError",
@@ -36,6 +37,7 @@ class FileFormatError(SupportiveError, ValueError):
         path: The file, when the text came from one.
         place: The field, as a path like ``demonstrations[1].steps[3]``.
         line: The 1-based line of the problem, when known.
+        column: The 1-based column on that line, when known.
     """
 
     def __init__(
@@ -45,17 +47,21 @@ class FileFormatError(SupportiveError, ValueError):
         path: str | Path | None = None,
         place: str | None = None,
         line: int | None = None,
+        column: int | None = None,
     ) -> None:
         self.problem = problem
         self.path = None if path is None else str(path)
         self.place = place
         self.line = line
+        self.column = column
         super().__init__(self._render())
 
     def _render(self) -> str:
         where = self.path or "<text>"
         if self.line is not None:
             where += f":{self.line}"
+            if self.column is not None:
+                where += f":{self.column}"
         if self.place:
             where += f": {self.place}"
         return f"{where}: {self.problem}"
@@ -67,6 +73,10 @@ class TaskFileError(FileFormatError):
 
 class ObservationFileError(FileFormatError):
     """An observation stream (contact events per moment) is unreadable or malformed."""
+
+
+class MapFileError(FileFormatError):
+    """A household map (one character per cell) is unreadable or unusable; the message gives line and column."""
 
 
 class TaskGraphError(SupportiveError, ValueError):

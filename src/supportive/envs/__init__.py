@@ -1,0 +1,1 @@
+"""Simulated worlds: the household of the caregiver experiment (§3.5)."""

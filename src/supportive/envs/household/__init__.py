@@ -1,0 +1,42 @@
+"""The household world of §3.5: maps, dynamics, novice agents (and, with the ``envs`` extra, Gymnasium and
+PettingZoo environments in :mod:`supportive.envs.household.gym_env` / ``parallel_env``)."""
+
+from supportive.envs.household.distances import CellGraph, MapDistances
+from supportive.envs.household.grid_map import (
+    MOVES,
+    Cell,
+    GridMap,
+    Terrain,
+    load_map,
+    map_names,
+    parse_map,
+    read_map,
+)
+from supportive.envs.household.novice import NOVICE_TYPES, EpsilonGreedyNovice
+from supportive.envs.household.world import (
+    CAREGIVER_ACTIONS,
+    DAMAGE,
+    NOVICE_ACTIONS,
+    Collision,
+    HouseholdWorld,
+)
+
+__all__ = [
+    "CAREGIVER_ACTIONS",
+    "DAMAGE",
+    "MOVES",
+    "NOVICE_ACTIONS",
+    "NOVICE_TYPES",
+    "Cell",
+    "CellGraph",
+    "Collision",
+    "EpsilonGreedyNovice",
+    "GridMap",
+    "HouseholdWorld",
+    "MapDistances",
+    "Terrain",
+    "load_map",
+    "map_names",
+    "parse_map",
+    "read_map",
+]
