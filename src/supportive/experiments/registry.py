@@ -61,6 +61,7 @@ _BUILTINS = (
     "supportive.experiments.active_learning",
     "supportive.experiments.captaincook",
     "supportive.experiments.transfer",
+    "supportive.experiments.caregiver",
 )
 _registry: dict[str, Experiment] = {}
 _builtins_loaded = False

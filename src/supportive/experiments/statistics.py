@@ -10,7 +10,7 @@ from typing import Any
 
 from scipy import stats
 
-__all__ = ["above_zero", "below_zero", "error_bar", "format_ci", "mean_ci"]
+__all__ = ["above_zero", "below_zero", "error_bar", "format_ci", "format_sd", "mean_ci", "mean_sd"]
 
 
 def mean_ci(
@@ -40,6 +40,29 @@ def mean_ci(
             low, high = max(bounds[0], low), min(bounds[1], high)
         low, high = round(low, digits), round(high, digits)
     return {"mean": round(mean, digits), "low": low, "high": high, "n": len(values)}
+
+
+def mean_sd(values: Sequence[float], digits: int = 6) -> dict[str, Any]:
+    """The mean of ``values`` and their sample standard deviation (the thesis's error bars in §3.5), as JSON.
+
+    >>> mean_sd([1.0, 2.0, 3.0]), mean_sd([4.0])["sd"]
+    ({'mean': 2.0, 'sd': 1.0, 'n': 3}, 0.0)
+    """
+    if not values:
+        return {"mean": None, "sd": None, "n": 0}
+    sd = statistics.stdev(values) if len(values) > 1 else 0.0
+    return {"mean": round(statistics.fmean(values), digits), "sd": round(sd, digits), "n": len(values)}
+
+
+def format_sd(summary: Mapping[str, Any], digits: int = 2) -> str:
+    """``"mean ± sd"``; ``–`` for none.
+
+    >>> format_sd({"mean": 2.0, "sd": 0.5}, 1)
+    '2.0 ± 0.5'
+    """
+    if summary.get("mean") is None:
+        return "–"
+    return f"{summary['mean']:.{digits}f} ± {summary['sd']:.{digits}f}"
 
 
 def format_ci(summary: Mapping[str, Any], digits: int = 3, *, signed: bool = False) -> str:

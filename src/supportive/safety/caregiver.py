@@ -285,6 +285,8 @@ class Caregiver:
     def _step_toward(self, world: HouseholdWorld, goal: Cell) -> str:
         assert world.caregiver is not None
         here = world.caregiver
+        if abs(here[0] - world.novice[0]) + abs(here[1] - world.novice[1]) <= 2:
+            return self._detour(world, goal)  # the novice may stand on the shortest way: walk around it
         remaining = self._walk(here, goal)
         moves = []
         for move, (dr, dc) in MOVES.items():
@@ -298,7 +300,40 @@ class Caregiver:
                 moves.append(move)
         if not moves:
             return "wait"
+        clear = [m for m in moves if not self._beside_novice(world, m)]
+        moves = clear or moves  # among equally short moves, keep out of the novice's way
         return moves[int(self.rng.integers(len(moves)))] if len(moves) > 1 else moves[0]
+
+    def _detour(self, world: HouseholdWorld, goal: Cell) -> str:
+        """A first step of a shortest way that avoids the novice's cell (breadth-first from the goal with that
+        cell taken out); ``wait`` when there is no way round."""
+        assert world.caregiver is not None
+        walkable = self.distances.caregiver.index
+        distance = {goal: 0}
+        queue = deque([goal])
+        while queue:
+            cell = queue.popleft()
+            for _, following in self.grid.neighbours(cell):
+                if following in walkable and following != world.novice and following not in distance:
+                    distance[following] = distance[cell] + 1
+                    queue.append(following)
+        here = distance.get(world.caregiver)
+        for move, following in self.grid.neighbours(world.caregiver):
+            if (
+                here is not None
+                and distance.get(following, here) < here
+                and world.caregiver_can_enter(following)
+                and self._keeps_novice_connected(world, following)
+            ):
+                return move
+        return "wait"
+
+    @staticmethod
+    def _beside_novice(world: HouseholdWorld, move: str) -> bool:
+        assert world.caregiver is not None
+        dr, dc = MOVES[move]
+        r, c = world.caregiver[0] + dr, world.caregiver[1] + dc
+        return abs(r - world.novice[0]) + abs(c - world.novice[1]) <= 1
 
     def _next_action(self, world: HouseholdWorld, plan: Intervention | None) -> str:
         assert world.caregiver is not None
