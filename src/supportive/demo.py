@@ -12,6 +12,7 @@ from rich.panel import Panel
 from rich.table import Table
 
 from supportive import examples
+from supportive.envs.household import Collision, load_map
 from supportive.errors import LearningError
 from supportive.inference import HierarchicalHMM, ObservationModel
 from supportive.io.tree import htn_tree
@@ -20,6 +21,8 @@ from supportive.learning.instructors import SimulatedInstructor
 from supportive.learning.learner import HTNLearner, learn
 from supportive.learning.naming import known_names
 from supportive.learning.precedence import implied_precedences
+from supportive.safety.episode import Frame, run_episode
+from supportive.safety.render import LEGEND, render_frame
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
@@ -35,9 +38,12 @@ from supportive.tasks.spec import TaskSpec
 from supportive.teach import ask_in_words
 
 __all__ = [
+    "CaregiverContrast",
     "SubtaskFinding",
     "TeachingOutcome",
     "WatchedStep",
+    "caregiver_contrast",
+    "keep_novice_safe",
     "run_demo",
     "subtask_findings",
     "teach_tower",
@@ -176,6 +182,7 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
     if all(a.observations for a in spec.actions) and len(spec.demonstrations) > 1:
         watch_held_out(console, spec)
     teach_with_questions(console)
+    keep_novice_safe(console)
     console.print(Panel.fit("Try it on your own task:  supportive learn my-task.yaml --format json"))
     return learner
 
@@ -281,3 +288,81 @@ def watch_held_out(console: Console, spec: TaskSpec) -> None:
         f"  right action at the end of {hits} of {len(steps)} actions; pegs, bolts and nuts look alike, so the "
         "subtask column is where the hierarchy earns its keep."
     )
+
+
+@dataclass(frozen=True)
+class CaregiverContrast:
+    """One short household episode played twice from the same seed, with and without the caregiver.
+
+    Attributes:
+        map_name: The map played on.
+        epsilon: The novice's share of random moves.
+        steps: Novice steps per episode.
+        with_caregiver: Damage with the caregiver; ``without``: damage alone.
+        frames: The caregiver episode's frames around the first step where the two runs differ (or its first
+            steps, when they never do).
+        moment: That step, or None.
+        bumps: What the novice bumped into at that step with and without the caregiver (None: nothing).
+    """
+
+    map_name: str
+    epsilon: float
+    steps: int
+    with_caregiver: int
+    without: int
+    frames: tuple[Frame, ...]
+    moment: int | None
+    bumps: tuple[Collision | None, Collision | None] = (None, None)
+
+
+def caregiver_contrast(
+    map_name: str = "playroom", epsilon: float = 0.75, steps: int = 40, seed: int = 8
+) -> CaregiverContrast:
+    """Play a novice on ``map_name`` with and without the caregiver (common random numbers: the same seed gives
+    the same start and first goal), and pick the frames where the caregiver first made a difference."""
+    grid = load_map(map_name)
+    helped = run_episode(grid, epsilon, caregiver=True, steps=steps, seed=seed, record=True)
+    alone = run_episode(grid, epsilon, caregiver=False, steps=steps, seed=seed, record=True)
+    moment = next(
+        (a.step for a, b in zip(helped.frames, alone.frames, strict=True) if a.collision != b.collision), None
+    )
+    end = moment if moment is not None else 2
+    frames = helped.frames[max(0, end - 2) : end]
+    bumps = (
+        (helped.frames[moment - 1].collision, alone.frames[moment - 1].collision)
+        if moment is not None
+        else (None, None)
+    )
+    return CaregiverContrast(map_name, epsilon, steps, helped.damage, alone.damage, frames, moment, bumps)
+
+
+def _bump_words(collision: Collision | None) -> str:
+    if collision is None:
+        return "walked on"
+    thing = "stairwell" if collision.kind == "stairs" else collision.kind
+    return f"bumped into the {thing} at {collision.cell} (damage {collision.damage})"
+
+
+def keep_novice_safe(console: Console) -> CaregiverContrast:
+    """Print the caregiver section of the demo (§3.5): a few frames of a short episode and the damage with and
+    without the caregiver."""
+    contrast = caregiver_contrast()
+    grid = load_map(contrast.map_name)
+    console.print(
+        f"\n[bold]Keeping a novice safe[/] (§3.5): a novice making {contrast.epsilon:.0%} random moves plays "
+        f"{contrast.steps} steps in the {contrast.map_name}, once with the caregiver robot and once alone, from the "
+        "same seed. The caregiver estimates P(safe | τ) from the novice's moves, the damage each hazard threatens, "
+        f"and acts on the best trade of benefit against time ({LEGEND}):"
+    )
+    for frame in contrast.frames:
+        console.print(render_frame(grid, frame, steps=contrast.steps))
+    if contrast.moment is not None:
+        helped, alone = contrast.bumps
+        console.print(
+            f"  At step {contrast.moment} the novice {_bump_words(helped)}; alone, it {_bump_words(alone)}."
+        )
+    console.print(
+        f"  damage over {contrast.steps} steps: [bold]{contrast.with_caregiver}[/] with the caregiver, "
+        f"[bold]{contrast.without}[/] without. Watch a whole episode: supportive caregiver --map house --novice 0.5"
+    )
+    return contrast

@@ -294,4 +294,6 @@ def load_map(name: str) -> GridMap:
         return parse_map(text, name, f"maps/{name}.map")
     if Path(name).suffix or "/" in name:
         return read_map(name)
-    raise MapFileError(f"no shipped map named {name!r} (known: {', '.join(map_names())}; or give a file path)")
+    raise MapFileError(
+        f"no shipped map of this name (known: {', '.join(map_names())}; or give a file path)", path=name
+    )
