@@ -6,11 +6,20 @@ action id. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StringConstraints, model_validator
 
-__all__ = ["DEFAULT_EVENT_PROBABILITY", "ActionIn", "DemonstrationIn", "NodeIn", "StepIn", "TaskIn"]
+__all__ = [
+    "DEFAULT_EVENT_PROBABILITY",
+    "ActionIn",
+    "BehaviorIn",
+    "DemonstrationIn",
+    "NodeIn",
+    "PredicateIn",
+    "StepIn",
+    "TaskIn",
+]
 
 Name = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1)]
 
@@ -34,6 +43,7 @@ class ActionIn(_Strict):
     id: Name
     text: str | None = None
     observations: list[Name] | dict[str, Annotated[float, Field(gt=0.0, lt=1.0)]] | None = None
+    effects: list[Name] | None = None
 
     def events(self) -> tuple[tuple[str, float], ...]:
         """The observations as ``(event, probability)`` pairs, sorted by event."""
@@ -87,6 +97,32 @@ class NodeIn(_Strict):
         return self
 
 
+class PredicateIn(_Strict):
+    """``{name, params, text, negative}``: ``text`` is a template with ``?param`` placeholders."""
+
+    name: Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$")]
+    params: list[Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]] = []
+    text: Name
+    negative: str | None = None
+
+
+class BehaviorIn(_Strict):
+    """``{name, text, category, subtasks, initiation, termination}``; the two regions are formulas."""
+
+    name: Name
+    text: Name
+    category: Literal[
+        "materials stabilization",
+        "materials retrieval",
+        "collaborative object manipulation",
+        "enhancing awareness",
+        "task progression guidance",
+    ]
+    subtasks: list[Name] = []
+    initiation: Name = "true"
+    termination: Name = "false"
+
+
 class TaskIn(_Strict):
     """A whole task file."""
 
@@ -94,3 +130,5 @@ class TaskIn(_Strict):
     actions: list[Annotated[ActionIn, _wrap("id")]] | None = None
     structure: Annotated[NodeIn, _wrap("action")] | None = None
     demonstrations: list[DemonstrationIn] | None = None
+    predicates: list[PredicateIn] | None = None
+    behaviors: list[BehaviorIn] | None = None

@@ -20,7 +20,9 @@ from pydantic import ValidationError
 from supportive.errors import TaskFileError
 from supportive.io.schema import NodeIn, TaskIn
 from supportive.io.text import read_text
-from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node
+from supportive.tasks.behaviors import DERIVED_PREDICATES, BehaviorCategory, PredicateSpec, SupportiveBehavior
+from supportive.tasks.formula import FormulaError, parse_formula, split_atom
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, internal_nodes
 from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
 
 __all__ = [
@@ -169,7 +171,7 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
     def fail(problem: str, loc: list[str | int]) -> TaskFileError:
         return TaskFileError(problem, path=path, place=_place(loc), line=_line(text, loc))
 
-    actions = tuple(Action(a.id, a.text, a.events()) for a in model.actions or ())
+    actions = tuple(Action(a.id, a.text, a.events(), tuple(a.effects or ())) for a in model.actions or ())
     declared = {a.id for a in actions}
     seen_actions: set[str] = set()
     for index, action in enumerate(actions):
@@ -205,7 +207,59 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
     if len(explicit) > 1:
         index = next(i for i, d in enumerate(demos) if d.has_states != demos[0].has_states)
         raise fail("give explicit states in every demonstration or in none", ["demonstrations", index])
-    return TaskSpec(model.name, actions, structure, tuple(demos))
+    predicates, behaviors = _behaviors(model, actions, structure, fail)
+    return TaskSpec(model.name, actions, structure, tuple(demos), predicates, behaviors)
+
+
+def _behaviors(
+    model: TaskIn, actions: tuple[Action, ...], structure: Node | None, fail: Any
+) -> tuple[tuple[PredicateSpec, ...], tuple[SupportiveBehavior, ...]]:
+    """The predicates and supportive behaviors, every formula checked against them and the structure."""
+    predicates: dict[str, PredicateSpec] = {}
+    for i, p in enumerate(model.predicates or ()):
+        if p.name in predicates or p.name in DERIVED_PREDICATES:
+            taken = "declared twice" if p.name in predicates else "derived from the structure"
+            raise fail(f"predicate {p.name!r} is {taken}", ["predicates", i, "name"])
+        predicates[p.name] = PredicateSpec(p.name, tuple(p.params), p.text, p.negative)
+    subtasks = (
+        {node.name for node in internal_nodes(structure) if node.name} if structure is not None else set()
+    )
+
+    def check(text: str, loc: list[str | int], *, single: bool = False) -> None:
+        try:
+            formula = parse_formula(text)
+        except FormulaError as exc:
+            raise fail(str(exc), loc) from None
+        if single and (len(formula.clauses) != 1 or len(formula.clauses[0]) != 1):
+            raise fail(f"an effect is one atom, or 'not' and one atom, got {text!r}", loc)
+        for literal in sorted(formula.atoms()):
+            name, args = split_atom(literal)
+            if name in DERIVED_PREDICATES:
+                if len(args) != 1 or (structure is not None and args[0] not in subtasks):
+                    raise fail(f"{literal}: {name}() takes one named subtask of the structure", loc)
+            elif name not in predicates:
+                raise fail(f"{literal}: predicate {name!r} is not declared in 'predicates'", loc)
+            elif len(args) != len(predicates[name].params):
+                raise fail(f"{literal}: {name} takes {len(predicates[name].params)} arguments", loc)
+
+    for i, action in enumerate(actions):
+        for j, effect in enumerate(action.effects):
+            check(effect, ["actions", i, "effects", j], single=True)
+    behaviors: list[SupportiveBehavior] = []
+    for i, b in enumerate(model.behaviors or ()):
+        if any(other.name == b.name for other in behaviors):
+            raise fail(f"behavior {b.name!r} is declared twice", ["behaviors", i, "name"])
+        for j, subtask in enumerate(b.subtasks):
+            if structure is not None and subtask not in subtasks:
+                raise fail(f"{subtask!r} is not a named subtask of the structure", ["behaviors", i, "subtasks", j])
+        check(b.initiation, ["behaviors", i, "initiation"])
+        check(b.termination, ["behaviors", i, "termination"])
+        behaviors.append(
+            SupportiveBehavior(
+                b.name, b.text, BehaviorCategory(b.category), tuple(b.subtasks), b.initiation, b.termination
+            )
+        )
+    return tuple(predicates.values()), tuple(behaviors)
 
 
 def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, seen: Counter[str]) -> Node:
@@ -297,6 +351,8 @@ def _action_to_data(action: Action) -> dict[str, object]:
         data["text"] = action.text
     if action.observations:
         data["observations"] = dict(action.observations)
+    if action.effects:
+        data["effects"] = list(action.effects)
     return data
 
 
@@ -331,6 +387,24 @@ def task_to_dict(spec: TaskSpec) -> dict[str, Any]:
             item["steps"] = [_step_to_data(s) for s in demo.steps]
             demos.append(item)
         data["demonstrations"] = demos
+    if spec.predicates:
+        data["predicates"] = [
+            {"name": p.name, "params": list(p.params), "text": p.text}
+            | ({"negative": p.negative} if p.negative else {})
+            for p in spec.predicates
+        ]
+    if spec.behaviors:
+        data["behaviors"] = [
+            {
+                "name": b.name,
+                "text": b.text,
+                "category": b.category.value,
+                "subtasks": list(b.subtasks),
+                "initiation": b.initiation,
+                "termination": b.termination,
+            }
+            for b in spec.behaviors
+        ]
     return data
 
 

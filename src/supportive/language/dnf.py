@@ -8,80 +8,20 @@ conjunctions and denotes the union of its clauses' state sets:
     S = ⋃_{c ∈ C} ⋂_{l ∈ c} R(l)
 
 Everything is a boolean mask over the table's states (numpy), so evaluating a formula on thousands of states
-is a few vector operations.
+is a few vector operations. The formula types themselves live in :mod:`supportive.tasks.formula` (task files
+hold formulas) and are re-exported here.
 """
 
 from __future__ import annotations
 
 from collections.abc import Hashable, Iterable, Mapping, Sequence
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
+from supportive.tasks.formula import DNF, Conjunction, Literal
+
 __all__ = ["DNF", "Conjunction", "Literal", "TruthTable"]
-
-
-@dataclass(frozen=True, order=True)
-class Literal:
-    """A grounded atom (``attached(seat, frame)``) or its negation."""
-
-    atom: str
-    positive: bool = True
-
-    def negated(self) -> Literal:
-        """The opposite literal."""
-        return Literal(self.atom, not self.positive)
-
-    def __str__(self) -> str:
-        return self.atom if self.positive else f"not {self.atom}"
-
-
-@dataclass(frozen=True)
-class Conjunction:
-    """Literals that must all hold (the empty conjunction holds everywhere)."""
-
-    literals: frozenset[Literal]
-
-    @classmethod
-    def of(cls, *literals: Literal | str) -> Conjunction:
-        """A conjunction of literals; a plain string is a positive literal."""
-        return cls(frozenset(Literal(x) if isinstance(x, str) else x for x in literals))
-
-    @property
-    def consistent(self) -> bool:
-        """False when it holds an atom both ways (it then denotes no state)."""
-        return not any(lit.negated() in self.literals for lit in self.literals)
-
-    def __len__(self) -> int:
-        return len(self.literals)
-
-    def __str__(self) -> str:
-        return " and ".join(str(lit) for lit in sorted(self.literals)) or "always"
-
-
-@dataclass(frozen=True)
-class DNF:
-    """A disjunction of conjunctions (no clause: denotes no state)."""
-
-    clauses: tuple[Conjunction, ...]
-
-    @classmethod
-    def of(cls, *clauses: Conjunction | Iterable[Literal | str]) -> DNF:
-        """A DNF from conjunctions or iterables of literals."""
-        return cls(tuple(c if isinstance(c, Conjunction) else Conjunction.of(*c) for c in clauses))
-
-    @property
-    def size(self) -> int:
-        """Total number of literals: how long it takes to say."""
-        return sum(len(c) for c in self.clauses)
-
-    def atoms(self) -> frozenset[str]:
-        """Every atom the formula mentions."""
-        return frozenset(lit.atom for clause in self.clauses for lit in clause.literals)
-
-    def __str__(self) -> str:
-        return " or ".join(f"({c})" if len(self.clauses) > 1 and len(c) > 1 else str(c) for c in self.clauses) or "never"
 
 
 class TruthTable:

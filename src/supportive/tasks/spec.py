@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
+from supportive.tasks.behaviors import PredicateSpec, SupportiveBehavior
 from supportive.tasks.htn import Node, leaf_actions
 
 __all__ = ["Action", "Demonstration", "Step", "TaskSpec"]
@@ -16,11 +17,14 @@ class Action:
 
     ``observations`` maps contact events (Semantic Event Chains, §2.1.7.1: e.g. ``"hand-peg"`` for the hand
     touching a peg) to the probability that the event holds at a moment while the action is performed.
+    ``effects`` are the atoms doing it makes true (``attached(seat, left_frame)``) or, written ``not …``,
+    false (§3.3: the predicates behaviors are described with).
     """
 
     id: str
     text: str | None = None
     observations: tuple[tuple[str, float], ...] = ()
+    effects: tuple[str, ...] = ()
 
     @property
     def label(self) -> str:
@@ -77,12 +81,15 @@ class TaskSpec:
 
     ``actions`` is the declared vocabulary (empty when the file declares none: then the vocabulary is whatever
     the structure and demonstrations use). ``structure`` is the ground-truth hierarchy when known.
+    ``predicates`` and ``behaviors`` describe the supportive behaviors a person asked for (§3.3).
     """
 
     name: str
     actions: tuple[Action, ...] = ()
     structure: Node | None = None
     demonstrations: tuple[Demonstration, ...] = field(default=())
+    predicates: tuple[PredicateSpec, ...] = ()
+    behaviors: tuple[SupportiveBehavior, ...] = ()
 
     def action_ids(self) -> tuple[str, ...]:
         """Every action id: the declared ones, or those used by the structure and demonstrations."""
@@ -106,4 +113,8 @@ class TaskSpec:
 
     def with_demonstrations(self, demonstrations: Sequence[Demonstration]) -> TaskSpec:
         """A copy of this spec with other demonstrations."""
-        return TaskSpec(self.name, self.actions, self.structure, tuple(demonstrations))
+        return replace(self, demonstrations=tuple(demonstrations))
+
+    def with_behaviors(self, behaviors: Sequence[SupportiveBehavior]) -> TaskSpec:
+        """A copy of this spec with other supportive behaviors."""
+        return replace(self, behaviors=tuple(behaviors))

@@ -1,0 +1,184 @@
+"""Formulas over grounded predicates, as written in task files and spoken back: DNF of literals (§3.3.4.3).
+
+Syntax (a lark grammar)::
+
+    present(front_rail) and not attached(seat, left_frame) or done(Attach seat)
+
+``or`` binds weaker than ``and``; ``not`` negates one atom; parentheses group only an atom's arguments (the
+formula is always in disjunctive normal form, which is what the robot reasons and speaks in). An argument is
+any text without commas or parentheses (subtask names may hold spaces); ``true`` is the empty conjunction.
+Atoms are kept in a canonical spelling: ``name(arg1, arg2)``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from functools import cache
+
+from lark import Lark, Token, Transformer, UnexpectedInput
+
+__all__ = ["DNF", "Conjunction", "FormulaError", "Literal", "atom", "parse_formula", "split_atom"]
+
+
+class FormulaError(ValueError):
+    """A formula that does not parse; the message says where."""
+
+
+@dataclass(frozen=True, order=True)
+class Literal:
+    """A grounded atom (``attached(seat, frame)``) or its negation."""
+
+    atom: str
+    positive: bool = True
+
+    def negated(self) -> Literal:
+        """The opposite literal."""
+        return Literal(self.atom, not self.positive)
+
+    def __str__(self) -> str:
+        return self.atom if self.positive else f"not {self.atom}"
+
+
+@dataclass(frozen=True)
+class Conjunction:
+    """Literals that must all hold (the empty conjunction holds everywhere)."""
+
+    literals: frozenset[Literal]
+
+    @classmethod
+    def of(cls, *literals: Literal | str) -> Conjunction:
+        """A conjunction of literals; a plain string is a positive literal."""
+        return cls(frozenset(Literal(x) if isinstance(x, str) else x for x in literals))
+
+    @property
+    def consistent(self) -> bool:
+        """False when it holds an atom both ways (it then denotes no state)."""
+        return not any(lit.negated() in self.literals for lit in self.literals)
+
+    def __len__(self) -> int:
+        return len(self.literals)
+
+    def __str__(self) -> str:
+        return " and ".join(str(lit) for lit in sorted(self.literals)) or "true"
+
+
+@dataclass(frozen=True)
+class DNF:
+    """A disjunction of conjunctions (no clause: denotes no state)."""
+
+    clauses: tuple[Conjunction, ...]
+
+    @classmethod
+    def of(cls, *clauses: Conjunction | Iterable[Literal | str]) -> DNF:
+        """A DNF from conjunctions or iterables of literals."""
+        return cls(tuple(c if isinstance(c, Conjunction) else Conjunction.of(*c) for c in clauses))
+
+    @property
+    def size(self) -> int:
+        """Total number of literals: how long it takes to say."""
+        return sum(len(c) for c in self.clauses)
+
+    def atoms(self) -> frozenset[str]:
+        """Every atom the formula mentions."""
+        return frozenset(lit.atom for clause in self.clauses for lit in clause.literals)
+
+    def __str__(self) -> str:
+        """The formula in the task-file syntax (it parses back to an equal formula)."""
+        return " or ".join(str(c) for c in self.clauses) or "false"
+
+
+def atom(name: str, *args: str) -> str:
+    """The canonical spelling of an atom.
+
+    >>> atom("attached", " seat", "left_frame "), atom("holding_anything")
+    ('attached(seat, left_frame)', 'holding_anything')
+    """
+    cleaned = [" ".join(a.split()) for a in args]
+    return f"{name.strip()}({', '.join(cleaned)})" if cleaned else name.strip()
+
+
+def split_atom(text: str) -> tuple[str, tuple[str, ...]]:
+    """An atom's predicate name and arguments.
+
+    >>> split_atom("attached(seat, left_frame)"), split_atom("raining")
+    (('attached', ('seat', 'left_frame')), ('raining', ()))
+    """
+    literal = _parse(text).clauses[0].literals
+    (only,) = literal
+    name, _, rest = only.atom.partition("(")
+    return name, tuple(a.strip() for a in rest.rstrip(")").split(",")) if rest else ()
+
+
+_GRAMMAR = r"""
+    ?start: disjunction
+    disjunction: conjunction ("or" conjunction)*
+    conjunction: "true" -> empty
+               | literal ("and" literal)*
+    literal: NOT? atom
+    atom: NAME ["(" [arg ("," arg)*] ")"]
+    arg: ARG
+    NOT: "not"
+    NAME: /(?!(and|or|not|true)\b)[A-Za-z_][A-Za-z0-9_\-]*/
+    ARG: /[^,()]+/
+    %import common.WS
+    %ignore WS
+"""
+
+
+class _ToDNF(Transformer[Token, DNF]):
+    def disjunction(self, clauses: list[Conjunction]) -> DNF:
+        return DNF(tuple(clauses))
+
+    def empty(self, _: list[object]) -> Conjunction:
+        return Conjunction(frozenset())
+
+    def conjunction(self, literals: list[Literal]) -> Conjunction:
+        return Conjunction(frozenset(literals))
+
+    def literal(self, parts: list[object]) -> Literal:
+        return Literal(str(parts[-1]), positive=len(parts) == 1)
+
+    def atom(self, parts: list[object]) -> str:
+        name, *args = parts
+        return atom(str(name), *(str(a) for a in args if a is not None))
+
+    def arg(self, parts: list[Token]) -> str:
+        return str(parts[0])
+
+
+@cache
+def _parser() -> Lark:
+    return Lark(_GRAMMAR, parser="earley")
+
+
+@cache
+def _parse(text: str) -> DNF:
+    try:
+        tree = _parser().parse(text)
+    except UnexpectedInput as exc:
+        column = getattr(exc, "column", None)
+        where = f" at column {column}" if isinstance(column, int) and column > 0 else ""
+        raise FormulaError(
+            f"cannot read the formula {text!r}{where} (expected atoms like present(x) joined by and / or, "
+            "each optionally preceded by not)"
+        ) from None
+    result = _ToDNF().transform(tree)
+    return result if isinstance(result, DNF) else DNF((result,))
+
+
+def parse_formula(text: str) -> DNF:
+    """Parse a formula (see the module docstring).
+
+    Raises:
+        FormulaError: when it does not parse, naming the column.
+
+    >>> f = parse_formula("placed(seat) and not attached(seat,left_frame) or done(Attach seat)")
+    >>> str(f)
+    'not attached(seat, left_frame) and placed(seat) or done(Attach seat)'
+    >>> parse_formula(str(f)) == f
+    True
+    """
+    if not text.strip():
+        raise FormulaError("the formula is empty (write 'true' for always)")
+    return _parse(" ".join(text.split()))
