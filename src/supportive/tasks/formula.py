@@ -6,7 +6,8 @@ Syntax (a lark grammar)::
 
 ``or`` binds weaker than ``and``; ``not`` negates one atom; parentheses group only an atom's arguments (the
 formula is always in disjunctive normal form, which is what the robot reasons and speaks in). An argument is
-any text without commas or parentheses (subtask names may hold spaces); ``true`` is the empty conjunction.
+any text without commas or parentheses (subtask names may hold spaces); ``true`` is the empty conjunction
+(always), ``false`` the empty disjunction (never).
 Atoms are kept in a canonical spelling: ``name(arg1, arg2)``.
 """
 
@@ -112,14 +113,19 @@ def split_atom(text: str) -> tuple[str, tuple[str, ...]]:
 
 _GRAMMAR = r"""
     ?start: disjunction
-    disjunction: conjunction ("or" conjunction)*
-    conjunction: "true" -> empty
-               | literal ("and" literal)*
+          | FALSE -> never
+    disjunction: conjunction (OR conjunction)*
+    conjunction: TRUE -> empty
+               | literal (AND literal)*
     literal: NOT? atom
     atom: NAME ["(" [arg ("," arg)*] ")"]
     arg: ARG
-    NOT: "not"
-    NAME: /(?!(and|or|not|true)\b)[A-Za-z_][A-Za-z0-9_\-]*/
+    NOT: /not\b/
+    AND: /and\b/
+    OR: /or\b/
+    TRUE: /true\b/
+    FALSE: /false\b/
+    NAME: /(?!(and|or|not|true|false)\b)[A-Za-z_][A-Za-z0-9_\-]*/
     ARG: /[^,()]+/
     %import common.WS
     %ignore WS
@@ -127,14 +133,17 @@ _GRAMMAR = r"""
 
 
 class _ToDNF(Transformer[Token, DNF]):
-    def disjunction(self, clauses: list[Conjunction]) -> DNF:
-        return DNF(tuple(clauses))
+    def never(self, _: list[object]) -> DNF:
+        return DNF(())
+
+    def disjunction(self, parts: list[object]) -> DNF:
+        return DNF(tuple(p for p in parts if isinstance(p, Conjunction)))
 
     def empty(self, _: list[object]) -> Conjunction:
         return Conjunction(frozenset())
 
-    def conjunction(self, literals: list[Literal]) -> Conjunction:
-        return Conjunction(frozenset(literals))
+    def conjunction(self, parts: list[object]) -> Conjunction:
+        return Conjunction(frozenset(p for p in parts if isinstance(p, Literal)))
 
     def literal(self, parts: list[object]) -> Literal:
         return Literal(str(parts[-1]), positive=len(parts) == 1)
@@ -180,5 +189,5 @@ def parse_formula(text: str) -> DNF:
     True
     """
     if not text.strip():
-        raise FormulaError("the formula is empty (write 'true' for always)")
+        raise FormulaError("the formula is empty (write 'true' for always, 'false' for never)")
     return _parse(" ".join(text.split()))
