@@ -1,5 +1,7 @@
-"""The household world of §3.5: maps, dynamics, novice agents (and, with the ``envs`` extra, Gymnasium and
-PettingZoo environments in :mod:`supportive.envs.household.gym_env` / ``parallel_env``)."""
+"""The household world of §3.5: maps, dynamics, novice agents. With the ``envs`` extra (gymnasium,
+pettingzoo) also the RL environments: :class:`~supportive.envs.household.gym_env.NoviceEnv` (registered as
+``supportive/Household-v0``) and :class:`~supportive.envs.household.parallel_env.HouseholdParallelEnv`; import
+them from those modules."""
 
 from supportive.envs.household.distances import CellGraph, MapDistances
 from supportive.envs.household.grid_map import (
