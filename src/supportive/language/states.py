@@ -128,6 +128,8 @@ class TaskStates:
             KeyError: for an atom of an unknown predicate.
         """
         name, args = split_atom(literal.atom)
+        if name in DERIVED_PREDICATES:
+            args = tuple(a.lower() for a in args)
         return self.predicates[name].say(args, literal.positive)
 
 
