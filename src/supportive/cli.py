@@ -240,6 +240,19 @@ def teach(
 
 
 @app.command()
+def chat(
+    file: Annotated[Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")],
+) -> None:
+    """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
+    from supportive.chat import ChatConsole
+
+    def read() -> str:
+        return input("> ")
+
+    ChatConsole(file, read, lambda line: out.print(line, markup=False)).run()
+
+
+@app.command()
 def demo() -> None:
     """Learn the bundled IKEA chair task and show what the demonstrations did and did not pin down."""
     from supportive.demo import run_demo

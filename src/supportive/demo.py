@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from rich.console import Console
+from rich.markup import escape
 from rich.panel import Panel
 from rich.table import Table
 
@@ -46,6 +47,7 @@ __all__ = [
     "keep_novice_safe",
     "run_demo",
     "subtask_findings",
+    "talk_about_helping",
     "teach_tower",
     "teach_with_questions",
     "watch",
@@ -182,6 +184,7 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
     if all(a.observations for a in spec.actions) and len(spec.demonstrations) > 1:
         watch_held_out(console, spec)
     teach_with_questions(console)
+    talk_about_helping(console, spec)
     keep_novice_safe(console)
     console.print(Panel.fit("Try it on your own task:  supportive learn my-task.yaml --format json"))
     return learner
@@ -366,3 +369,57 @@ def keep_novice_safe(console: Console) -> CaregiverContrast:
         f"[bold]{contrast.without}[/] without. Watch a whole episode: supportive caregiver --map house --novice 0.5"
     )
     return contrast
+
+
+CHAT_SCRIPT: tuple[str, ...] = (
+    "How will you help me screw the seat?",
+    "When I am tightening the bolts, I want you to shine a light on the bolt until the rear left bolt is tight",
+    "When will you hold the seat?",
+)
+"""What the person says in the demo's dialogue (§3.3)."""
+
+
+def talk_about_helping(console: Console, spec: TaskSpec) -> list[tuple[str, str]]:
+    """Print the dialogue section of the demo (§3.3): a person asks how the robot will help, states a new
+    preference (the robot grounds it, asks to confirm, and says back what it will do) and asks about a behavior.
+    Nothing is saved. Returns the exchange as (who, what) pairs."""
+    from dataclasses import replace
+
+    from supportive.language.explain import explain_behavior, explain_subtask
+    from supportive.language.grammar import ExplainBehavior, ExplainSubtask, Preference, parse_utterance
+    from supportive.language.states import TaskStates
+    from supportive.language.understand import Understanding
+
+    if not spec.behaviors or spec.structure is None:
+        return []
+    states = TaskStates.of(spec)
+    understanding = Understanding(states)
+    exchange: list[tuple[str, str]] = []
+    for line in CHAT_SCRIPT:
+        exchange.append(("person", line))
+        utterance = parse_utterance(line)
+        if isinstance(utterance, ExplainSubtask):
+            key = understanding.subtask_matcher.best(utterance.subtask_phrase).key
+            exchange.append(("robot", explain_subtask(states, key).text))
+        elif isinstance(utterance, ExplainBehavior):
+            behavior = understanding.behavior_for(utterance.behavior_phrase)
+            if behavior is not None:
+                exchange.append(("robot", explain_behavior(states, behavior).text))
+        elif isinstance(utterance, Preference):
+            understood = understanding.apply(utterance)
+            if not understood.confident:
+                exchange.append(("robot", understood.confirmation))
+                exchange.append(("person", "yes"))
+            states = TaskStates.of(replace(spec, behaviors=(*spec.behaviors, understood.behavior)), states.structure)
+            understanding = Understanding(states)
+            exchange.append(("robot", f"OK. {explain_behavior(states, understood.behavior).text}"))
+    console.print(
+        "\n[bold]Asking for help, and hearing it explained[/] (§3.3): the chair's task file lists supportive "
+        "behaviors, each with the states where it starts and stops. A person talks to the robot; it grounds what "
+        "they say in the task's subtasks (Algorithm 6) and explains its policy with the smallest description of "
+        "those states in the task's own words (Algorithm 7):"
+    )
+    for who, what in exchange:
+        console.print(f"  [bold]{who}:[/] {escape(what)}")
+    console.print("  Talk to it yourself: supportive chat examples/ikea-chair.yaml")
+    return exchange

@@ -1,0 +1,631 @@
+"""The smallest DNF formula that describes a region of task states (§3.3.4.3).
+
+To explain when it will start (or stop) a supportive behavior, a robot names the region of task states with
+grounded predicates: "when the front frame is present and not attached to the left support, or …". Choosing
+the words is a covering problem: pick conjunctions of literals (atoms and their negations) whose union covers
+the *target* states and as few *irrelevant* states as possible, with as few words as possible. The thesis
+poses it as an integer linear program (ILP); ESPRESSO, the Boolean minimiser from logic synthesis, is the
+approximate alternative. States that are neither target nor irrelevant are *don't care*: covering them costs
+nothing.
+
+The ILP here keeps the thesis's trade-off (λ weighs an irrelevant state included against a relevant state
+omitted) but counts each state once; see `minimal_cover`. When the words cannot cover the region the
+function raises `NoCoverError`, whose ``uncoverable`` attribute holds the states the robot has no words for;
+a cover's precision (irrelevant states included, relevant ones omitted) is part of the result and
+`describe_precision` puts it into a sentence.
+
+>>> table = TruthTable.from_sets(["s0", "s1", "s2", "s3"], {"p": {"s1", "s3"}, "q": {"s2", "s3"}})
+>>> cover = minimal_cover(table, {"s1", "s2", "s3"})
+>>> str(cover.formula), cover.exact
+('p or q', True)
+>>> describe_precision(minimal_cover(table, {"s1", "s2"}, lam=0.9, full_coverage=False, max_literals=1))
+'misses 2 relevant states of 2 and covers no irrelevant ones'
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import typing
+from collections.abc import Hashable, Iterable, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from scipy import sparse
+from scipy.optimize import Bounds, LinearConstraint, milp
+
+from supportive.errors import SupportiveError
+from supportive.language.dnf import DNF, Conjunction, Literal, TruthTable
+
+__all__ = [
+    "ESPRESSO_MAX_ATOMS",
+    "Cover",
+    "CoverMethod",
+    "NoCoverError",
+    "describe_precision",
+    "minimal_cover",
+]
+
+CoverMethod = typing.Literal["ilp", "espresso", "brute-force"]
+"""How `minimal_cover` chooses the formula."""
+
+ESPRESSO_MAX_ATOMS = 16
+"""ESPRESSO works on the full truth table (2^n rows), so it is refused beyond this many atoms."""
+
+_BRUTE_FORCE_MAX_CANDIDATES = 20
+_MAX_CANDIDATES = 2_000_000  # conjunctions enumerated before pruning; beyond this, lower max_literals
+_DOMINANCE_BLOCK = 512  # candidates compared at once when pruning dominated ones
+_SHOWN_STATES = 10  # states a NoCoverError message lists before "… and N more"
+
+
+class NoCoverError(SupportiveError):
+    """Every target state must be covered, and some cannot be.
+
+    The caller turns this into "I have no words for …": ``uncoverable`` holds the target states that no
+    allowed conjunction (at most ``max_literals`` literals; for ESPRESSO, any) separates from the irrelevant
+    states: every such conjunction that holds in one of them also holds in an irrelevant state.
+
+    Args:
+        uncoverable: The target states that cannot be covered.
+        reason: Why, as the start of the message (the states are appended).
+        order: The table's states, to list ``uncoverable`` in a stable order.
+    """
+
+    def __init__(self, uncoverable: frozenset[Hashable], reason: str, order: Sequence[Hashable] = ()) -> None:
+        self.uncoverable = uncoverable
+        self.reason = reason
+        listed = [s for s in order if s in uncoverable] or sorted(uncoverable, key=repr)
+        shown = ", ".join(repr(s) for s in listed[:_SHOWN_STATES])
+        if len(listed) > _SHOWN_STATES:
+            shown += f", … and {len(listed) - _SHOWN_STATES} more"
+        super().__init__(f"{reason}: {shown}")
+
+
+@dataclass(frozen=True)
+class Cover:
+    """A DNF formula chosen to describe a region of states, and how well it does.
+
+    Attributes:
+        formula: The chosen formula.
+        target: The states to describe (the relevant ones).
+        covered: Every state the formula denotes (don't-care states included).
+        irrelevant_included: The irrelevant states it denotes (covered − target, restricted to irrelevant).
+        relevant_omitted: The target states it does not denote.
+        precision: Of the covered states that count (target or irrelevant), the share that is target; 1.0
+            when it covers none of them.
+        recall: The share of the target it covers; 1.0 for an empty target.
+        method: ``"ilp"``, ``"espresso"`` or ``"brute-force"``.
+        objective: λ·|irrelevant included| − (1−λ)·|relevant covered|, the state part of the ILP's objective
+            (the formula-size tie-break left out); lower is better, and it is the thesis's measure of how
+            expressive the predicates are. None for ESPRESSO, which does not optimise it.
+        exact: No irrelevant state included and no relevant state omitted.
+    """
+
+    formula: DNF
+    target: frozenset[Hashable]
+    covered: frozenset[Hashable]
+    irrelevant_included: frozenset[Hashable]
+    relevant_omitted: frozenset[Hashable]
+    precision: float
+    recall: float
+    method: CoverMethod
+    objective: float | None
+    exact: bool
+
+
+def describe_precision(cover: Cover) -> str:
+    """How precise a cover is, as a phrase to follow "this description …".
+
+    >>> cover = Cover(DNF.of(["p"]), frozenset(range(12)), frozenset(range(14)), frozenset({12, 13}),
+    ...               frozenset(), 12 / 14, 1.0, "ilp", None, False)
+    >>> describe_precision(cover)
+    'covers all 12 relevant states and 2 irrelevant ones'
+    """
+    relevant = len(cover.target)
+    omitted = len(cover.relevant_omitted)
+    included = len(cover.irrelevant_included)
+    irrelevant = (
+        "no irrelevant ones" if included == 0 else f"{included} irrelevant {_plural(included, 'one')}"
+    )
+    if relevant == 0:
+        return f"has no relevant states to cover and covers {irrelevant}"
+    if omitted == 0:
+        states = "the one relevant state" if relevant == 1 else f"all {relevant} relevant states"
+        return f"covers {states} and {irrelevant}"
+    return f"misses {omitted} relevant {_plural(omitted, 'state')} of {relevant} and covers {irrelevant}"
+
+
+def minimal_cover(
+    table: TruthTable,
+    target: Iterable[Hashable],
+    *,
+    irrelevant: Iterable[Hashable] | None = None,
+    lam: float = 0.5,
+    full_coverage: bool = True,
+    max_literals: int = 3,
+    method: CoverMethod = "ilp",
+    allow_irrelevant: bool | None = None,
+) -> Cover:
+    """The smallest DNF formula over the table's atoms that best covers ``target``.
+
+    Candidate terms are the consistent conjunctions of at most ``max_literals`` literals that hold in at
+    least one target state; the empty one (``true``) is among them, so a region that is everything that
+    counts is said as ``true`` rather than ``p or not p``. With ``method="ilp"`` the choice is an integer
+    program over binary ``x_p`` (term ``p`` is said), ``y_s`` (target state ``s`` is covered) and ``z_s``
+    (irrelevant state ``s`` is included)::
+
+        min  λ·Σ_s z_s − (1−λ)·Σ_s y_s + μ·Σ_p x_p·(1 + |p|)
+        s.t. y_s ≤ Σ_{p ∋ s} x_p          for every target state s
+             z_s ≥ x_p                   for every irrelevant state s and term p ∋ s
+             y_s = 1                     for every target state s, when full_coverage
+             z_s = 0                     for every irrelevant state s, unless allow_irrelevant
+
+    The thesis writes the objective per term, Σ_p x_p·(λ|R(p) ∖ S_target| − (1−λ)|R(p) ∖ S_¬target|); a
+    state covered by two chosen terms then counts twice (a reward for saying the same thing twice, a double
+    penalty for an overlap), so here each state counts once, through ``y`` and ``z``. The last term breaks
+    ties towards fewer terms and literals; μ is set below the smallest change the state terms can make
+    (λ·a − (1−λ)·b for whole numbers a, b), so it never trades a state for a shorter formula (for a λ whose
+    smallest change is below the solver's tolerance, about 1e-6, the tie-break may be lost; a chosen term
+    that covers no target state the others miss is dropped afterwards in any case). A large λ prefers
+    leaving relevant states out to taking irrelevant ones in (the thesis calls small λ conservative; in its
+    own formula it is the other way round, and this follows the formula).
+
+    Whether irrelevant states may be covered at all is ``allow_irrelevant``, by default ``not
+    full_coverage``: a full cover is then exact or impossible, and `NoCoverError` names the target states
+    that no conjunction of at most ``max_literals`` literals separates from the irrelevant ones (what the
+    robot has no words for), while a partial cover trades states with λ. ``full_coverage=True,
+    allow_irrelevant=True`` is the thesis's constraint as written: every target state covered, irrelevant
+    ones included at λ each; it always succeeds (``true`` covers everything).
+
+    States with the same predicate values are covered by the same terms, so they are merged (with their
+    count as weight) before solving, and terms are pruned: those covering no target state, all but the
+    shortest of terms covering the same states, and terms dominated by one no longer that covers at least
+    the same target states and at most the same irrelevant ones. None of this changes the optimum.
+
+    Args:
+        table: The states and which atoms hold in each.
+        target: The states to describe.
+        irrelevant: The states the description should leave out; by default every state not in ``target``.
+            States in neither are don't care: covering them is free.
+        lam: λ in [0, 1], the cost of including an irrelevant state; 1−λ is the gain of covering a target one.
+        full_coverage: Every target state must be covered (the thesis's Σ_{p ∋ s} x_p ≥ 1).
+        max_literals: The longest conjunction considered (ILP and brute force; ESPRESSO ignores it).
+        method: ``"ilp"`` (scipy's HiGHS MILP); ``"espresso"`` (pyeda's ESPRESSO on the truth table over
+            the atoms, up to `ESPRESSO_MAX_ATOMS` atoms: each state's valuation is a minterm, target ones
+            1, irrelevant ones 0, the rest don't care; it ignores ``lam`` and ``max_literals``); or
+            ``"brute-force"`` (every set of candidate terms, smallest first, for at most 20 candidates after
+            pruning; for tests).
+        allow_irrelevant: Whether terms may include irrelevant states (``z_s`` free); None (the default)
+            means ``not full_coverage``. For ESPRESSO, which never includes an irrelevant state it can
+            avoid, it decides a valuation that is both target and irrelevant under ``full_coverage``: True
+            covers it, False raises `NoCoverError`; without ``full_coverage`` such a valuation is 0.
+
+    Returns:
+        The cover, with its precision.
+
+    Raises:
+        NoCoverError: under ``full_coverage`` without ``allow_irrelevant``, when some target state cannot
+            be separated from the irrelevant ones (its ``uncoverable`` holds them).
+        ValueError: for λ outside [0, 1], ``max_literals`` below 1, a state both target and irrelevant, an
+            unknown method, ESPRESSO on more than `ESPRESSO_MAX_ATOMS` atoms, brute force with more than 20
+            candidates, or more candidate conjunctions than can be enumerated.
+        KeyError: for a state the table does not know.
+    """
+    if not 0.0 <= lam <= 1.0:
+        raise ValueError(f"lam must be in [0, 1], got {lam}")
+    if max_literals < 1:
+        raise ValueError(f"max_literals must be at least 1, got {max_literals}")
+    if method not in ("ilp", "espresso", "brute-force"):
+        raise ValueError(f"unknown method {method!r}: expected 'ilp', 'espresso' or 'brute-force'")
+    allow = not full_coverage if allow_irrelevant is None else allow_irrelevant
+    target_mask = table.mask_of(target)
+    if irrelevant is None:
+        irrelevant_mask = ~target_mask
+    else:
+        irrelevant_mask = table.mask_of(irrelevant)
+        both = target_mask & irrelevant_mask
+        if both.any():
+            raise ValueError(f"states both target and irrelevant: {_listing(table, both)}")
+    if method == "espresso":
+        formula = _espresso(table, target_mask, irrelevant_mask, full_coverage, allow)
+        return _make_cover(table, formula, target_mask, irrelevant_mask, method, None)
+    problem = _Problem.build(table, target_mask, irrelevant_mask)
+    candidates = _candidates(problem, max_literals, allow)
+    if full_coverage:
+        covered = candidates.target.any(axis=0)
+        if not covered.all():
+            lost = np.isin(problem.target_class, np.flatnonzero(~covered))
+            states = np.flatnonzero(target_mask)[lost]
+            raise NoCoverError(
+                frozenset(table.states[i] for i in states),
+                f"no conjunction of at most {max_literals} literals covers these target states without "
+                "also covering an irrelevant one",
+                table.states,
+            )
+    if method == "ilp":
+        chosen = _solve_ilp(problem, candidates, lam, full_coverage)
+    else:
+        chosen = _brute_force(problem, candidates, lam, full_coverage)
+    chosen = _drop_redundant(candidates, chosen)
+    formula = DNF(tuple(sorted((candidates.conjunction(p) for p in chosen), key=lambda c: (len(c), str(c)))))
+    return _make_cover(table, formula, target_mask, irrelevant_mask, method, lam)
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """Target and irrelevant states merged into classes of equal valuation, with their counts."""
+
+    atoms: tuple[str, ...]
+    target_rows: np.ndarray  # (classes, atoms) bool
+    target_weight: np.ndarray  # (classes,) int
+    target_class: np.ndarray  # class of each target state, in table order
+    irrelevant_rows: np.ndarray
+    irrelevant_weight: np.ndarray
+
+    @classmethod
+    def build(cls, table: TruthTable, target_mask: np.ndarray, irrelevant_mask: np.ndarray) -> _Problem:
+        target_rows, target_class, target_weight = _classes(table.values[target_mask])
+        irrelevant_rows, _, irrelevant_weight = _classes(table.values[irrelevant_mask])
+        return cls(table.atoms, target_rows, target_weight, target_class, irrelevant_rows, irrelevant_weight)
+
+
+def _classes(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    if len(rows) == 0:
+        return rows, np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    unique, inverse, counts = np.unique(rows, axis=0, return_inverse=True, return_counts=True)
+    return unique, inverse.reshape(-1), counts
+
+
+@dataclass(frozen=True)
+class _Candidates:
+    """Surviving candidate terms: their literals and which target and irrelevant classes they cover."""
+
+    atoms: tuple[str, ...]
+    columns: list[tuple[int, ...]]  # atom indices of each term
+    signs: list[int]  # bit j set: the literal on columns[p][j] is positive
+    lengths: np.ndarray  # (terms,) int
+    target: np.ndarray  # (terms, target classes) bool
+    irrelevant: np.ndarray  # (terms, irrelevant classes) bool
+
+    def conjunction(self, p: int) -> Conjunction:
+        return Conjunction(
+            frozenset(
+                Literal(self.atoms[a], bool(self.signs[p] >> j & 1)) for j, a in enumerate(self.columns[p])
+            )
+        )
+
+    def subset(self, keep: np.ndarray) -> _Candidates:
+        index = np.flatnonzero(keep)
+        return _Candidates(
+            self.atoms,
+            [self.columns[i] for i in index],
+            [self.signs[i] for i in index],
+            self.lengths[index],
+            self.target[index],
+            self.irrelevant[index],
+        )
+
+
+def _candidates(problem: _Problem, max_literals: int, allow_irrelevant: bool) -> _Candidates:
+    """Every consistent conjunction of 0..max_literals literals worth saying, pruned (see `minimal_cover`)."""
+    n_atoms = len(problem.atoms)
+    longest = min(max_literals, n_atoms)
+    total = sum(math.comb(n_atoms, k) * 2**k for k in range(longest + 1))
+    if total > _MAX_CANDIDATES:
+        raise ValueError(
+            f"{total} conjunctions of up to {longest} literals over {n_atoms} atoms is too many to enumerate: "
+            "lower max_literals"
+        )
+    n_target = len(problem.target_rows)
+    rows = np.concatenate([problem.target_rows, problem.irrelevant_rows]).astype(np.int64)
+    columns: list[tuple[int, ...]] = []
+    signs: list[int] = []
+    lengths: list[np.ndarray] = []
+    masks: list[np.ndarray] = []
+    for k in range(longest + 1):
+        combos = np.array(list(itertools.combinations(range(n_atoms), k)), dtype=np.int64)
+        combos = combos.reshape(len(combos), k)
+        codes = (rows[:, combos] << np.arange(k)).sum(axis=2)  # (valuations, combos)
+        cover = codes.T[:, None, :] == np.arange(2**k)[None, :, None]  # (combos, sign patterns, valuations)
+        cover = cover.reshape(len(combos) * 2**k, len(rows))
+        keep = cover[:, :n_target].any(axis=1)
+        if not allow_irrelevant:
+            keep &= ~cover[:, n_target:].any(axis=1)
+        for flat in np.flatnonzero(keep):
+            combo, pattern = divmod(int(flat), 2**k)
+            columns.append(tuple(int(a) for a in combos[combo]))
+            signs.append(pattern)
+        lengths.append(np.full(int(keep.sum()), k, dtype=np.int64))
+        masks.append(cover[keep])
+    if not masks:
+        masks.append(np.zeros((0, len(rows)), dtype=bool))
+    mask = np.concatenate(masks)
+    candidates = _Candidates(
+        problem.atoms,
+        columns,
+        signs,
+        np.concatenate(lengths) if lengths else np.zeros(0, dtype=np.int64),
+        mask[:, :n_target],
+        mask[:, n_target:],
+    )
+    if len(columns) == 0:
+        return candidates
+    # Same coverage: keep the first, which is the shortest (terms are enumerated by length).
+    _, first = np.unique(np.packbits(mask, axis=1), axis=0, return_index=True)
+    keep = np.zeros(len(columns), dtype=bool)
+    keep[first] = True
+    candidates = candidates.subset(keep)
+    return candidates.subset(_undominated(candidates))
+
+
+def _undominated(candidates: _Candidates) -> np.ndarray:
+    """Terms no other term beats: none as short covers ⊇ their target classes and ⊆ their irrelevant ones.
+
+    Coverages are distinct (duplicates are gone), so domination is a strict partial order and every dropped
+    term has an undominated one that can replace it in any cover without making the cover worse.
+    """
+    target = candidates.target.astype(np.float32)
+    irrelevant = candidates.irrelevant.astype(np.float32)
+    target_size = target.sum(axis=1)
+    irrelevant_size = irrelevant.sum(axis=1)
+    lengths = candidates.lengths
+    count = len(lengths)
+    keep = np.ones(count, dtype=bool)
+    for start in range(0, count, _DOMINANCE_BLOCK):
+        block = slice(start, min(start + _DOMINANCE_BLOCK, count))
+        # Rows: the possible dominator a; columns: the term b in this block.
+        superset = (target @ target[block].T) == target_size[block][None, :]
+        subset = (irrelevant @ irrelevant[block].T) == irrelevant_size[:, None]
+        dominated = superset & subset & (lengths[:, None] <= lengths[block][None, :])
+        width = block.stop - start
+        dominated[np.arange(start, block.stop), np.arange(width)] = False
+        keep[block] = ~dominated.any(axis=0)
+    return keep
+
+
+def _size_cost(lengths: np.ndarray) -> np.ndarray:
+    """What a term costs to say: one for the term, one per literal."""
+    return (1 + lengths).astype(np.float64)
+
+
+def _state_gap(lam: float, most_irrelevant: int, most_relevant: int, full_coverage: bool) -> float:
+    """The smallest positive change of λ·a − (1−λ)·b over whole a ≤ most_irrelevant, b ≤ most_relevant."""
+    if full_coverage or lam in (0.0, 1.0):
+        return lam if full_coverage and lam > 0 else 1.0
+    a = np.arange(most_irrelevant + 1, dtype=np.float64)
+    nearest = lam * a / (1.0 - lam)
+    gaps = [
+        np.abs(lam * a - (1.0 - lam) * np.clip(b, -most_relevant, most_relevant))
+        for b in (np.floor(nearest) - 1, np.floor(nearest), np.ceil(nearest), np.ceil(nearest) + 1)
+    ]
+    values = np.concatenate(gaps)
+    positive = values[values > 1e-12]
+    return float(positive.min()) if len(positive) else 1.0
+
+
+def _solve_ilp(problem: _Problem, candidates: _Candidates, lam: float, full_coverage: bool) -> list[int]:
+    """The ILP of `minimal_cover` over merged states, solved by HiGHS; returns the chosen terms."""
+    n_terms = len(candidates.lengths)
+    n_target = len(problem.target_rows)
+    if n_terms == 0:
+        return []
+    # Only irrelevant classes some term touches get a z; with λ = 0 they cost nothing and need none.
+    touched = np.flatnonzero(candidates.irrelevant.any(axis=0)) if lam > 0 else np.zeros(0, dtype=np.int64)
+    n_y = 0 if full_coverage else n_target
+    n_z = len(touched)
+    gap = _state_gap(
+        lam, int(problem.irrelevant_weight.sum()), int(problem.target_weight.sum()), full_coverage
+    )
+    most_terms = min(n_terms, n_target)
+    mu = gap / (2.0 * (most_terms * (1 + int(candidates.lengths.max())) + 1))
+    cost = np.concatenate(
+        [
+            mu * _size_cost(candidates.lengths),
+            -(1.0 - lam) * problem.target_weight.astype(np.float64)[:n_y],
+            lam * problem.irrelevant_weight[touched].astype(np.float64),
+        ]
+    )
+    n_vars = n_terms + n_y + n_z
+    # Coverage: Σ_{p ∋ s} x_p − y_s ≥ 0, or Σ_{p ∋ s} x_p ≥ 1 with full coverage.
+    terms, classes = np.nonzero(candidates.target)
+    rows = [classes]
+    cols = [terms]
+    data = [np.ones(len(terms))]
+    if n_y:
+        rows.append(np.arange(n_target))
+        cols.append(n_terms + np.arange(n_target))
+        data.append(-np.ones(n_target))
+    coverage = sparse.csr_array(
+        (np.concatenate(data), (np.concatenate(rows), np.concatenate(cols))), shape=(n_target, n_vars)
+    )
+    lower = np.ones(n_target) if full_coverage else np.zeros(n_target)
+    constraints = [LinearConstraint(coverage, lower, np.inf)]
+    if n_z:
+        # Inclusion: z_s − x_p ≥ 0 for every irrelevant class s (with a z) and term p ∋ s.
+        terms, touched_index = np.nonzero(candidates.irrelevant[:, touched])
+        count = len(terms)
+        inclusion = sparse.csr_array(
+            (
+                np.concatenate([-np.ones(count), np.ones(count)]),
+                (np.tile(np.arange(count), 2), np.concatenate([terms, n_terms + n_y + touched_index])),
+            ),
+            shape=(count, n_vars),
+        )
+        constraints.append(LinearConstraint(inclusion, 0.0, np.inf))
+    # y and z need not be declared integral: with x binary the optimum sets them to 0 or 1.
+    integrality = np.concatenate([np.ones(n_terms), np.zeros(n_y + n_z)])
+    result = milp(
+        cost,
+        integrality=integrality,
+        bounds=Bounds(0.0, 1.0),
+        constraints=constraints,
+        options={"mip_rel_gap": 0.0},
+    )
+    if result.x is None:  # pragma: no cover - feasibility is checked before solving
+        raise SupportiveError(f"the cover ILP failed: {result.message}")
+    return [int(p) for p in np.flatnonzero(result.x[:n_terms] > 0.5)]
+
+
+def _brute_force(problem: _Problem, candidates: _Candidates, lam: float, full_coverage: bool) -> list[int]:
+    """The optimum of the ILP's objective by trying every set of terms, smallest first; exact arithmetic."""
+    n_terms = len(candidates.lengths)
+    if n_terms > _BRUTE_FORCE_MAX_CANDIDATES:
+        raise ValueError(
+            f"brute force is for at most {_BRUTE_FORCE_MAX_CANDIDATES} candidate terms, this cover has "
+            f"{n_terms} after pruning: use method='ilp'"
+        )
+    target_bits = [_bits(row) for row in candidates.target]
+    irrelevant_bits = [_bits(row) for row in candidates.irrelevant]
+    size = [int(c) for c in _size_cost(candidates.lengths)]
+    everything = (1 << len(problem.target_rows)) - 1
+    lam_exact = Fraction(lam)
+    best: tuple[Fraction, int] | None = None
+    chosen: list[int] = []
+    # An optimal set has at most one term per target class: a term covering nothing new could be dropped.
+    for k in range(min(n_terms, len(problem.target_rows)) + 1):
+        for combo in itertools.combinations(range(n_terms), k):
+            covered = included = 0
+            for p in combo:
+                covered |= target_bits[p]
+                included |= irrelevant_bits[p]
+            if full_coverage and covered != everything:
+                continue
+            states = lam_exact * _weight(included, problem.irrelevant_weight) - (1 - lam_exact) * _weight(
+                covered, problem.target_weight
+            )
+            key = (states, sum(size[p] for p in combo))
+            if best is None or key < best:
+                best, chosen = key, list(combo)
+    return chosen
+
+
+def _bits(row: np.ndarray) -> int:
+    return sum(1 << int(i) for i in np.flatnonzero(row))
+
+
+def _weight(bits: int, weights: np.ndarray) -> int:
+    total = 0
+    while bits:
+        low = bits & -bits
+        total += int(weights[low.bit_length() - 1])
+        bits ^= low
+    return total
+
+
+def _drop_redundant(candidates: _Candidates, chosen: list[int]) -> list[int]:
+    """Drop chosen terms that cover no target class the others miss (a safety net for the tie-break)."""
+    kept = sorted(chosen, key=lambda p: -int(candidates.lengths[p]))
+    for p in list(kept):
+        others = [q for q in kept if q != p]
+        rest = candidates.target[others].any(axis=0) if others else np.zeros(candidates.target.shape[1], bool)
+        if not (candidates.target[p] & ~rest).any():
+            kept = others
+    return sorted(kept)
+
+
+def _espresso(
+    table: TruthTable,
+    target_mask: np.ndarray,
+    irrelevant_mask: np.ndarray,
+    full_coverage: bool,
+    allow_irrelevant: bool,
+) -> DNF:
+    """ESPRESSO on the truth table over the atoms: target valuations 1, irrelevant 0, the rest don't care."""
+    n_atoms = len(table.atoms)
+    if n_atoms > ESPRESSO_MAX_ATOMS:
+        raise ValueError(
+            f"ESPRESSO minimises over the full truth table of 2^{n_atoms} rows; it is limited to "
+            f"{ESPRESSO_MAX_ATOMS} atoms: use method='ilp'"
+        )
+    codes = table.values.astype(np.int64) @ (np.int64(1) << np.arange(n_atoms, dtype=np.int64))
+    target_codes = np.unique(codes[target_mask])
+    irrelevant_codes = np.unique(codes[irrelevant_mask])
+    twins = np.intersect1d(target_codes, irrelevant_codes)
+    if len(twins) and full_coverage and not allow_irrelevant:
+        states = np.flatnonzero(target_mask & np.isin(codes, twins))
+        raise NoCoverError(
+            frozenset(table.states[i] for i in states),
+            "these states hold exactly the predicates of some irrelevant state, so no conjunction separates them",
+            table.states,
+        )
+    spec = np.full(2**n_atoms, "-", dtype="<U1")
+    spec[irrelevant_codes] = "0"
+    spec[target_codes] = "1"
+    if not full_coverage:
+        spec[twins] = "0"
+    if not (spec == "1").any():
+        return DNF(())
+    if n_atoms == 0:
+        return DNF.of(Conjunction.of())
+    from pyeda.inter import espresso_tts, truthtable, ttvars  # type: ignore[import-untyped]
+
+    variables = ttvars("supportive_cover_atom", n_atoms)
+    (minimised,) = espresso_tts(truthtable(variables, "".join(spec)))
+    return _from_pyeda(minimised, table.atoms)
+
+
+def _from_pyeda(expression: typing.Any, atoms: Sequence[str]) -> DNF:
+    """A pyeda expression in DNF (constant, literal, And of literals, Or of those) as a `DNF`."""
+    from pyeda.boolalg.expr import AndOp, Complement, OrOp, Variable  # type: ignore[import-untyped]
+
+    if expression.is_zero():
+        return DNF(())
+    if expression.is_one():
+        return DNF.of(Conjunction.of())
+    clauses = expression.xs if isinstance(expression, OrOp) else (expression,)
+    conjunctions = []
+    for clause in clauses:
+        literals = clause.xs if isinstance(clause, AndOp) else (clause,)
+        converted = []
+        for literal in literals:
+            if isinstance(literal, Variable):
+                converted.append(Literal(atoms[literal.indices[0]], True))
+            elif isinstance(literal, Complement):
+                converted.append(Literal(atoms[(~literal).indices[0]], False))
+            else:  # pragma: no cover - ESPRESSO returns sums of products
+                raise TypeError(f"unexpected term {literal!r} in ESPRESSO's result")
+        conjunctions.append(Conjunction(frozenset(converted)))
+    return DNF(tuple(sorted(conjunctions, key=lambda c: (len(c), str(c)))))
+
+
+def _make_cover(
+    table: TruthTable,
+    formula: DNF,
+    target_mask: np.ndarray,
+    irrelevant_mask: np.ndarray,
+    method: CoverMethod,
+    lam: float | None,
+) -> Cover:
+    covered = table.mask(formula)
+    hits = int((covered & target_mask).sum())
+    counted = int((covered & (target_mask | irrelevant_mask)).sum())
+    included = covered & irrelevant_mask
+    omitted = target_mask & ~covered
+    n_target = int(target_mask.sum())
+    return Cover(
+        formula=formula,
+        target=_states(table, target_mask),
+        covered=_states(table, covered),
+        irrelevant_included=_states(table, included),
+        relevant_omitted=_states(table, omitted),
+        precision=hits / counted if counted else 1.0,
+        recall=hits / n_target if n_target else 1.0,
+        method=method,
+        objective=None if lam is None else lam * int(included.sum()) - (1.0 - lam) * hits,
+        exact=not included.any() and not omitted.any(),
+    )
+
+
+def _states(table: TruthTable, mask: np.ndarray) -> frozenset[Hashable]:
+    return frozenset(table.states[i] for i in np.flatnonzero(mask))
+
+
+def _listing(table: TruthTable, mask: np.ndarray) -> str:
+    states = [repr(table.states[i]) for i in np.flatnonzero(mask)]
+    shown = ", ".join(states[:_SHOWN_STATES])
+    return shown + (f", … and {len(states) - _SHOWN_STATES} more" if len(states) > _SHOWN_STATES else "")
+
+
+def _plural(count: int, word: str) -> str:
+    return word if count == 1 else word + "s"
