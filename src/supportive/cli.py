@@ -242,14 +242,22 @@ def teach(
 @app.command()
 def chat(
     file: Annotated[Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")],
+    matcher: Annotated[
+        str, typer.Option("--matcher", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra).")
+    ] = "bow",
 ) -> None:
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
     from supportive.chat import ChatConsole
+    from supportive.errors import LearningError
+    from supportive.language.understand import MATCHERS
+
+    if matcher not in MATCHERS:
+        raise LearningError(f"--matcher: unknown matcher {matcher!r}; choose {' or '.join(MATCHERS)}")
 
     def read() -> str:
         return input("> ")
 
-    ChatConsole(file, read, lambda line: out.print(line, markup=False)).run()
+    ChatConsole(file, read, lambda line: out.print(line, markup=False), matcher).run()
 
 
 @app.command()

@@ -10,11 +10,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
 
 from supportive.errors import LearningError
 from supportive.examples import load
-from supportive.language.grammar import ExplainSubtask, Preference, parse_utterance
+from supportive.language.evaluation import matcher_accuracy, read_utterance_set
 from supportive.language.grounding import (
     Candidate,
     PhraseMatcher,
@@ -254,16 +253,7 @@ def test_development_phrases(chair: PhraseMatcher) -> None:
 
 
 def _held_out_phrases() -> list[tuple[str, str]]:
-    data = yaml.safe_load(HELD_OUT.read_text(encoding="utf-8"))
-    pairs: list[tuple[str, str]] = []
-    for item in data["utterances"]:
-        if "subtasks" not in item:
-            continue
-        result = parse_utterance(item["text"])
-        assert isinstance(result, Preference | ExplainSubtask)
-        phrases = result.subtask_phrases if isinstance(result, Preference) else (result.subtask_phrase,)
-        pairs.extend(zip(phrases, item["subtasks"], strict=True))
-    return pairs
+    return read_utterance_set(HELD_OUT)
 
 
 def test_held_out_set_is_about_the_chairs_subtasks(chair: PhraseMatcher) -> None:
@@ -274,11 +264,10 @@ def test_held_out_set_is_about_the_chairs_subtasks(chair: PhraseMatcher) -> None
 
 def test_held_out_accuracy(chair: PhraseMatcher) -> None:
     pairs = _held_out_phrases()
-    ranked = [[c.key for c in chair.candidates(phrase, alpha=3)] for phrase, _ in pairs]
-    top1 = np.mean([keys[0] == gold for keys, (_, gold) in zip(ranked, pairs, strict=True)])
-    top3 = np.mean([gold in keys for keys, (_, gold) in zip(ranked, pairs, strict=True)])
-    assert top1 >= TOP1_FLOOR, f"top-1 accuracy {top1:.3f}"
-    assert top3 >= TOP3_FLOOR, f"top-3 accuracy {top3:.3f}"
+    accuracy = matcher_accuracy(chair, pairs)
+    assert accuracy.n == len(pairs)
+    assert accuracy.top1 >= TOP1_FLOOR, f"top-1 accuracy {accuracy.top1:.3f}"
+    assert accuracy.top3 >= TOP3_FLOOR, f"top-3 accuracy {accuracy.top3:.3f}"
 
 
 def test_confident_answers_are_right_on_the_held_out_set(chair: PhraseMatcher) -> None:

@@ -33,6 +33,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
+from abc import ABC, abstractmethod
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -47,10 +48,12 @@ from supportive.tasks.spec import TaskSpec
 __all__ = [
     "STOP_WORDS",
     "Candidate",
+    "Matcher",
     "PhraseMatcher",
     "from_task",
     "is_confident",
     "normalise_words",
+    "normalised_prior",
     "stem",
     "subtask_descriptions",
 ]
@@ -126,7 +129,64 @@ class Candidate:
     grounded: bool = True
 
 
-class PhraseMatcher:
+class Matcher(ABC):
+    """Ranks keys (subtasks, behaviors) for a phrase: Algorithm 6's loop over a posterior ``p(g | phrase)``.
+
+    Subclasses give :meth:`posterior`; the ranking (:meth:`candidates`, :meth:`best`) is shared.
+
+    Attributes:
+        keys: The keys, in a fixed order that also breaks ties.
+        prior: ``p(g)`` per key, in :attr:`keys` order.
+    """
+
+    keys: tuple[str, ...]
+    prior: np.ndarray
+
+    @abstractmethod
+    def posterior(self, phrase: str) -> tuple[np.ndarray, bool]:
+        """``p(g | phrase)`` for every key (in :attr:`keys` order), and whether the phrase told anything."""
+
+    def candidates(self, phrase: str, alpha: int = 3) -> list[Candidate]:
+        """Algorithm 6: the ``alpha`` most likely keys, best first, with posterior probabilities.
+
+        Each round takes the argmax of ``p(g) Π_i p(λ_i | g)`` over the keys not yet chosen (ties go to the
+        key given first). The probabilities are normalised over all keys, so they sum to 1 over all of them,
+        not over the ``alpha`` returned.
+        """
+        probabilities, grounded = self.posterior(phrase)
+        remaining = list(range(len(self.keys)))
+        chosen: list[Candidate] = []
+        for _ in range(min(max(alpha, 0), len(self.keys))):
+            best = max(remaining, key=lambda i: (probabilities[i], -i))
+            remaining.remove(best)
+            chosen.append(Candidate(self.keys[best], float(probabilities[best]), grounded))
+        return chosen
+
+    def best(self, phrase: str) -> Candidate:
+        """The most likely key for the phrase."""
+        return self.candidates(phrase, alpha=1)[0]
+
+
+def normalised_prior(keys: Sequence[str], prior: Mapping[str, float] | None) -> np.ndarray:
+    """``p(g)`` over ``keys`` from positive weights (uniform when None).
+
+    Raises:
+        LearningError: for unknown keys or a weight that is not positive.
+    """
+    if prior is None:
+        return np.full(len(keys), 1.0 / len(keys))
+    unknown = sorted(set(prior) - set(keys))
+    if unknown:
+        raise LearningError(f"prior names unknown subtasks: {', '.join(map(repr, unknown))}")
+    weights = np.array([float(prior.get(key, 0.0)) for key in keys])
+    if not np.all(np.isfinite(weights)) or np.any(weights <= 0):
+        missing = [key for key, w in zip(keys, weights, strict=True) if not w > 0]
+        raise LearningError(f"prior must be positive for every subtask; it is not for {missing[:3]!r}")
+    normalised: np.ndarray = weights / weights.sum()
+    return normalised
+
+
+class PhraseMatcher(Matcher):
     """Algorithm 6: rank keys (subtasks) by ``p(g) Π_i p(λ_i | g)`` for a phrase's words ``λ_i``.
 
     Args:
@@ -177,7 +237,7 @@ class PhraseMatcher:
                 texts.append(words)
                 owner.append(k)
                 weight.append(first_weight if j == 0 else 1.0)
-        self.prior = self._prior(prior)
+        self.prior = normalised_prior(self.keys, prior)
         self.smoothing = smoothing
         self.typo_cutoff = typo_cutoff
         self._vectorizer = CountVectorizer(analyzer=_identity)
@@ -191,19 +251,6 @@ class PhraseMatcher:
         self._index: dict[str, int] = {w: int(i) for w, i in self._vectorizer.vocabulary_.items()}
         self.vocabulary: tuple[str, ...] = tuple(sorted(self._index))
         self._known: dict[str, str | None] = {w: w for w in self._index}
-
-    def _prior(self, prior: Mapping[str, float] | None) -> np.ndarray:
-        if prior is None:
-            return np.full(len(self.keys), 1.0 / len(self.keys))
-        unknown = sorted(set(prior) - set(self.keys))
-        if unknown:
-            raise LearningError(f"prior names unknown subtasks: {', '.join(map(repr, unknown))}")
-        weights = np.array([float(prior.get(key, 0.0)) for key in self.keys])
-        if not np.all(np.isfinite(weights)) or np.any(weights <= 0):
-            missing = [key for key, w in zip(self.keys, weights, strict=True) if not w > 0]
-            raise LearningError(f"prior must be positive for every subtask; it is not for {missing[:3]!r}")
-        normalised: np.ndarray = weights / weights.sum()
-        return normalised
 
     def words(self, phrase: str) -> list[str]:
         """The phrase's words as the model knows them (typos mapped, unknown words dropped).
@@ -231,26 +278,6 @@ class PhraseMatcher:
         joint -= joint.max()
         probabilities = np.exp(joint)
         return probabilities / probabilities.sum(), True
-
-    def candidates(self, phrase: str, alpha: int = 3) -> list[Candidate]:
-        """Algorithm 6: the ``alpha`` most likely keys, best first, with posterior probabilities.
-
-        Each round takes the argmax of ``p(g) Π_i p(λ_i | g)`` over the keys not yet chosen (ties go to the
-        key given first). The probabilities are normalised over all keys, so they sum to 1 over all of them,
-        not over the ``alpha`` returned.
-        """
-        probabilities, grounded = self.posterior(phrase)
-        remaining = list(range(len(self.keys)))
-        chosen: list[Candidate] = []
-        for _ in range(min(max(alpha, 0), len(self.keys))):
-            best = max(remaining, key=lambda i: (probabilities[i], -i))
-            remaining.remove(best)
-            chosen.append(Candidate(self.keys[best], float(probabilities[best]), grounded))
-        return chosen
-
-    def best(self, phrase: str) -> Candidate:
-        """The most likely key for the phrase."""
-        return self.candidates(phrase, alpha=1)[0]
 
 
 def is_confident(candidates: Sequence[Candidate], threshold: float = 0.6, margin: float = 0.2) -> bool:

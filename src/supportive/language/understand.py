@@ -19,12 +19,15 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 from supportive.language.grammar import Preference, UnderstandingError, parse_condition
-from supportive.language.grounding import Candidate, PhraseMatcher, from_task, is_confident, normalise_words
+from supportive.language.grounding import Candidate, Matcher, from_task, is_confident, normalise_words
 from supportive.language.states import TaskStates
 from supportive.tasks.behaviors import BehaviorCategory, SupportiveBehavior
 from supportive.tasks.formula import DNF, Conjunction, Literal
 
-__all__ = ["ConditionReader", "Understanding", "Understood", "guess_category"]
+__all__ = ["MATCHERS", "ConditionReader", "Understanding", "Understood", "guess_category"]
+
+MATCHERS = ("bow", "embeddings")
+"""The subtask matchers: bag of words (Algorithm 6 as in the thesis) or sentence embeddings."""
 
 _CATEGORY_VERBS: dict[BehaviorCategory, tuple[str, ...]] = {
     BehaviorCategory.MATERIALS_RETRIEVAL: ("give", "hand", "bring", "fetch", "pass", "get", "find"),
@@ -143,16 +146,28 @@ class Understanding:
     Args:
         states: The task's states (and, through them, its spec and behaviors).
         alpha: Candidates Algorithm 6 returns per subtask phrase.
+        matcher: ``"bow"`` (bag of words, naive Bayes) or ``"embeddings"`` (sentence embeddings; the
+            ``embeddings`` extra).
+
+    Raises:
+        ValueError: for another matcher name.
     """
 
-    def __init__(self, states: TaskStates, alpha: int = 3) -> None:
+    def __init__(self, states: TaskStates, alpha: int = 3, matcher: str = "bow") -> None:
+        if matcher not in MATCHERS:
+            raise ValueError(f"unknown matcher {matcher!r} (choose {' or '.join(MATCHERS)})")
         self.states = states
         self.alpha = alpha
+        self.matcher = matcher
         self.conditions = ConditionReader(states)
 
     @cached_property
-    def subtask_matcher(self) -> PhraseMatcher:
-        """Algorithm 6 over the task's named subtasks."""
+    def subtask_matcher(self) -> Matcher:
+        """Algorithm 6 over the task's named subtasks, with the chosen matcher."""
+        if self.matcher == "embeddings":
+            from supportive.language.embeddings import from_task_embeddings
+
+            return from_task_embeddings(self.states.spec, self.states.structure)
         return from_task(self.states.spec, self.states.structure)
 
     def behavior_for(self, phrase: str) -> SupportiveBehavior | None:
