@@ -6,17 +6,17 @@ from pathlib import Path
 
 import pytest
 
-from supportive.io import parse_task_file
+from supportive.io import parse_task_file, parse_task_string
 from supportive.language.explain import (
     explain_behavior,
     explain_subtask,
-    gerund,
     initiation_states,
     verbalize,
 )
 from supportive.language.grammar import UnderstandingError, parse_utterance
 from supportive.language.states import TaskStates
 from supportive.language.understand import ConditionReader, Understanding, guess_category
+from supportive.language.wording import activity, gerund
 from supportive.tasks.behaviors import BehaviorCategory
 from supportive.tasks.formula import parse_formula
 
@@ -74,7 +74,7 @@ def test_explain_subtask_and_behavior_sentences(chair: TaskStates) -> None:
 def test_the_thesis_example_shape(chair: TaskStates) -> None:
     """The give-screws start region is the thesis's two-clause shape: placed and not attached (left or right)."""
     clause = explain_behavior(chair, "give-screws").clauses[0]
-    assert clause.subtask == "Screw seat" and clause.stop_words == "screw seat is done"
+    assert clause.subtask == "Screw seat" and clause.stop_words == "you have finished screwing seat"
 
 
 def test_preferences_update_or_create_behaviors(chair: TaskStates) -> None:
@@ -96,3 +96,41 @@ def test_small_helpers() -> None:
     assert gerund("Tighten nut") == "tightening nut" and gerund("Put seat") == "putting seat"
     assert guess_category("carry the table with me") is BehaviorCategory.COLLABORATIVE_OBJECT_MANIPULATION
     assert guess_category("point at the next bolt") is BehaviorCategory.TASK_PROGRESSION_GUIDANCE
+
+
+NOUN_NAMED = """\
+name: frame
+actions:
+  - {id: left, text: "stand the left side up"}
+  - {id: right, text: "stand the right side up"}
+  - {id: rail, text: "seat the rail on the pegs"}
+  - {id: cap, text: "put the cap on"}
+structure:
+  chain:
+    - {clique: [left, right], name: Whole frame}
+    - {chain: [rail, cap], name: Seat rail}
+behaviors:
+  - {name: steady, text: hold the frame steady, category: materials stabilization, subtasks: [Whole frame],
+     initiation: "not active(Whole frame)"}
+"""
+
+
+def test_subtasks_named_by_a_noun_are_worked_on_not_gerundised() -> None:
+    states = TaskStates.of(parse_task_string(NOUN_NAMED, "yaml"))
+    text = explain_subtask(states, "Whole frame").text
+    assert text.startswith("When you are working on whole frame, I can hold the frame steady when you are not ")
+    assert "wholing" not in text and "you are not working on whole frame" in text
+    assert states.activity("Whole frame") == "working on whole frame"
+    assert activity("Seat rail") == "working on seat rail"
+    assert states.activity("Seat rail") == "seating rail"  # the task's own texts begin with "seat"
+    assert gerund("Make French toast") == "making French toast" and activity("V structure") == "working on V structure"
+
+
+def test_every_sentence_names_a_subtask_the_same_way(chair: TaskStates) -> None:
+    """A subtask is always said as an activity ("screwing seat"), never by its bare name ("screw seat")."""
+    names = [name.lower() for name in chair.subtasks]
+    texts = [explain_subtask(chair, s).text for s in chair.subtasks]
+    texts += [explain_behavior(chair, b).text for b in chair.spec.behaviors]
+    for text in texts:
+        assert not [name for name in names if name in text.lower()], text
+    assert "when you are not screwing seat, until you are screwing seat" in explain_subtask(chair, "Screw seat").text

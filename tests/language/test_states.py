@@ -55,7 +55,7 @@ def test_chair_regions() -> None:
     give = states.region("placed(seat) and not attached(seat, left_frame) or placed(seat) and not attached(seat, right_frame)")
     assert screws <= give
     assert states.say(Literal("attached(seat, left_frame)")) == "the seat is attached to the left frame"
-    assert states.say(Literal("done(Attach seat)", False)) == "attach seat is not done"
+    assert states.say(Literal("done(Attach seat)", False)) == "you have not finished attaching seat"
 
 
 def test_no_structure() -> None:

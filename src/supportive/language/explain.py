@@ -18,44 +18,17 @@ from dataclasses import dataclass
 from supportive.language.cover import Cover, NoCoverError, describe_precision, minimal_cover
 from supportive.language.states import TaskStates
 from supportive.tasks.behaviors import SupportiveBehavior
-from supportive.tasks.formula import DNF
+from supportive.tasks.formula import DNF, Literal
 
 __all__ = [
     "Explanation",
     "PolicyClause",
     "explain_behavior",
     "explain_subtask",
-    "gerund",
     "initiation_states",
     "scope",
     "verbalize",
 ]
-
-
-_VOWELS = set("aeiou")
-
-
-def gerund(phrase: str) -> str:
-    """An imperative subtask name as what a person is doing: "Screw seat" → "screwing seat".
-
-    >>> [gerund(x) for x in ("Screw seat", "Prepare left frame", "Chop carrots", "Add pegs", "Open lid", "Tie up")]
-    ['screwing seat', 'preparing left frame', 'chopping carrots', 'adding pegs', 'opening lid', 'tying up']
-    """
-    verb, _, rest = phrase.strip().lower().partition(" ")
-    if verb.endswith("ing"):
-        word = verb
-    elif verb.endswith("ie"):
-        word = verb[:-2] + "ying"
-    elif verb.endswith("e") and not verb.endswith("ee") and len(verb) > 2:
-        word = verb[:-1] + "ing"
-    elif (
-        len(verb) >= 3 and sum(c in _VOWELS for c in verb) == 1 and verb[-1] not in _VOWELS | set("wxy")
-        and verb[-2] in _VOWELS and verb[-3] not in _VOWELS
-    ):
-        word = verb + verb[-1] + "ing"
-    else:
-        word = verb + "ing"
-    return f"{word} {rest}".strip()
 
 
 def verbalize(formula: DNF, states: TaskStates) -> str:
@@ -81,10 +54,14 @@ def verbalize(formula: DNF, states: TaskStates) -> str:
 
 @dataclass(frozen=True)
 class PolicyClause:
-    """One behavior within one subtask: when it starts and when it stops, as covers and words."""
+    """One behavior within one subtask: when it starts and when it stops, as covers and words.
+
+    ``activity`` is the subtask as the sentence says it (:meth:`TaskStates.activity`).
+    """
 
     behavior: SupportiveBehavior
     subtask: str
+    activity: str
     start: Cover | None
     stop: Cover | None
     start_words: str
@@ -95,7 +72,7 @@ class PolicyClause:
         when = "at any point" if self.start_words == "at any point" else f"when {self.start_words}"
         if about == "subtask":
             return f"{self.behavior.text} {when}, until {self.stop_words}"
-        return f"While you are {gerund(self.subtask)}, I will {self.behavior.text} {when}, until {self.stop_words}"
+        return f"While you are {self.activity}, I will {self.behavior.text} {when}, until {self.stop_words}"
 
     def caveats(self) -> list[str]:
         """What the robot admits about its description's precision."""
@@ -152,10 +129,10 @@ def _clause(states: TaskStates, behavior: SupportiveBehavior, subtask: str, max_
     start, start_words = _describe(states, initiation_states(states, behavior), during, max_literals)
     stop, stop_words = _describe(states, states.region(behavior.termination), during, max_literals)
     if stop_words == "never":
-        stop_words = f"{subtask.lower()} is done"
+        stop_words = states.say(Literal(f"done({subtask})"))
     elif stop_words == "at any point":
         stop_words = "you tell me to stop"
-    return PolicyClause(behavior, subtask, start, stop, start_words, stop_words)
+    return PolicyClause(behavior, subtask, states.activity(subtask), start, stop, start_words, stop_words)
 
 
 def _starts_in(states: TaskStates, behavior: SupportiveBehavior, subtask: str) -> bool:
@@ -171,18 +148,18 @@ def explain_subtask(states: TaskStates, subtask: str, *, max_literals: int = 3) 
     >>> from supportive.io import parse_task_file
     >>> chair = TaskStates.of(parse_task_file("examples/ikea-chair.yaml"))
     >>> print(explain_subtask(chair, "Fasten nuts and bolts").text)  # doctest: +NORMALIZE_WHITESPACE
-    When you are fastening nuts and bolts, I can hand you the hex key at any point, until fasten nuts and bolts
-    is done; and I can point out the next bolt to fasten when you are working on fasten nuts and bolts, until
-    fasten nuts and bolts is done.
+    When you are fastening nuts and bolts, I can hand you the hex key at any point, until you have finished
+    fastening nuts and bolts; and I can point out the next bolt to fasten when you are fastening nuts and bolts,
+    until you have finished fastening nuts and bolts.
     """
     states.during(subtask)  # raises KeyError for an unknown name
     behaviors = [b for b in states.spec.behaviors if _starts_in(states, b, subtask)]
     if not behaviors:
-        return Explanation(f"When you are {gerund(subtask)}, I have no supportive behavior to offer.", ())
+        return Explanation(f"When you are {states.activity(subtask)}, I have no supportive behavior to offer.", ())
     clauses = tuple(_clause(states, b, subtask, max_literals) for b in behaviors)
     said = "; and I can ".join(c.sentence(about="subtask") for c in clauses)
     caveats = [line for c in clauses for line in c.caveats()]
-    return Explanation(" ".join([f"When you are {gerund(subtask)}, I can {said}.", *caveats]), clauses)
+    return Explanation(" ".join([f"When you are {states.activity(subtask)}, I can {said}.", *caveats]), clauses)
 
 
 def explain_behavior(states: TaskStates, behavior: str | SupportiveBehavior, *, max_literals: int = 3) -> Explanation:

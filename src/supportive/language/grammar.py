@@ -43,6 +43,7 @@ from lark import Lark, Token, Tree
 from lark.exceptions import LarkError
 
 from supportive.errors import SupportiveError
+from supportive.language.wording import EVERYDAY_VERBS
 
 __all__ = [
     "GRAMMAR",
@@ -118,6 +119,7 @@ class UnderstandingError(SupportiveError, ValueError):
 # dynamic Earley lexer. A quoted keyword matches a whole word only (`_parser` bounds each with \b); WORD matches
 # any word but the clause openers in HARD, so keywords may also occur inside phrases. Sets of openers that
 # many rules expect ("when", "as long as", "I'd like you to", …) are single terminals: fewer Earley items.
+# VERB is the closed list `supportive.language.wording.EVERYDAY_VERBS`.
 GRAMMAR = r"""
 start: _lead? (preference | explain_subtask | explain_behavior) _tail?
 
@@ -239,9 +241,9 @@ HARD: /(?:when|whenever|while|if|until|till|during|am)\b/
 WORD: /(?!(?:when|whenever|while|if|until|till|during|am)\b)[^\W_]+/
 ING: /[^\W\d_]+ing\b/
 DET: /(?:the|a|an|my|your|its|their|this|that|these|those|both|each|every|one|another|some)\b/
-VERB: /(?:give|hand|pass|bring|fetch|get|grab|take|hold|keep|steady|stabilize|stabilise|lift|raise|lower|move|put|place|lay|push|pull|press|turn|rotate|flip|tighten|loosen|unscrew|fasten|attach|detach|mount|insert|remove|fit|align|clamp|secure|prepare|assemble|build|add|pick|stand|open|close|clean|tidy|clear|show|tell|remind|warn|watch|check|wait|stop|start|help|point|shine|read|count|sort|stay|come|go|let|make|do|find|offer|provide|drive|thread|carry|apply|fix|finish|begin|continue|repeat)\b/
+VERB: /(?:{verbs})\b/
 %ignore " "
-"""
+""".replace("{verbs}", "|".join(EVERYDAY_VERBS))
 
 _STARTS = (
     "start",

@@ -25,6 +25,7 @@ import numpy as np
 
 from supportive.errors import LearningError
 from supportive.language.dnf import TruthTable
+from supportive.language.wording import activity
 from supportive.tasks.behaviors import DERIVED_PREDICATES, PredicateSpec
 from supportive.tasks.formula import DNF, Conjunction, Literal, parse_formula, split_atom
 from supportive.tasks.htn import ChainNode, CliqueNode, Leaf, Node, allowed_next, internal_nodes
@@ -121,15 +122,24 @@ class TaskStates:
                 kept.append(frozenset(lit for lit in literals if lit.atom in known))
         return self.table.states_of(DNF(tuple(Conjunction(c) for c in kept)))  # type: ignore[return-value]
 
+    @cached_property
+    def verbs(self) -> frozenset[str]:
+        """The words the task's action texts begin with: verbs of this task, whatever the general list says."""
+        return frozenset(a.text.split()[0].lower() for a in self.spec.actions if a.text and a.text.split())
+
+    def activity(self, subtask: str) -> str:
+        """A subtask as what the person is doing at it ("screwing seat", "working on yellow tower")."""
+        return activity(subtask, self.verbs)
+
     def say(self, literal: Literal) -> str:
-        """A literal in words, with its predicate's template.
+        """A literal in words, with its predicate's template (a subtask said as an activity).
 
         Raises:
             KeyError: for an atom of an unknown predicate.
         """
         name, args = split_atom(literal.atom)
         if name in DERIVED_PREDICATES:
-            args = tuple(a.lower() for a in args)
+            args = tuple(self.activity(a) for a in args)
         return self.predicates[name].say(args, literal.positive)
 
 

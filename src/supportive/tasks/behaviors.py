@@ -16,7 +16,8 @@ __all__ = ["DERIVED_PREDICATES", "BehaviorCategory", "PredicateSpec", "Supportiv
 DERIVED_PREDICATES: dict[str, PredicateSpec] = {}
 """Predicates every task with a structure has, over its named subtasks: ``done(S)`` (all of S is done),
 ``active(S)`` (S is under way: begun, not finished) and ``ready(S)`` (S not begun, but it may begin next).
-Filled in below."""
+Their ``?subtask`` is spoken as an activity ("screwing seat", :func:`supportive.language.wording.activity`),
+so every sentence names a subtask the same way. Filled in below."""
 
 
 class BehaviorCategory(enum.Enum):
@@ -95,10 +96,10 @@ class SupportiveBehavior:
 
 DERIVED_PREDICATES.update(
     {
-        "done": PredicateSpec("done", ("subtask",), "?subtask is done", "?subtask is not done"),
-        "active": PredicateSpec(
-            "active", ("subtask",), "you are working on ?subtask", "you are not working on ?subtask"
+        "done": PredicateSpec(
+            "done", ("subtask",), "you have finished ?subtask", "you have not finished ?subtask"
         ),
+        "active": PredicateSpec("active", ("subtask",), "you are ?subtask", "you are not ?subtask"),
         "ready": PredicateSpec("ready", ("subtask",), "you can start ?subtask", "you cannot start ?subtask yet"),
     }
 )
