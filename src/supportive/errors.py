@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 __all__ = [
+    "CircuitError",
     "DatasetError",
     "ExperimentError",
     "ExportError",
@@ -18,6 +19,8 @@ __all__ = [
     "MapFileError",
     "MissingExtraError",
     "ObservationFileError",
+    "PlanningError",
+    "ScenarioFileError",
     "SupportiveError",
     "TaskFileError",
     "TaskGraphError",
@@ -79,6 +82,10 @@ class MapFileError(FileFormatError):
     """A household map (one character per cell) is unreadable or unusable; the message gives line and column."""
 
 
+class ScenarioFileError(FileFormatError):
+    """A support-planning scenario file (a table, its objects and a goal) is unreadable or breaks the schema."""
+
+
 class TaskGraphError(SupportiveError, ValueError):
     """Demonstrations that cannot form a task graph (for example, explicit states that contradict each other)."""
 
@@ -89,6 +96,16 @@ class LearningError(SupportiveError, ValueError):
 
 class ExportError(SupportiveError):
     """An export (HDDL, DOT, …) failed or needs an optional dependency that is not installed."""
+
+
+class PlanningError(SupportiveError, ValueError):
+    """A planning problem is malformed or has no solution the planner can find (no plan reaches the goal,
+    a plan names an object the world does not have, …)."""
+
+
+class CircuitError(PlanningError):
+    """A circuit piece placed where it cannot go (off the board, overlapping, unsupported), or an unknown
+    piece kind."""
 
 
 class DatasetError(SupportiveError, ValueError):

@@ -1,0 +1,96 @@
+"""The table: the shared surface, the lead-only goal area (a snap board, an assembly area), an optional tray
+beside the support agent that the lead cannot reach, each arm's reach, and the coarse grid of space cells
+that says which operators contend for the same space (Algorithm 5's "physical space utilized").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from supportive.envs.tabletop.geometry import Point, Rect
+from supportive.errors import PlanningError
+
+__all__ = ["TableLayout"]
+
+
+@dataclass(frozen=True)
+class TableLayout:
+    """Where things may lie and who reaches what.
+
+    Attributes:
+        table: The shared table top.
+        goal_area: Where the lead builds (inside the table); nothing else may lie there.
+        tray: A surface beside the support agent that the lead cannot reach, or None.
+        lead_reach: What the lead reaches (default: the whole table — the thesis's full shared reach).
+        support_reach: What the support agent reaches (default: the table and the tray).
+        cell: Side of a space cell, cm.
+        clearance: Least gap between two objects lying side by side, cm.
+    """
+
+    table: Rect
+    goal_area: Rect
+    tray: Rect | None = None
+    lead_reach: Rect | None = None
+    support_reach: Rect | None = None
+    cell: float = 10.0
+    clearance: float = 1.0
+
+    def __post_init__(self) -> None:
+        if not self.table.encloses(self.goal_area):
+            raise PlanningError(f"the goal area {self.goal_area} is not on the table {self.table}")
+        if self.tray is not None and self.tray.overlaps(self.table):
+            raise PlanningError(f"the tray {self.tray} overlaps the table {self.table}")
+        if self.cell <= 0 or self.clearance < 0:
+            raise PlanningError("cell must be > 0 and clearance >= 0")
+
+    @property
+    def surfaces(self) -> tuple[Rect, ...]:
+        """Where objects may be put down: the table, and the tray if there is one."""
+        return (self.table,) if self.tray is None else (self.table, self.tray)
+
+    @property
+    def bounds(self) -> Rect:
+        """The rectangle around every surface."""
+        rects = self.surfaces
+        return Rect(
+            min(r.x0 for r in rects),
+            min(r.y0 for r in rects),
+            max(r.x1 for r in rects),
+            max(r.y1 for r in rects),
+        )
+
+    def reach(self, lead: bool) -> Rect:
+        """What the lead (or the support agent) reaches."""
+        if lead:
+            return self.lead_reach or self.table
+        return self.support_reach or self.bounds
+
+    def lies_on_surface(self, footprint: Rect) -> bool:
+        """Whether an object with this footprint lies wholly on one surface and off the goal area."""
+        if footprint.overlaps(self.goal_area, self.clearance):
+            return False
+        return any(surface.encloses(footprint) for surface in self.surfaces)
+
+    def cells(self, footprint: Rect) -> frozenset[tuple[str, int, int]]:
+        """The space cells a footprint covers, as ``("cell", column, row)``."""
+        origin = self.bounds
+        c0 = math.floor((footprint.x0 - origin.x0) / self.cell)
+        c1 = math.floor((footprint.x1 - origin.x0) / self.cell)
+        r0 = math.floor((footprint.y0 - origin.y0) / self.cell)
+        r1 = math.floor((footprint.y1 - origin.y0) / self.cell)
+        return frozenset(("cell", c, r) for c in range(c0, c1 + 1) for r in range(r0, r1 + 1))
+
+    def sample_point(self, u: float, v: float, w: float) -> Point:
+        """A point on the surfaces from three uniform numbers in [0, 1): ``u`` picks the surface (by area),
+        ``v`` and ``w`` the position on it."""
+        surfaces = self.surfaces
+        areas = [s.width * s.height for s in surfaces]
+        pick = u * sum(areas)
+        chosen = surfaces[-1]
+        for surface, area in zip(surfaces, areas, strict=True):
+            if pick < area:
+                chosen = surface
+                break
+            pick -= area
+        return (chosen.x0 + v * chosen.width, chosen.y0 + w * chosen.height)

@@ -1,0 +1,64 @@
+"""The state of a tabletop world: where every object is, what the goal area holds, where the hands are.
+
+States are immutable; operators make new ones. An object is on a surface (with a pose), in the goal area,
+or held by an agent (keeping the pose it was picked from, which is what its turns are counted from).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from enum import IntEnum
+from typing import Generic, TypeVar
+
+from supportive.envs.tabletop.geometry import Point
+from supportive.envs.tabletop.items import TablePose
+
+__all__ = ["Status", "TabletopState"]
+
+GoalT = TypeVar("GoalT")
+
+
+class Status(IntEnum):
+    """Where an object is."""
+
+    TABLE = 0
+    GOAL = 1
+    HELD_LEAD = 2
+    HELD_SUPPORT = 3
+
+
+@dataclass(frozen=True)
+class TabletopState(Generic[GoalT]):
+    """A tabletop world's state.
+
+    Attributes:
+        poses: Each object's pose on a surface (its last one while it is held; None once in the goal area).
+        status: Each object's :class:`Status`.
+        goal: What the goal area holds (a snap board, the assembled parts): the world's own type.
+        hands: The lead's and the support agent's end-effector positions.
+    """
+
+    poses: tuple[TablePose | None, ...]
+    status: tuple[Status, ...]
+    goal: GoalT
+    hands: tuple[Point, Point]
+
+    def moved(self, item: int, pose: TablePose | None, status: Status) -> TabletopState[GoalT]:
+        """The state with object ``item`` at ``pose`` with ``status``."""
+        poses = list(self.poses)
+        poses[item] = pose
+        statuses = list(self.status)
+        statuses[item] = status
+        return replace(self, poses=tuple(poses), status=tuple(statuses))
+
+    def with_hand(self, lead: bool, point: Point) -> TabletopState[GoalT]:
+        """The state with the lead's (or the support agent's) hand at ``point``."""
+        hands = (point, self.hands[1]) if lead else (self.hands[0], point)
+        return replace(self, hands=hands)
+
+    def held_by(self, status: Status) -> int | None:
+        """The object held with ``status`` (HELD_LEAD or HELD_SUPPORT), if any."""
+        for item, s in enumerate(self.status):
+            if s is status:
+                return item
+        return None

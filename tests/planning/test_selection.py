@@ -1,0 +1,119 @@
+"""Choosing support: ties go to doing nothing, same seed same choice, any number of workers same scores."""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+import dask.distributed as distributed
+import pytest
+
+from supportive.errors import PlanningError
+from supportive.planning.hypothetical import hypothetical_environments
+from supportive.planning.problem import SupportProblem
+from supportive.planning.prototypes import Prototype
+from supportive.planning.selection import SupportPlanner
+
+
+def problem_of(line_world_type: Any) -> SupportProblem[Any, Any, Any]:
+    world = line_world_type(["a", "b", "c"], [8.0, 9.0, 12.0])
+    return SupportProblem.of(world, world.plans())
+
+
+def test_doing_nothing_wins_when_nothing_helps(line_world_type: Any) -> None:
+    """Objects already at 1 cannot come nearer: no move shortens a plan, so the agent stays put."""
+    world = line_world_type(["a", "b"], [1.0, 1.0], support_hand=1.0)
+    problem = SupportProblem.of(world, world.plans())
+    decision = SupportPlanner("conservative", environments=100).fit(problem).decide(problem, seed=0)
+    assert not decision.helps and decision.score == decision.idle_score and decision.expected_saving == 0.0
+    assert len(decision.scores) == len(decision.candidates.environments) > 0
+
+
+def test_same_seed_same_decision(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    planner = SupportPlanner("conservative", environments=15).fit(problem)
+    first, again = planner.decide(problem, seed=4), planner.decide(problem, seed=4)
+    assert first.scores == again.scores and first.chosen == again.chosen
+    assert planner.decide(problem, seed=5).candidates.environments != first.candidates.environments
+
+
+def test_local_processes_score_exactly_as_in_process(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    alone = SupportPlanner("aggressive", environments=40).fit(problem).decide(problem, seed=2)
+    with SupportPlanner("aggressive", environments=40, workers=2).fit(problem) as planner:
+        shared = planner.decide(problem, seed=2)
+    assert shared.scores == alone.scores and shared.chosen == alone.chosen
+
+
+def test_dask_scores_exactly_as_in_process(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    alone = SupportPlanner("conservative", environments=30).fit(problem).decide(problem, seed=3)
+    cluster = distributed.LocalCluster(
+        n_workers=1,
+        threads_per_worker=2,
+        processes=False,
+        dashboard_address=None,
+        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        silence_logs=logging.ERROR,
+    )
+    with cluster, distributed.Client(cluster) as client:
+        planner = SupportPlanner("conservative", environments=30, client=client).fit(problem)
+        remote = planner.decide(problem, seed=3)
+        planner.close()
+    assert remote.scores == alone.scores and remote.chosen == alone.chosen
+
+
+def test_favoured_plans_and_saving(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    decision = SupportPlanner("conservative", environments=500).fit(problem).decide(problem, seed=1)
+    assert decision.favoured() == [1]  # b moved to 1: its plan 18 → 11 s
+    weights = decision.weights
+    assert decision.expected_saving == pytest.approx(weights[1] * 7 / sum(weights))
+
+
+def test_the_planner_must_be_fitted_on_the_same_problem(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    with pytest.raises(PlanningError, match="not fitted"):
+        SupportPlanner().decide(problem)
+    other = line_world_type(["a"], [3.0])
+    planner = SupportPlanner(environments=5).fit(SupportProblem.of(other, other.plans()))
+    with pytest.raises(PlanningError, match="fitted on another"):
+        planner.decide(problem)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"environments": 0}, "environments"),
+        ({"penalty_factor": 1.0}, "penalty_factor"),
+        ({"scheme": "x"}, "scheme"),
+    ],
+)
+def test_bad_planner_options(options: dict[str, Any], message: str) -> None:
+    with pytest.raises(PlanningError, match=message):
+        SupportPlanner(**options)
+
+
+def test_workers_and_a_client_are_exclusive(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    planner = SupportPlanner(environments=5, workers=2, client=object()).fit(problem)
+    with pytest.raises(PlanningError, match="not both"):
+        planner.decide(problem)
+
+
+def test_hypotheticals_discard_what_cannot_be_done(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    found = hypothetical_environments(problem, 100, seed=0)
+    assert len(found.environments) == 57  # 3 objects × 20 places, less the 3 where they lie
+    assert found.discarded == {"unreachable": 3, "duplicate": found.sampled - 60}
+    assert all(env.plan and env.duration > 0 for env in found.environments)
+
+
+def test_prototypes_parse_and_match() -> None:
+    assert Prototype.parse("inCircuit(*)").matches(("inCircuit", "battery-1"))
+    assert not Prototype.parse("inCircuit(*)").matches(("inCircuit", "a", "b"))
+    assert Prototype.parse("at(?x, 3)").matches(("at", "a", "3"))
+    assert str(Prototype.parse(" at ( a , * ) ")) == "at(a, *)"
+    for bad in ("", "1x(a)", "p(a,,b)"):
+        with pytest.raises(PlanningError):
+            Prototype.parse(bad)
