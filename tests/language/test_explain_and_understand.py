@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -129,8 +130,62 @@ def test_subtasks_named_by_a_noun_are_worked_on_not_gerundised() -> None:
 def test_every_sentence_names_a_subtask_the_same_way(chair: TaskStates) -> None:
     """A subtask is always said as an activity ("screwing seat"), never by its bare name ("screw seat")."""
     names = [name.lower() for name in chair.subtasks]
-    texts = [explain_subtask(chair, s).text for s in chair.subtasks]
+    texts = [explain_subtask(chair, s).text for s in ("Screw seat", "Attach seat", "Fasten nuts and bolts", "Build frame")]
     texts += [explain_behavior(chair, b).text for b in chair.spec.behaviors]
     for text in texts:
         assert not [name for name in names if name in text.lower()], text
     assert "when you are not screwing seat, until you are screwing seat" in explain_subtask(chair, "Screw seat").text
+
+
+LIGHTS = """\
+name: lights
+actions:
+  - {id: a, effects: ["p"]}
+  - {id: b, effects: ["q"]}
+  - {id: c, effects: ["r"]}
+predicates:
+  - {name: p, text: "the p light is on"}
+  - {name: q, text: "the q light is on"}
+  - {name: r, text: "the r light is on"}
+structure: {clique: [a, b, c], name: Switch lights}
+behaviors:
+  - {name: beep, text: beep, category: enhancing awareness, subtasks: [Switch lights], initiation: "p and q"}
+  - {name: blink, text: blink, category: enhancing awareness, subtasks: [Switch lights],
+     initiation: "p and not r", termination: "q and r and not p"}
+"""
+
+
+def test_what_the_predicates_cannot_say_is_admitted_in_a_sentence() -> None:
+    """With one literal per term, "p and q" cannot be said at all and "p and not r" only imprecisely."""
+    lights = TaskStates.of(parse_task_string(LIGHTS, "yaml"))
+    beep = explain_behavior(lights, "beep", max_literals=1)
+    assert beep.text == (
+        "While you are switching lights, I will beep in one situation I have no words for, until you have "
+        "finished switching lights."
+    )
+    blink = explain_behavior(lights, "blink", max_literals=1)
+    (clause,) = blink.clauses
+    assert clause.start is not None and not clause.start.exact and clause.start_words == "the p light is on"
+    assert clause.stop_words == ""
+    assert blink.text == (
+        "While you are switching lights, I will blink when the p light is on, until a situation I have no words "
+        "for. (That description of when I start covers all 2 relevant states and 1 irrelevant one.)"
+    )
+    assert "<" not in explain_subtask(lights, "Switch lights", max_literals=1).text
+    exact = explain_behavior(lights, "blink").text  # three literals are enough
+    assert "when the p light is on and the r light is not on, until the q light is on" in exact
+    assert "description" not in exact
+
+
+def test_a_behavior_tied_to_no_subtask_is_explained_over_the_whole_task(chair: TaskStates) -> None:
+    understanding = Understanding(chair)
+    glue = understanding.apply(parse_utterance("when the seat is not placed, give me glue")).behavior
+    assert glue.subtasks == () and glue.initiation == "not placed(seat)"
+    answer = explain_behavior(chair, glue)
+    (clause,) = answer.clauses
+    assert clause.subtask is None and len(initiation_states(chair, glue)) > 1
+    assert answer.text.startswith("Whatever you are doing, I will give you glue when the seat is not in place")
+    assert "never" not in answer.text
+    assert chair.region(ConditionReader(chair).read(clause.start_words)) == initiation_states(chair, glue)
+    nowhere = explain_behavior(chair, replace(glue, initiation="false"))
+    assert nowhere.text == "I will never give you glue: it starts in no state of the task." and not nowhere.clauses

@@ -2,12 +2,12 @@
 
 Two requests: about a subtask ("How will you help me attach the seat?") — every behavior that may start
 during it, with when it starts and when it stops — and about a behavior ("When will you give me screws?") —
-every subtask it belongs to, with the same two conditions. Each condition is the behavior's initiation (or
-termination) region intersected with the subtask's states, described by the smallest DNF over the task's
-predicates (:func:`~supportive.language.cover.minimal_cover`; states outside the subtask are "don't care":
+every subtask it belongs to (the whole task for a behavior tied to none), with the same two conditions.
+Each condition is the behavior's initiation (or termination) region intersected with the subtask's states,
+described by the smallest DNF over the task's predicates (:func:`~supportive.language.cover.minimal_cover`; states outside the subtask are "don't care":
 the sentence is about the subtask) and spoken with the predicates' templates. When no formula covers a region
 exactly the robot says so, and how precise its best description is; when the predicates cannot describe it
-at all it says "I have no words for …".
+at all it says in how many situations it would, but has no words for them.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from supportive.tasks.behaviors import SupportiveBehavior
 from supportive.tasks.formula import DNF, Literal
 
 __all__ = [
+    "ANY_POINT",
     "Explanation",
     "PolicyClause",
     "explain_behavior",
@@ -52,15 +53,23 @@ def verbalize(formula: DNF, states: TaskStates) -> str:
     return ", or ".join(spoken) if len(spoken) > 1 and any(" and " in s for s in spoken) else " or ".join(spoken)
 
 
+ANY_POINT = "at any point"
+"""The words for a region that is all of the states the sentence is about."""
+
+
 @dataclass(frozen=True)
 class PolicyClause:
-    """One behavior within one subtask: when it starts and when it stops, as covers and words.
+    """One behavior within one subtask (or, for a behavior tied to none, the whole task): when it starts and when
+    it stops, as covers and words.
 
-    ``activity`` is the subtask as the sentence says it (:meth:`TaskStates.activity`).
+    ``subtask`` is None for the whole task; ``activity`` is the subtask as the sentence says it
+    (:meth:`TaskStates.activity`). ``start_words`` and ``stop_words`` are the conditions in words, or
+    :data:`ANY_POINT`, or empty when the predicates cannot describe the region at all (the sentence then
+    says how many situations it has no words for).
     """
 
     behavior: SupportiveBehavior
-    subtask: str
+    subtask: str | None
     activity: str
     start: Cover | None
     stop: Cover | None
@@ -69,18 +78,35 @@ class PolicyClause:
 
     def sentence(self, *, about: str) -> str:
         """The clause as the robot says it: ``about`` is "subtask" (the behavior leads) or "behavior"."""
-        when = "at any point" if self.start_words == "at any point" else f"when {self.start_words}"
+        if self.start_words == ANY_POINT:
+            when = ANY_POINT
+        elif self.start_words:
+            when = f"when {self.start_words}"
+        else:
+            count = _described(self.start)
+            when = f"in {'one situation' if count == 1 else f'{count} situations'} I have no words for"
+        if self.stop_words:
+            until = f"until {self.stop_words}"
+        else:
+            count = _described(self.stop)
+            until = f"until {'a situation' if count == 1 else f'one of {count} situations'} I have no words for"
         if about == "subtask":
-            return f"{self.behavior.text} {when}, until {self.stop_words}"
-        return f"While you are {self.activity}, I will {self.behavior.text} {when}, until {self.stop_words}"
+            return f"{self.behavior.text} {when}, {until}"
+        lead = "Whatever you are doing" if self.subtask is None else f"While you are {self.activity}"
+        return f"{lead}, I will {self.behavior.text} {when}, {until}"
 
     def caveats(self) -> list[str]:
-        """What the robot admits about its description's precision."""
+        """What the robot admits about its description's precision (nothing for what it has no words for)."""
         out = []
-        for label, cover in (("when I start", self.start), ("when I stop", self.stop)):
-            if cover is not None and not cover.exact:
+        for label, cover, words in (("when I start", self.start, self.start_words), ("when I stop", self.stop, self.stop_words)):
+            if cover is not None and not cover.exact and words:
                 out.append(f"(That description of {label} {describe_precision(cover)}.)")
         return out
+
+
+def _described(cover: Cover | None) -> int:
+    """How many states a cover was asked to describe."""
+    return 0 if cover is None else len(cover.target)
 
 
 @dataclass(frozen=True)
@@ -94,11 +120,13 @@ class Explanation:
 def _describe(
     states: TaskStates, region: frozenset[Hashable], within: frozenset[Hashable], max_literals: int
 ) -> tuple[Cover | None, str]:
+    """The smallest description of ``region`` within ``within``: "never", :data:`ANY_POINT`, a condition in
+    words, or "" (with the cover) when no conjunction the predicates allow covers any of it."""
     target = region & within
     if not target:
         return None, "never"
     if target == within:
-        return None, "at any point"
+        return None, ANY_POINT
     try:
         cover = minimal_cover(
             states.table, target, irrelevant=within - target, max_literals=max_literals, full_coverage=True
@@ -108,7 +136,7 @@ def _describe(
             states.table, target, irrelevant=within - target, max_literals=max_literals, full_coverage=False
         )
         if not cover.covered & target:
-            return cover, f"<I have no words for these {len(target)} states>"
+            return cover, ""
     return cover, verbalize(cover.formula, states)
 
 
@@ -124,15 +152,19 @@ def initiation_states(states: TaskStates, behavior: SupportiveBehavior) -> froze
     return states.region(behavior.initiation) & scope(states, behavior)
 
 
-def _clause(states: TaskStates, behavior: SupportiveBehavior, subtask: str, max_literals: int) -> PolicyClause:
-    during = states.during(subtask)
-    start, start_words = _describe(states, initiation_states(states, behavior), during, max_literals)
-    stop, stop_words = _describe(states, states.region(behavior.termination), during, max_literals)
+def _clause(
+    states: TaskStates, behavior: SupportiveBehavior, subtask: str | None, max_literals: int
+) -> PolicyClause:
+    """The clause of a behavior within a subtask, or within the whole task when ``subtask`` is None."""
+    within = frozenset(states.states) if subtask is None else states.during(subtask)
+    start, start_words = _describe(states, initiation_states(states, behavior), within, max_literals)
+    stop, stop_words = _describe(states, states.region(behavior.termination), within, max_literals)
     if stop_words == "never":
-        stop_words = states.say(Literal(f"done({subtask})"))
-    elif stop_words == "at any point":
+        stop_words = "you have finished the task" if subtask is None else states.say(Literal(f"done({subtask})"))
+    elif stop_words == ANY_POINT:
         stop_words = "you tell me to stop"
-    return PolicyClause(behavior, subtask, states.activity(subtask), start, stop, start_words, stop_words)
+    activity = "" if subtask is None else states.activity(subtask)
+    return PolicyClause(behavior, subtask, activity, start, stop, start_words, stop_words)
 
 
 def _starts_in(states: TaskStates, behavior: SupportiveBehavior, subtask: str) -> bool:
@@ -173,9 +205,14 @@ def explain_behavior(states: TaskStates, behavior: str | SupportiveBehavior, *, 
         if found is None:
             raise KeyError(f"no behavior named {behavior!r}")
         behavior = found
-    subtasks = [s for s in behavior.subtasks if s in states.subtasks and _starts_in(states, behavior, s)]
-    if not subtasks:
-        return Explanation(f"I will never {behavior.text}: no subtask lets it start.", ())
-    clauses = tuple(_clause(states, behavior, s, max_literals) for s in subtasks)
+    if not behavior.subtasks:  # tied to no subtask: it belongs to every state (see `scope`)
+        if not initiation_states(states, behavior):
+            return Explanation(f"I will never {behavior.text}: it starts in no state of the task.", ())
+        clauses: tuple[PolicyClause, ...] = (_clause(states, behavior, None, max_literals),)
+    else:
+        subtasks = [s for s in behavior.subtasks if s in states.subtasks and _starts_in(states, behavior, s)]
+        if not subtasks:
+            return Explanation(f"I will never {behavior.text}: no subtask lets it start.", ())
+        clauses = tuple(_clause(states, behavior, s, max_literals) for s in subtasks)
     caveats = [line for c in clauses for line in c.caveats()]
     return Explanation(" ".join([*(c.sentence(about="behavior") + "." for c in clauses), *caveats]), clauses)

@@ -22,7 +22,7 @@ _TASK_NAME_VERBS = """screw bolt nail glue drill saw sand paint varnish wire sol
     unload pack unpack wrap label stack join tie lock unlock cover set arrange mark measure weigh cut chop slice
     dice peel grate mince crush mash cook boil bake fry grill roast toast heat melt simmer steam brew stir mix
     beat whisk blend knead roll fold pour drain rinse wash dry fill empty spread butter dress season flavour
-    flavor garnish top marinate scramble serve plate sweep wipe scrub water plant dig sew shape trim"""
+    flavor garnish top marinate scramble serve plate sweep wipe scrub water plant dig sew shape trim switch"""
 
 EVERYDAY_VERBS: tuple[str, ...] = tuple(_EVERYDAY.split())
 """Everyday verbs of requests and tasks; the utterance grammar's closed list of verbs
