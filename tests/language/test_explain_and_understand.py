@@ -16,7 +16,7 @@ from supportive.language.explain import (
 )
 from supportive.language.grammar import UnderstandingError, parse_utterance
 from supportive.language.states import TaskStates
-from supportive.language.understand import ConditionReader, Understanding, guess_category
+from supportive.language.understand import ConditionReader, Understanding, Understood, guess_category
 from supportive.language.wording import activity, gerund
 from supportive.tasks.behaviors import BehaviorCategory
 from supportive.tasks.formula import parse_formula
@@ -189,3 +189,68 @@ def test_a_behavior_tied_to_no_subtask_is_explained_over_the_whole_task(chair: T
     assert chair.region(ConditionReader(chair).read(clause.start_words)) == initiation_states(chair, glue)
     nowhere = explain_behavior(chair, replace(glue, initiation="false"))
     assert nowhere.text == "I will never give you glue: it starts in no state of the task." and not nowhere.clauses
+
+
+def _said(chair: TaskStates, text: str, subtasks: tuple[str, ...] | None = None) -> Understood:
+    return Understanding(chair).apply(parse_utterance(text), subtasks=subtasks)
+
+
+def test_a_preference_without_a_condition_lets_the_behavior_start_throughout_the_subtask(chair: TaskStates) -> None:
+    """The issue's headline: "When I am attaching the front frame, I want you to give me screws"."""
+    understood = _said(chair, "When I am attaching the front frame, I want you to give me screws", ("Build frame",))
+    screws = understood.behavior
+    assert screws.subtasks == ("Screw seat", "Build frame")
+    assert chair.during("Build frame") <= initiation_states(chair, screws)
+    before = next(b for b in chair.spec.behaviors if b.name == "give-screws")
+    seat = chair.during("Screw seat")
+    assert initiation_states(chair, screws) & seat == initiation_states(chair, before) & seat
+    assert understood.acknowledgement == "OK. I will now also give you screws while you are building frame."
+    assert "While you are building frame, I will give you screws at any point" in explain_behavior(chair, screws).text
+
+
+def test_a_condition_applies_within_the_named_subtasks_only(chair: TaskStates) -> None:
+    understood = _said(
+        chair, "When I am fastening the bolts, give me screws when the front left bolt is tight until the seat is placed",
+        ("Fasten nuts and bolts",),
+    )
+    screws = understood.behavior
+    before = next(b for b in chair.spec.behaviors if b.name == "give-screws")
+    seat, bolts = chair.during("Screw seat"), chair.during("Fasten nuts and bolts")
+    assert initiation_states(chair, screws) & seat == initiation_states(chair, before) & seat
+    assert chair.region(screws.termination) & seat == chair.region(before.termination) & seat
+    assert initiation_states(chair, screws) & bolts == chair.region("bolted(front_left)") & bolts
+    assert chair.region(screws.termination) & bolts == chair.region("placed(seat)") & bolts
+    # named no subtask: the condition replaces the behavior's everywhere
+    replaced = _said(chair, "Give me screws when the seat is not in place").behavior
+    assert replaced.initiation == "not placed(seat)" and replaced.subtasks == ("Screw seat",)
+    # a condition that never holds in the subtask is said so
+    never = _said(chair, "When I am fastening the bolts, give me screws when the seat is attached to the left frame",
+                  ("Fasten nuts and bolts",))
+    assert "never holds while you are fastening nuts and bolts" in never.acknowledgement
+
+
+def test_a_negative_preference_takes_the_states_away(chair: TaskStates) -> None:
+    frames = _said(chair, "Don't hold the side frames steady when I'm mounting the front support",
+                   ("Mount front support",))
+    assert frames.negative and frames.behavior.subtasks == ("Mount back support",)
+    assert not initiation_states(chair, frames.behavior) & chair.during("Mount front support")
+    assert frames.acknowledgement == "OK. I will no longer hold the side frames steady while you are mounting front support."
+    key = _said(chair, "Never hand me the hex key while I fasten the front left bolt", ("Fasten front left bolt",))
+    assert key.behavior.subtasks == ("Fasten nuts and bolts",)  # a part of its subtask: those states go
+    left = chair.during("Fasten front left bolt")
+    assert not initiation_states(chair, key.behavior) & left
+    assert key.before is not None
+    assert initiation_states(chair, key.behavior) == initiation_states(chair, key.before) - left
+    nothing = _said(chair, "Don't give me screws when I'm fastening the bolts", ("Fasten nuts and bolts",))
+    assert nothing.behavior == nothing.before and nothing.acknowledgement.endswith("anyway; I changed nothing.")
+    with pytest.raises(UnderstandingError, match="behaviors I have"):
+        _said(chair, "Don't juggle when I'm fastening the bolts")
+
+
+def test_a_stop_that_holds_throughout_is_said_as_stopping_at_once() -> None:
+    lights = TaskStates.of(parse_task_string(LIGHTS, "yaml"))
+    stuck = replace(lights.spec.behaviors[0], initiation="true", termination="not r")
+    text = explain_behavior(lights, stuck).text
+    assert text.startswith("While you are switching lights, I will beep at any point, until the r light is not on")
+    instant = explain_behavior(lights, replace(stuck, termination="true")).text
+    assert instant == "While you are switching lights, I will beep at any point, but stop at once: I stop wherever I start."

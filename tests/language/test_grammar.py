@@ -405,3 +405,31 @@ def test_condition_keeps_every_content_word(words: list[str]) -> None:
     dnf = parse_condition(text)
     kept = [w for clause in dnf for phrase, _ in clause for w in phrase.split() if w not in {"and", "or"}]
     assert kept == content
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("Don't give me screws when I'm fastening the bolts", (("fastening the bolts",), ("give me screws",))),
+        ("do not give me screws while I attach the seat", (("attach the seat",), ("give me screws",))),
+        ("Never hold the seat when I am screwing it", (("screwing it",), ("hold the seat",))),
+        ("Stop giving me screws when I am fastening the bolts", (("fastening the bolts",), ("giving me screws",))),
+        ("When I am fastening the bolts, please don't give me screws", (("fastening the bolts",), ("give me screws",))),
+        ("When I'm fastening the bolts, I don't want you to give me screws", (("fastening the bolts",), ("give me screws",))),
+        ("when I'm fastening the bolts don't give me screws", (("fastening the bolts",), ("give me screws",))),
+        ("when I am fastening the bolts you should not give me screws", (("fastening the bolts",), ("give me screws",))),
+        ("When I am fastening the bolts, I want you to stop giving me screws", (("fastening the bolts",), ("giving me screws",))),
+    ],
+)
+def test_negative_preferences(text: str, expected: tuple[tuple[str, ...], tuple[str, ...]]) -> None:
+    result = parse_utterance(text)
+    assert result == Preference(*expected, negative=True)
+
+
+def test_negation_outside_the_request_is_no_negative_preference() -> None:
+    conditioned = parse_utterance("I don't want you to hand me the hex key when the seat is not placed")
+    assert conditioned == Preference((), ("hand me the hex key",), "the seat is not placed", negative=True)
+    stop = parse_utterance("give me screws but stop when the seat is attached")
+    assert stop == pref((), ("give me screws",), stop="the seat is attached")
+    positive = parse_utterance("When I'm not fastening the bolts, give me screws")
+    assert isinstance(positive, Preference) and not positive.negative

@@ -21,7 +21,7 @@ import numpy as np
 
 from supportive.tasks.formula import DNF, Conjunction, Literal
 
-__all__ = ["DNF", "Conjunction", "Literal", "TruthTable"]
+__all__ = ["DNF", "Conjunction", "Literal", "TruthTable", "simplify"]
 
 
 class TruthTable:
@@ -111,3 +111,51 @@ class TruthTable:
         for state in states:
             mask[self.state_index[state]] = True
         return mask
+
+
+def simplify(
+    formula: DNF, table: TruthTable, within: Iterable[Hashable], *, fixed: frozenset[Literal] = frozenset()
+) -> DNF:
+    """A shorter formula that denotes the same states as ``formula`` among ``within`` (outside them: don't care).
+
+    Clauses that hold in no state of ``within`` go; then each literal not in ``fixed`` is dropped from its clause
+    while the clause still holds only where the formula does (within ``within``); then each clause the others
+    already cover goes. Nothing is searched, so the result is short, not shortest (for that, see
+    :func:`~supportive.language.cover.minimal_cover`); a formula that holds everywhere in ``within`` becomes
+    ``true`` and one that holds nowhere ``false``.
+
+    Args:
+        formula: Every atom must be in the table.
+        table: The states.
+        within: The states that count.
+        fixed: Literals never dropped (say, the words a person used), unless their whole clause goes.
+
+    Raises:
+        KeyError: for an atom or a state the table does not know.
+
+    >>> table = TruthTable.from_sets(["s0", "s1", "s2"], {"p": {"s1", "s2"}, "q": {"s2"}})
+    >>> str(simplify(DNF.of(["p", "q"], ["p", Literal("q", False)]), table, ["s0", "s1", "s2"]))
+    'p'
+    >>> str(simplify(DNF.of(["q", "p"]), table, ["s2"])), str(simplify(DNF.of(["q"]), table, ["s0", "s1"]))
+    ('true', 'false')
+    """
+    inside = table.mask_of(within)
+    clauses = [clause for clause in formula.clauses if (table.conjunction_mask(clause) & inside).any()]
+    region = table.mask(DNF(tuple(clauses))) & inside
+    outside = inside & ~region
+    shortened: list[Conjunction] = []
+    for clause in clauses:
+        literals = set(clause.literals)
+        for literal in sorted(clause.literals - fixed):
+            fewer = Conjunction(frozenset(literals - {literal}))
+            if not (table.conjunction_mask(fewer) & outside).any():
+                literals.discard(literal)
+        shortened.append(Conjunction(frozenset(literals)))
+    kept = list(dict.fromkeys(shortened))
+    for clause in sorted(kept, key=len, reverse=True):
+        others = [c for c in kept if c != clause]
+        if not (table.conjunction_mask(clause) & inside & ~table.mask(DNF(tuple(others)))).any():
+            kept = others
+    if any(not clause.literals for clause in kept):
+        return DNF.true()
+    return DNF(tuple(kept))

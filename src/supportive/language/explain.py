@@ -64,7 +64,7 @@ class PolicyClause:
 
     ``subtask`` is None for the whole task; ``activity`` is the subtask as the sentence says it
     (:meth:`TaskStates.activity`). ``start_words`` and ``stop_words`` are the conditions in words, or
-    :data:`ANY_POINT`, or empty when the predicates cannot describe the region at all (the sentence then
+    :data:`ANY_POINT` (for the stop: it stops as soon as it starts), or empty when the predicates cannot describe the region at all (the sentence then
     says how many situations it has no words for).
     """
 
@@ -85,7 +85,9 @@ class PolicyClause:
         else:
             count = _described(self.start)
             when = f"in {'one situation' if count == 1 else f'{count} situations'} I have no words for"
-        if self.stop_words:
+        if self.stop_words == ANY_POINT:
+            until = "but stop at once: I stop wherever I start"
+        elif self.stop_words:
             until = f"until {self.stop_words}"
         else:
             count = _described(self.stop)
@@ -161,8 +163,6 @@ def _clause(
     stop, stop_words = _describe(states, states.region(behavior.termination), within, max_literals)
     if stop_words == "never":
         stop_words = "you have finished the task" if subtask is None else states.say(Literal(f"done({subtask})"))
-    elif stop_words == ANY_POINT:
-        stop_words = "you tell me to stop"
     activity = "" if subtask is None else states.activity(subtask)
     return PolicyClause(behavior, subtask, activity, start, stop, start_words, stop_words)
 

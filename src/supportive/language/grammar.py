@@ -24,7 +24,7 @@ nuts and bolts", "give me screws and nuts"). In a condition, a later conjunct mu
 literal.
 
 >>> parse_utterance("When I'm attaching the front rail, I want you to give me screws.")
-Preference(subtask_phrases=('attaching the front rail',), behavior_phrases=('give me screws',), start=None, stop=None)
+Preference(subtask_phrases=('attaching the front rail',), behavior_phrases=('give me screws',), start=None, stop=None, negative=False)
 >>> parse_utterance("How will you help me attach the seat?")
 ExplainSubtask(subtask_phrase='attach the seat')
 >>> parse_condition("the seat isn't attached and the front rail is present or the seat is placed")
@@ -63,13 +63,15 @@ class Preference:
     """ "When I am {X} [or {X2} …], I want you to {Y} [and {Y2} …]" with optional raw start/stop conditions.
 
     ``subtask_phrases`` is empty when the person tied the behavior to a condition only ("give me screws when
-    the seat is not attached").
+    the seat is not attached"). ``negative`` is True when they asked the robot not to ("Don't give me screws
+    when I'm fastening the bolts", "never …", "stop …", "I don't want you to …").
     """
 
     subtask_phrases: tuple[str, ...]
     behavior_phrases: tuple[str, ...]
     start: str | None = None
     stop: str | None = None
+    negative: bool = False
 
 
 @dataclass(frozen=True)
@@ -125,14 +127,14 @@ start: _lead? (preference | explain_subtask | explain_behavior) _tail?
 
 // ----- preferences -------------------------------------------------------------------------------------------
 ?preference: sub_clause _sep request _conds?          -> preference
-           | sub_clause _intro behaviors _conds?      -> preference
+           | sub_clause _intro neg? behaviors _conds? -> preference
            | bare_preference
            | request _conds? ","? sub_clause _conds? -> preference
            | start_cond _sep request stop_cond?     -> preference
            | request _conds                         -> preference
 // "When I am X give me screws": no comma, no "I want you to"; the behavior must start with a verb, and this
 // reading loses every tie.
-bare_preference.-1: sub_clause vbehaviors _conds? -> preference
+bare_preference.-1: sub_clause neg? vbehaviors _conds? -> preference
 
 sub_clause: SUBWHEN SUBJECT subtasks
           | SUBWHEN ing_subtasks
@@ -144,7 +146,9 @@ ing_subtask: ing_phrase -> subtask
 ?more_subtask: SUBWHEN? SUBJECT? verb_phrase -> subtask
              | _det pw* -> gapped
 
-request: _intro? behaviors
+request: _intro? neg? behaviors
+// "don't", "never", "stop", "I don't want you to" …: the person asks the robot not to (a negative preference)
+neg: NEG
 behaviors: behavior (_bconj more_behavior)*
 vbehaviors: first_vbehavior (_bconj more_behavior)* -> behaviors
 behavior: phrase
@@ -225,6 +229,7 @@ STARTKW: /(?:whenever|when|while|if|once|as long as|(?:but )?only (?:when|if|whi
 STOPKW: /(?:until|till|up (?:until|till)|(?:(?:and|but) )?(?:stop|finish) (?:when|once|after|if|as soon as))\b/
 SCONJ: /(?:and or|and|or)\b/
 BCONJ: /(?:and|or)\b/
+NEG: /(?:do not|not|never|stop|no longer|i do not (?:want|need) you to|i would rather you did not)\b/
 INTRO: /(?:please|kindly|then|also|just|always|robot|i (?:want|need|would (?:like|love|prefer)) you to|i would (?:like|appreciate) it if you(?: would| could| can)?|it would be (?:great|nice|helpful|good) if you(?: would| could| can)?|(?:could|can|would|will) you|you (?:need|have|ought) to|you (?:should|can|could|must|will|may)|(?:make|be) sure(?: to| you)?|remember to|go ahead and)\b/
 ASK: /(?:please )?(?:(?:can|could) you (?:tell|explain to|explain) me|tell me|explain(?: to me)?|i (?:want|would like) to know|i wonder)\b/
 QMODAL: /(?:will|would|can|could|do|are|should|might|shall)\b/
@@ -414,6 +419,7 @@ def _conjuncts(clause: Tree[Token]) -> list[str]:
 
 
 def _preference(tree: Tree[Token]) -> Preference:
+    negative = next(tree.find_data("neg"), None) is not None
     subtasks: list[str] = []
     behaviors: list[str] = []
     start = stop = None
@@ -430,7 +436,7 @@ def _preference(tree: Tree[Token]) -> Preference:
             start = " ".join(_words(_child(node, ("condition_text",))))
         elif node.data == "stop_cond":
             stop = " ".join(_words(_child(node, ("condition_text",))))
-    return Preference(tuple(subtasks), tuple(behaviors), start, stop)
+    return Preference(tuple(subtasks), tuple(behaviors), start, stop, negative)
 
 
 def _utterance(tree: Tree[Token]) -> Utterance:
@@ -460,7 +466,9 @@ def parse_utterance(text: str) -> Utterance:
             and the form to use.
 
     >>> parse_utterance("please hold the seat steady while I'm screwing it down, robot")
-    Preference(subtask_phrases=('screwing it down',), behavior_phrases=('hold the seat steady',), start=None, stop=None)
+    Preference(subtask_phrases=('screwing it down',), behavior_phrases=('hold the seat steady',), start=None, stop=None, negative=False)
+    >>> parse_utterance("Don't give me screws when I'm fastening the bolts").negative
+    True
     >>> parse_utterance("When will you hold the rear frame steady?")
     ExplainBehavior(behavior_phrase='hold the rear frame steady')
     >>> parse_utterance("When I am attaching the seat")

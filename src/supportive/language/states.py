@@ -111,16 +111,20 @@ class TaskStates:
             raise KeyError(f"no subtask named {subtask!r} (known: {', '.join(sorted(self.subtasks))})")
         return self.table.states_of(DNF.of([f"active({subtask})"], [f"ready({subtask})"]))  # type: ignore[return-value]
 
-    def region(self, formula: DNF | str) -> frozenset[State]:
-        """The states a formula (or its text) denotes; an atom the task never makes true holds nowhere."""
+    def grounded(self, formula: DNF | str) -> DNF:
+        """The formula (or its text) over the table's atoms only: an atom the task never makes true holds
+        nowhere, so a clause needing one goes and ``not`` of one is dropped from its clause."""
         parsed = parse_formula(formula) if isinstance(formula, str) else formula
         known = set(self.table.atoms)
         kept = []
         for clause in parsed.clauses:
-            literals = [lit for lit in clause.literals if lit.atom in known or not lit.positive]
-            if len(literals) == len(clause.literals):
-                kept.append(frozenset(lit for lit in literals if lit.atom in known))
-        return self.table.states_of(DNF(tuple(Conjunction(c) for c in kept)))  # type: ignore[return-value]
+            if all(lit.atom in known or not lit.positive for lit in clause.literals):
+                kept.append(Conjunction(frozenset(lit for lit in clause.literals if lit.atom in known)))
+        return DNF(tuple(kept))
+
+    def region(self, formula: DNF | str) -> frozenset[State]:
+        """The states a formula (or its text) denotes; an atom the task never makes true holds nowhere."""
+        return self.table.states_of(self.grounded(formula))  # type: ignore[return-value]
 
     @cached_property
     def verbs(self) -> frozenset[str]:

@@ -8,18 +8,22 @@
 * A behavior phrase is matched against the task's behaviors; an unknown one becomes a new behavior whose
   category is guessed from its verb.
 
-:class:`Understanding` turns a :class:`~supportive.language.grammar.Preference` into the updated behavior and
-tells whether it needs the person to confirm the subtask it chose.
+:class:`Understanding` turns a :class:`~supportive.language.grammar.Preference` into the updated behavior (by the
+rule of :mod:`supportive.language.preferences`: do it during the named subtasks, or, for "don't …", not there),
+tells whether it needs the person to confirm the subtask it chose, and says truthfully what changed.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, replace
+from collections.abc import Sequence
+from dataclasses import dataclass
 from functools import cached_property
 
+from supportive.language.explain import initiation_states, scope
 from supportive.language.grammar import Preference, UnderstandingError, parse_condition
 from supportive.language.grounding import Candidate, Matcher, from_task, is_confident, normalise_words
+from supportive.language.preferences import prefer, refuse
 from supportive.language.states import TaskStates
 from supportive.tasks.behaviors import BehaviorCategory, SupportiveBehavior
 from supportive.tasks.formula import DNF, Conjunction, Literal
@@ -131,6 +135,10 @@ class Understood:
         subtasks: For each subtask phrase, the candidates Algorithm 6 ranked (best first).
         confident: False when the person should confirm the subtasks chosen.
         confirmation: The question to ask (or the statement to make when confident).
+        before: The behavior as it was (None for a new one).
+        named: The subtasks the preference was applied to.
+        negative: The person asked the robot not to.
+        acknowledgement: What the robot says it did (Algorithm 7's explanation of the behavior follows it).
     """
 
     behavior: SupportiveBehavior
@@ -138,10 +146,14 @@ class Understood:
     subtasks: tuple[tuple[Candidate, ...], ...]
     confident: bool
     confirmation: str
+    before: SupportiveBehavior | None = None
+    named: tuple[str, ...] = ()
+    negative: bool = False
+    acknowledgement: str = ""
 
 
 class Understanding:
-    """Applies people's preferences to a task's supportive behaviors.
+    """Applies people's preferences to a task's supportive behaviors (the rule: :mod:`.preferences`).
 
     Args:
         states: The task's states (and, through them, its spec and behaviors).
@@ -182,37 +194,103 @@ class Understanding:
                 best = (score, behavior)
         return best[1] if best[0] >= 0.5 else None
 
-    def apply(self, preference: Preference, behavior_phrase: str | None = None) -> Understood:
+    def ground(self, preference: Preference) -> tuple[tuple[Candidate, ...], ...]:
+        """Algorithm 6 for each subtask phrase of a preference: the ``alpha`` best candidates, best first."""
+        return tuple(tuple(self.subtask_matcher.candidates(p, self.alpha)) for p in preference.subtask_phrases)
+
+    def apply(
+        self,
+        preference: Preference,
+        behavior_phrase: str | None = None,
+        subtasks: Sequence[str] | None = None,
+    ) -> Understood:
         """The behavior a preference asks for, changed as it says (not yet saved).
 
         Args:
             preference: The parsed request.
             behavior_phrase: Which of its behavior phrases (default: the first).
+            subtasks: The subtasks its subtask phrases mean, as the person confirmed them (default: the best
+                candidate of each; the result then says whether to confirm).
 
         Raises:
-            UnderstandingError: when a condition is not in the task's words.
+            UnderstandingError: when a condition is not in the task's words, when the person asks the robot not
+                to do something it does not do, or for "don't … until …".
         """
         phrase = behavior_phrase or preference.behavior_phrases[0]
-        ranked = tuple(tuple(self.subtask_matcher.candidates(p, self.alpha)) for p in preference.subtask_phrases)
-        chosen = tuple(dict.fromkeys(r[0].key for r in ranked if r))
-        confident = all(is_confident(list(r)) for r in ranked)
+        ranked = self.ground(preference)
+        chosen = tuple(dict.fromkeys(subtasks if subtasks is not None else (r[0].key for r in ranked if r)))
+        confident = subtasks is not None or all(is_confident(list(r)) for r in ranked)
+        start = self.conditions.read(preference.start) if preference.start else None
+        stop = self.conditions.read(preference.stop) if preference.stop else None
         existing = self.behavior_for(phrase)
-        base = existing or SupportiveBehavior(
-            name=_slug(phrase), text=_second_person(phrase), category=guess_category(phrase)
-        )
-        subtasks = tuple(dict.fromkeys((*base.subtasks, *chosen)))
-        initiation = str(self.conditions.read(preference.start)) if preference.start else base.initiation
-        termination = str(self.conditions.read(preference.stop)) if preference.stop else base.termination
-        updated = replace(base, subtasks=subtasks, initiation=initiation, termination=termination)
+        if preference.negative:
+            if existing is None:
+                known = ", ".join(b.text for b in self.states.spec.behaviors) or "nothing yet"
+                raise UnderstandingError(phrase, None, "", f"one of the behaviors I have ({known})")
+            if stop is not None:
+                raise UnderstandingError(
+                    preference.stop or "", f"don't {phrase}", "'until …' in a request not to", "Don't …, when I am …"
+                )
+            updated = refuse(self.states, existing, chosen, start)
+        elif existing is None:
+            updated = SupportiveBehavior(
+                name=_slug(phrase),
+                text=_second_person(phrase),
+                category=guess_category(phrase),
+                subtasks=chosen,
+                initiation="true" if start is None else str(start),
+                termination="false" if stop is None else str(stop),
+            )
+        else:
+            updated = prefer(self.states, existing, chosen, start, stop)
         names = " or ".join(chosen) or "any subtask"
         if confident:
-            confirmation = f"OK: when you are at {names}, I will {updated.text}."
+            confirmation = f"OK: when you are {self._activities(chosen)}, I will {updated.text}."
         else:
-            options = "; ".join(
-                ", ".join(f"{c.key} ({c.probability:.0%})" for c in r) for r in ranked
-            )
+            options = "; ".join(", ".join(f"{c.key} ({c.probability:.0%})" for c in r) for r in ranked)
             confirmation = f"Do you mean {names}? (I considered: {options}) Yes or no?"
-        return Understood(updated, existing is None, ranked, confident, confirmation)
+        acknowledgement = self._acknowledge(existing, updated, chosen, preference.negative)
+        return Understood(
+            updated, existing is None, ranked, confident, confirmation, existing, chosen, preference.negative,
+            acknowledgement,
+        )
+
+    def _activities(self, subtasks: Sequence[str]) -> str:
+        return " or ".join(self.states.activity(s) for s in subtasks) or "doing anything"
+
+    def _acknowledge(
+        self,
+        before: SupportiveBehavior | None,
+        after: SupportiveBehavior,
+        named: tuple[str, ...],
+        negative: bool,
+    ) -> str:
+        """What the robot says it did, truthfully: whether anything changed, and where it now (never) starts."""
+        if before is None:
+            return f"OK. I will now {after.text}."
+        where = f" while you are {self._activities(named)}" if named else ""
+        if _same(self.states, before, after):
+            anyway = "do not" if negative else "already"
+            return f"I {anyway} {after.text}{where}{' anyway' if negative else ''}; I changed nothing."
+        if negative:
+            return f"OK. I will no longer {after.text}{where}."
+        added = before.subtasks and [s for s in named if s not in before.subtasks]
+        said = f"OK. I will now also {after.text}{where}." if added else f"OK. I updated how I {after.text}{where}."
+        starts = initiation_states(self.states, after)
+        never = [s for s in named if not starts & self.states.during(s)]
+        if never:
+            said += f" (But that condition never holds while you are {self._activities(never)}: I will not start then.)"
+        return said
+
+
+def _same(states: TaskStates, before: SupportiveBehavior, after: SupportiveBehavior) -> bool:
+    """True when a change leaves the behavior where it starts and stops."""
+    return (
+        initiation_states(states, before) == initiation_states(states, after)
+        and scope(states, before) == scope(states, after)
+        and states.region(before.termination) & scope(states, before)
+        == states.region(after.termination) & scope(states, after)
+    )
 
 
 def _slug(phrase: str) -> str:

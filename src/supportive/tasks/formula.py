@@ -75,6 +75,45 @@ class DNF:
         """A DNF from conjunctions or iterables of literals."""
         return cls(tuple(c if isinstance(c, Conjunction) else Conjunction.of(*c) for c in clauses))
 
+    @classmethod
+    def true(cls) -> DNF:
+        """The formula that holds everywhere (one empty clause)."""
+        return cls((Conjunction(frozenset()),))
+
+    def __and__(self, other: DNF) -> DNF:
+        """Both formulas, distributed back into DNF; inconsistent and repeated clauses are dropped.
+
+        >>> str(parse_formula("p or q") & parse_formula("not p"))
+        'not p and q'
+        """
+        clauses: dict[Conjunction, None] = {}
+        for mine in self.clauses:
+            for theirs in other.clauses:
+                clause = Conjunction(mine.literals | theirs.literals)
+                if clause.consistent:
+                    clauses[clause] = None
+        return DNF(tuple(clauses))
+
+    def __or__(self, other: DNF) -> DNF:
+        """Either formula: the clauses of both (repeats dropped)."""
+        return DNF(tuple(dict.fromkeys((*self.clauses, *other.clauses))))
+
+    def __invert__(self) -> DNF:
+        """The negation, in DNF: the conjunction, over the clauses, of their negated literals (De Morgan).
+        The result can be exponentially longer; conditions people say have a few literals.
+
+        >>> str(~parse_formula("p and q or r"))
+        'not p and not r or not q and not r'
+        """
+        negation = DNF.true()
+        for clause in self.clauses:
+            negation &= DNF(tuple(Conjunction(frozenset({literal.negated()})) for literal in sorted(clause.literals)))
+        return negation
+
+    def literals(self) -> frozenset[Literal]:
+        """Every literal the formula mentions."""
+        return frozenset(lit for clause in self.clauses for lit in clause.literals)
+
     @property
     def size(self) -> int:
         """Total number of literals: how long it takes to say."""
