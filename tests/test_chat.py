@@ -71,3 +71,71 @@ def test_chat_command_reads_stdin(tmp_path: Path) -> None:
     assert "I have no behavior like 'juggle'" in out
     missing = subprocess.run([script, "chat", str(tmp_path / "none.yaml")], capture_output=True, text=True, check=False)
     assert missing.returncode == 2 and "no such file" in missing.stderr and "Traceback" not in missing.stderr
+
+
+def _chair(tmp_path: Path) -> Path:
+    path = tmp_path / "chair.yaml"
+    shutil.copy(examples.path("ikea-chair"), path)
+    return path
+
+
+def test_the_headline_request_is_carried_out_and_said_truthfully(tmp_path: Path) -> None:
+    path = _chair(tmp_path)
+    shown: list[str] = []
+    _console(path, ["When I am attaching the front frame, I want you to give me screws", "yes"], shown).run()
+    screws = next(b for b in parse_task_file(path).behaviors if b.name == "give-screws")
+    assert screws.subtasks == ("Screw seat", "Build frame")
+    answer = shown[-1]
+    assert answer.startswith("OK. I will now also give you screws while you are building frame. ")
+    assert "While you are building frame, I will give you screws at any point" in answer
+    assert "While you are screwing seat, I will give you screws" in answer
+
+
+def test_a_negative_preference_removes_the_subtask(tmp_path: Path) -> None:
+    path = _chair(tmp_path)
+    shown: list[str] = []
+    _console(path, ["Don't hold the side frames steady when I'm mounting the front support"], shown).run()
+    frames = next(b for b in parse_task_file(path).behaviors if b.name == "hold-frames")
+    assert frames.subtasks == ("Mount back support",)
+    assert shown[-1].startswith("OK. I will no longer hold the side frames steady while you are mounting front support.")
+    assert not [line for line in shown if "do not hold" in line]
+
+
+def test_each_subtask_phrase_is_confirmed_once_whatever_the_behaviors(tmp_path: Path) -> None:
+    path = _chair(tmp_path)
+    shown: list[str] = []
+    _console(path, [
+        "When I am tightening the bolts or fitting the rails, I want you to shine a light and hold the frames",
+        "yes", "yes",
+    ], shown).run()
+    questions = [line for line in shown if line.startswith("By '")]
+    assert len(questions) == 2, questions
+    saved = {b.name: b for b in parse_task_file(path).behaviors}
+    assert saved["shine-light"].subtasks == ("Fasten nuts and bolts", "Mount supports")
+    assert saved["hold-frames"].subtasks == ("Mount front support", "Mount back support", "Fasten nuts and bolts", "Mount supports")
+
+
+def test_a_new_sentence_at_a_question_is_answered_as_itself(tmp_path: Path) -> None:
+    path = _chair(tmp_path)
+    before = parse_task_file(path)
+    shown: list[str] = []
+    _console(path, [
+        "When I am tightening the bolts, I want you to shine a light on the bolt",
+        "How will you help me screw the seat?",
+    ], shown).run()
+    assert parse_task_file(path) == before
+    assert "I take that as something new, so I changed nothing for the question I asked." in shown
+    assert shown[-1].startswith("When you are screwing seat, I can give you screws")
+
+
+def test_a_subtask_the_robot_does_not_know_is_not_proposed(tmp_path: Path) -> None:
+    shown: list[str] = []
+    _console(_chair(tmp_path), ["How will you help me fly?", "When I am juggling, hold the seat"], shown).run()
+    unknown = [line for line in shown if line.startswith("I don't know a part of the task like")]
+    assert unknown == [
+        "I don't know a part of the task like 'fly'. I know, for example: Assemble chair, Build frame, Fasten nuts "
+        "and bolts, Attach seat, Prepare side frames.",
+        "I don't know a part of the task like 'juggling'. I know, for example: Assemble chair, Build frame, Fasten "
+        "nuts and bolts, Attach seat, Prepare side frames.",
+    ]
+    assert not [line for line in shown if "do you mean" in line]

@@ -3,9 +3,12 @@
 The person types sentences; the robot answers:
 
 * a preference ("When I am screwing the seat, I want you to give me screws until the seat is attached to the
-  left frame") is grounded (Algorithm 6) and, when the robot is unsure which subtask was meant, confirmed
-  ("Do you mean Screw seat? …" — answer yes, no, or the number of another candidate); the robot then says back
-  what it will do (Algorithm 7, so implied constraints become explicit) and saves the task file;
+  left frame", or "Don't give me screws when I'm fastening the bolts") is grounded (Algorithm 6) and, when the
+  robot is unsure which subtask was meant, confirmed once per subtask phrase ("Do you mean Screw seat? …" —
+  answer yes, no, or the number of another candidate; anything else is taken as a new utterance); a phrase
+  that names no subtask it knows is answered with some it does. The rule of
+  :mod:`supportive.language.preferences` changes the behavior; the robot says truthfully what changed, then
+  what it will do (Algorithm 7, so implied constraints become explicit), and saves the task file;
 * "How will you help me …?" and "When will you …?" are answered with Algorithm 7;
 * ``behaviors`` lists the behaviors, ``quit`` (or the end of input) stops.
 
@@ -14,8 +17,8 @@ Anything it cannot read is answered with what it understood and the form to use,
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from supportive.io.taskfile import parse_task_file, write_task_file
@@ -29,14 +32,18 @@ from supportive.language.grammar import (
 )
 from supportive.language.grounding import Candidate, is_confident
 from supportive.language.states import TaskStates
-from supportive.language.understand import Understanding
+from supportive.language.understand import Understanding, Understood
 from supportive.tasks.behaviors import SupportiveBehavior
+from supportive.tasks.htn import ChainNode, CliqueNode, Node
 from supportive.tasks.spec import TaskSpec
 
 __all__ = ["ChatConsole"]
 
 QUIT = {"quit", "exit", "bye", "done"}
 YES = {"yes", "y", "yeah", "yep", "correct", "right", "ok"}
+NO = {"no", "n", "nope", "nah", "wrong", "neither", "none", "cancel", ""}
+KNOWN_SHOWN = 5
+"""Subtasks named, outermost first, when a phrase names none the robot knows."""
 
 
 @dataclass
@@ -56,6 +63,7 @@ class ChatConsole:
     matcher: str = "bow"
     spec: TaskSpec = field(init=False)
     states: TaskStates = field(init=False)
+    _next: str | None = field(init=False, default=None)
 
     def __post_init__(self) -> None:
         self.spec = parse_task_file(self.path)
@@ -70,7 +78,7 @@ class ChatConsole:
         )
         while True:
             try:
-                line = self.read().strip()
+                line, self._next = (self._next if self._next is not None else self.read()).strip(), None
             except EOFError:
                 break
             if not line:
@@ -103,46 +111,60 @@ class ChatConsole:
         elif isinstance(utterance, ExplainBehavior):
             self._explain_behavior(utterance)
 
-    def _confirm(self, ranked: tuple[Candidate, ...], question: str) -> str | None:
-        """Ask which candidate was meant; None when the person declines."""
+    def _understanding(self) -> Understanding:
+        return Understanding(self.states, matcher=self.matcher)
+
+    def _subtask(self, understanding: Understanding, ranked: Sequence[Candidate], said: str) -> str | None:
+        """The subtask a phrase means: the best candidate when the robot is sure, the one the person confirms
+        otherwise; None (after saying why) when the phrase names no subtask it knows or the person declines."""
+        if not understanding.subtask_matcher.recognises(ranked):
+            known = ", ".join(_outermost_first(self.states)[:KNOWN_SHOWN])
+            self.write(f"I don't know a part of the task like '{said}'. I know, for example: {known}.")
+            return None
+        if is_confident(list(ranked)):
+            return ranked[0].key
+        return self._confirm(ranked, f"By '{said}', do you mean {ranked[0].key}?")
+
+    def _confirm(self, ranked: Sequence[Candidate], question: str) -> str | None:
+        """Ask which candidate was meant; None when the person declines. Anything but yes, no or a candidate's
+        number is taken as a new utterance: the question is dropped and the line answered next."""
         options = "; ".join(f"{i + 1}. {c.key} ({c.probability:.0%})" for i, c in enumerate(ranked))
         self.write(f"{question} (I considered: {options}) Answer yes, no or a number.")
         try:
-            answer = self.read().strip().lower()
+            answer = self.read().strip()
         except EOFError:
             return None
-        if answer in YES:
+        word = answer.lower().strip(".!")
+        if word in YES:
             return ranked[0].key
-        if answer.isdigit() and 1 <= int(answer) <= len(ranked):
-            return ranked[int(answer) - 1].key
-        self.write("All right, I changed nothing.")
+        if word.isdigit() and 1 <= int(word) <= len(ranked):
+            return ranked[int(word) - 1].key
+        if word in NO:
+            self.write("All right, I changed nothing.")
+        else:
+            self.write("I take that as something new, so I changed nothing for the question I asked.")
+            self._next = answer
         return None
 
     def _prefer(self, preference: Preference) -> None:
-        understanding = Understanding(self.states, matcher=self.matcher)
+        understanding = self._understanding()
+        chosen = []
+        for ranked, said in zip(understanding.ground(preference), preference.subtask_phrases, strict=True):
+            key = self._subtask(understanding, ranked, said)
+            if key is None:
+                return
+            chosen.append(key)
         for phrase in preference.behavior_phrases:
             try:
-                understood = understanding.apply(preference, phrase)
+                understood = understanding.apply(preference, phrase, subtasks=chosen)
             except UnderstandingError as exc:
                 self.write(str(exc))
-                return
-            behavior = understood.behavior
-            if not understood.confident:
-                chosen = []
-                for ranked, said in zip(understood.subtasks, preference.subtask_phrases, strict=True):
-                    if is_confident(list(ranked)):
-                        chosen.append(ranked[0].key)
-                        continue
-                    key = self._confirm(ranked, f"By '{said}', do you mean {ranked[0].key}?")
-                    if key is None:
-                        return
-                    chosen.append(key)
-                before = understanding.behavior_for(phrase)
-                prior = before.subtasks if before is not None else ()
-                behavior = replace(behavior, subtasks=tuple(dict.fromkeys([*prior, *chosen])))
-            self._save(behavior)
-            verb = "I will now" if understood.created else "I updated how I"
-            self.write(f"OK. {verb} {behavior.text}. {explain_behavior(self.states, behavior).text}")
+                continue
+            if not _unchanged(understood):
+                self._save(understood.behavior)
+                understanding = self._understanding()
+            explanation = explain_behavior(self.states, understood.behavior).text
+            self.write(f"{understood.acknowledgement} {explanation}")
 
     def _save(self, behavior: SupportiveBehavior) -> None:
         others = [b for b in self.spec.behaviors if b.name != behavior.name]
@@ -153,18 +175,30 @@ class ChatConsole:
         write_task_file(self.spec, self.path)
 
     def _explain_subtask(self, request: ExplainSubtask) -> None:
-        ranked = tuple(Understanding(self.states, matcher=self.matcher).subtask_matcher.candidates(request.subtask_phrase))
-        key = ranked[0].key if is_confident(list(ranked)) else self._confirm(
-            ranked, f"By '{request.subtask_phrase}', do you mean {ranked[0].key}?"
-        )
+        understanding = self._understanding()
+        ranked = understanding.subtask_matcher.candidates(request.subtask_phrase)
+        key = self._subtask(understanding, ranked, request.subtask_phrase)
         if key is not None:
             self.write(explain_subtask(self.states, key).text)
 
     def _explain_behavior(self, request: ExplainBehavior) -> None:
-        behavior = Understanding(self.states, matcher=self.matcher).behavior_for(request.behavior_phrase)
+        behavior = self._understanding().behavior_for(request.behavior_phrase)
         if behavior is None:
             known = ", ".join(b.text for b in self.spec.behaviors) or "nothing yet"
             self.write(f"I have no behavior like '{request.behavior_phrase}'. I know how to: {known}.")
             return
         self.write(explain_behavior(self.states, behavior).text)
 
+
+def _unchanged(understood: Understood) -> bool:
+    return understood.before == understood.behavior
+
+
+def _outermost_first(states: TaskStates) -> list[str]:
+    """The task's named subtasks, breadth first from the root."""
+    names: list[str] = []
+    level: list[Node] = [states.structure]
+    while level:
+        names += [n.name for n in level if isinstance(n, ChainNode | CliqueNode) and n.name]
+        level = [c for n in level if isinstance(n, ChainNode | CliqueNode) for c in n.children]
+    return names

@@ -46,6 +46,7 @@ from supportive.tasks.htn import HTN, Node, internal_nodes, leaf_actions
 from supportive.tasks.spec import TaskSpec
 
 __all__ = [
+    "MIN_LIFT",
     "STOP_WORDS",
     "Candidate",
     "Matcher",
@@ -69,6 +70,10 @@ STOP_WORDS = frozenset(_STOP_TEXT.split())
 """Words that say nothing about which subtask is meant; dropped from phrases and descriptions alike."""
 
 _WORD = re.compile(r"[^\W_]+")
+
+MIN_LIFT = 1.5
+"""A phrase names a key only if its best key is at least this many times likelier than under the prior
+(:meth:`Matcher.recognises`): a phrase whose words fit every subtask alike names none of them."""
 
 
 def stem(word: str) -> str:
@@ -165,6 +170,19 @@ class Matcher(ABC):
     def best(self, phrase: str) -> Candidate:
         """The most likely key for the phrase."""
         return self.candidates(phrase, alpha=1)[0]
+
+    def recognises(self, candidates: Sequence[Candidate], min_lift: float = MIN_LIFT) -> bool:
+        """False when the phrase the candidates were ranked for names none of the keys: no word of it was known,
+        or its best key is hardly likelier than before it was heard (posterior below ``min_lift`` × prior).
+
+        >>> m = PhraseMatcher({"frame": ["build the frame"], "seat": ["attach the seat"], "legs": ["fit legs"]})
+        >>> m.recognises(m.candidates("attach the seat")), m.recognises(m.candidates("fly to the moon"))
+        (True, False)
+        """
+        if not candidates or not candidates[0].grounded:
+            return False
+        prior = float(self.prior[self.keys.index(candidates[0].key)])
+        return candidates[0].probability >= min_lift * prior
 
 
 def normalised_prior(keys: Sequence[str], prior: Mapping[str, float] | None) -> np.ndarray:
