@@ -139,3 +139,20 @@ def test_a_subtask_the_robot_does_not_know_is_not_proposed(tmp_path: Path) -> No
         "nuts and bolts, Attach seat, Prepare side frames.",
     ]
     assert not [line for line in shown if "do you mean" in line]
+
+
+WITHOUT_SCIKIT_LEARN = "import sys; sys.modules['sklearn'] = None; from supportive.cli import main; sys.argv = {}; main()"
+
+
+def test_without_the_language_extra_chat_and_demo_say_so_in_one_line(tmp_path: Path) -> None:
+    path = _chair(tmp_path)
+    for argv in (["supportive", "chat", str(path)], ["supportive", "demo"]):
+        result = subprocess.run(
+            [sys.executable, "-c", WITHOUT_SCIKIT_LEARN.format(argv)],
+            input="How will you help me screw the seat?\n", capture_output=True, text=True, check=False,
+        )
+        assert result.returncode == 2, (argv, result.stderr[-500:])
+        assert result.stderr.splitlines() == [
+            "supportive: error: understanding what people say needs scikit-learn, which is not installed: "
+            "pip install 'supportive[language]'"
+        ]

@@ -55,6 +55,11 @@ class ChatConsole:
         read: Returns the next line typed by the person (raises EOFError at the end of input).
         write: Shows one line to the person.
         matcher: ``"bow"`` or ``"embeddings"`` (see :class:`~supportive.language.understand.Understanding`).
+
+    Raises:
+        TaskFileError: for a task file that cannot be read.
+        MissingExtraError: when the matcher's extra (scikit-learn for ``bow``) is not installed: before the
+            dialogue starts.
     """
 
     path: Path
@@ -63,11 +68,14 @@ class ChatConsole:
     matcher: str = "bow"
     spec: TaskSpec = field(init=False)
     states: TaskStates = field(init=False)
+    understanding: Understanding = field(init=False)
     _next: str | None = field(init=False, default=None)
 
     def __post_init__(self) -> None:
         self.spec = parse_task_file(self.path)
         self.states = TaskStates.of(self.spec)
+        self.understanding = Understanding(self.states, matcher=self.matcher)
+        self.understanding.subtask_matcher  # noqa: B018 - built now: a missing extra fails before the dialogue
 
     def run(self) -> TaskSpec:
         """Talk until ``quit`` or the end of input; return the task as saved."""
@@ -111,13 +119,10 @@ class ChatConsole:
         elif isinstance(utterance, ExplainBehavior):
             self._explain_behavior(utterance)
 
-    def _understanding(self) -> Understanding:
-        return Understanding(self.states, matcher=self.matcher)
-
-    def _subtask(self, understanding: Understanding, ranked: Sequence[Candidate], said: str) -> str | None:
+    def _subtask(self, ranked: Sequence[Candidate], said: str) -> str | None:
         """The subtask a phrase means: the best candidate when the robot is sure, the one the person confirms
         otherwise; None (after saying why) when the phrase names no subtask it knows or the person declines."""
-        if not understanding.subtask_matcher.recognises(ranked):
+        if not self.understanding.subtask_matcher.recognises(ranked):
             known = ", ".join(_outermost_first(self.states)[:KNOWN_SHOWN])
             self.write(f"I don't know a part of the task like '{said}'. I know, for example: {known}.")
             return None
@@ -147,22 +152,20 @@ class ChatConsole:
         return None
 
     def _prefer(self, preference: Preference) -> None:
-        understanding = self._understanding()
         chosen = []
-        for ranked, said in zip(understanding.ground(preference), preference.subtask_phrases, strict=True):
-            key = self._subtask(understanding, ranked, said)
+        for ranked, said in zip(self.understanding.ground(preference), preference.subtask_phrases, strict=True):
+            key = self._subtask(ranked, said)
             if key is None:
                 return
             chosen.append(key)
         for phrase in preference.behavior_phrases:
             try:
-                understood = understanding.apply(preference, phrase, subtasks=chosen)
+                understood = self.understanding.apply(preference, phrase, subtasks=chosen)
             except UnderstandingError as exc:
                 self.write(str(exc))
                 continue
             if not _unchanged(understood):
                 self._save(understood.behavior)
-                understanding = self._understanding()
             explanation = explain_behavior(self.states, understood.behavior).text
             self.write(f"{understood.acknowledgement} {explanation}")
 
@@ -172,17 +175,17 @@ class ChatConsole:
         others.insert(position, behavior)
         self.spec = self.spec.with_behaviors(others)
         self.states = TaskStates.of(self.spec, self.states.structure)
+        self.understanding = self.understanding.with_states(self.states)
         write_task_file(self.spec, self.path)
 
     def _explain_subtask(self, request: ExplainSubtask) -> None:
-        understanding = self._understanding()
-        ranked = understanding.subtask_matcher.candidates(request.subtask_phrase)
-        key = self._subtask(understanding, ranked, request.subtask_phrase)
+        ranked = self.understanding.subtask_matcher.candidates(request.subtask_phrase)
+        key = self._subtask(ranked, request.subtask_phrase)
         if key is not None:
             self.write(explain_subtask(self.states, key).text)
 
     def _explain_behavior(self, request: ExplainBehavior) -> None:
-        behavior = self._understanding().behavior_for(request.behavior_phrase)
+        behavior = self.understanding.behavior_for(request.behavior_phrase)
         if behavior is None:
             known = ", ".join(b.text for b in self.spec.behaviors) or "nothing yet"
             self.write(f"I have no behavior like '{request.behavior_phrase}'. I know how to: {known}.")

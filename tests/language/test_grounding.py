@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from supportive.errors import LearningError
+from supportive.errors import LearningError, MissingExtraError
 from supportive.examples import load
 from supportive.language.evaluation import matcher_accuracy, read_utterance_set
 from supportive.language.grounding import (
@@ -309,3 +309,10 @@ def test_same_answers_under_another_hash_seed() -> None:
         )
         runs.append(json.loads(done.stdout))
     assert runs[0] == runs[1]
+
+
+def test_without_scikit_learn_the_matcher_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    for module in ("sklearn", "sklearn.feature_extraction.text", "sklearn.naive_bayes"):
+        monkeypatch.setitem(sys.modules, module, None)
+    with pytest.raises(MissingExtraError, match=r"needs scikit-learn.*supportive\[language\]"):
+        PhraseMatcher({"seat": ["attach the seat"]})

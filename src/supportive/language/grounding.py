@@ -36,12 +36,11 @@ import re
 from abc import ABC, abstractmethod
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-from sklearn.feature_extraction.text import CountVectorizer  # type: ignore[import-untyped]
-from sklearn.naive_bayes import MultinomialNB  # type: ignore[import-untyped]
 
-from supportive.errors import LearningError
+from supportive.errors import LearningError, MissingExtraError
 from supportive.tasks.htn import HTN, Node, internal_nodes, leaf_actions
 from supportive.tasks.spec import TaskSpec
 
@@ -120,6 +119,20 @@ def normalise_words(text: str) -> list[str]:
 
 def _identity(words: list[str]) -> list[str]:
     return words
+
+
+def _scikit_learn() -> tuple[Any, Any]:
+    """scikit-learn's ``CountVectorizer`` and ``MultinomialNB``.
+
+    Raises:
+        MissingExtraError: when the ``language`` extra is not installed.
+    """
+    try:
+        from sklearn.feature_extraction.text import CountVectorizer  # type: ignore[import-untyped]
+        from sklearn.naive_bayes import MultinomialNB  # type: ignore[import-untyped]
+    except ImportError:
+        raise MissingExtraError("understanding what people say", "scikit-learn", "language") from None
+    return CountVectorizer, MultinomialNB
 
 
 @dataclass(frozen=True)
@@ -221,6 +234,7 @@ class PhraseMatcher(Matcher):
 
     Raises:
         LearningError: for no keys, a key with no words, or a prior that is not positive for every key.
+        MissingExtraError: without scikit-learn (the ``language`` extra).
 
     >>> m = PhraseMatcher({"frame": ["build the frame", "attach legs"], "seat": ["attach the seat", "screw it"]})
     >>> [c.key for c in m.candidates("screwing the seet on")]
@@ -258,13 +272,14 @@ class PhraseMatcher(Matcher):
         self.prior = normalised_prior(self.keys, prior)
         self.smoothing = smoothing
         self.typo_cutoff = typo_cutoff
-        self._vectorizer = CountVectorizer(analyzer=_identity)
+        count_vectorizer, multinomial_nb = _scikit_learn()
+        self._vectorizer = count_vectorizer(analyzer=_identity)
         per_text = self._vectorizer.fit_transform(texts).toarray().astype(float)
         per_text *= (np.array(weight) / per_text.sum(axis=1))[:, None]
         counts = np.zeros((len(self.keys), per_text.shape[1]))
         np.add.at(counts, np.array(owner), per_text)
         counts *= mass / counts.sum(axis=1, keepdims=True)
-        self._model = MultinomialNB(alpha=smoothing, fit_prior=False, class_prior=self.prior)
+        self._model = multinomial_nb(alpha=smoothing, fit_prior=False, class_prior=self.prior)
         self._model.fit(counts, np.arange(len(self.keys)))
         self._index: dict[str, int] = {w: int(i) for w, i in self._vectorizer.vocabulary_.items()}
         self.vocabulary: tuple[str, ...] = tuple(sorted(self._index))

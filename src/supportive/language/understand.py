@@ -182,6 +182,13 @@ class Understanding:
             return from_task_embeddings(self.states.spec, self.states.structure)
         return from_task(self.states.spec, self.states.structure)
 
+    def with_states(self, states: TaskStates) -> Understanding:
+        """The same understanding of a task whose behaviors changed; the subtask matcher is kept (behaviors do
+        not change the subtasks), so it is not built again."""
+        other = Understanding(states, self.alpha, self.matcher)
+        other.subtask_matcher = self.subtask_matcher
+        return other
+
     def behavior_for(self, phrase: str) -> SupportiveBehavior | None:
         """The task's behavior a phrase names (by name or words), or None for a new one."""
         words = _content(phrase)
