@@ -8,7 +8,15 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StringConstraints, model_validator
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    StringConstraints,
+    field_validator,
+    model_validator,
+)
 
 __all__ = [
     "DEFAULT_EVENT_PROBABILITY",
@@ -97,13 +105,29 @@ class NodeIn(_Strict):
         return self
 
 
+Identifier = Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]
+
+
 class PredicateIn(_Strict):
-    """``{name, params, text, negative}``: ``text`` is a template with ``?param`` placeholders."""
+    """``{name, params, text, negative}``: ``text`` is a template with ``?param`` placeholders; a parameter is
+    a name (``x``) or a name with its type (``{x: part}``, in YAML flow style ``[x: part, y: part]``)."""
 
     name: Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$")]
-    params: list[Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]] = []
+    params: list[Identifier | dict[Identifier, Identifier]] = []
     text: Name
     negative: str | None = None
+
+    @field_validator("params")
+    @classmethod
+    def _one_type_each(cls, params: list[str | dict[str, str]]) -> list[str | dict[str, str]]:
+        for i, param in enumerate(params):
+            if isinstance(param, dict) and len(param) != 1:
+                raise ValueError(f"a typed parameter is one 'name: type' pair, got {param} (parameter {i + 1})")
+        return params
+
+    def typed(self) -> list[tuple[str, str | None]]:
+        """Each parameter's name and type (None: untyped)."""
+        return [(p, None) if isinstance(p, str) else next(iter(p.items())) for p in self.params]
 
 
 class BehaviorIn(_Strict):
@@ -130,5 +154,6 @@ class TaskIn(_Strict):
     actions: list[Annotated[ActionIn, _wrap("id")]] | None = None
     structure: Annotated[NodeIn, _wrap("action")] | None = None
     demonstrations: list[DemonstrationIn] | None = None
+    objects: dict[Identifier, list[Identifier]] | None = None
     predicates: list[PredicateIn] | None = None
     behaviors: list[BehaviorIn] | None = None

@@ -18,9 +18,15 @@ import yaml
 from pydantic import ValidationError
 
 from supportive.errors import TaskFileError
-from supportive.io.schema import NodeIn, TaskIn
+from supportive.io.schema import NodeIn, PredicateIn, TaskIn
 from supportive.io.text import read_text
-from supportive.tasks.behaviors import DERIVED_PREDICATES, BehaviorCategory, PredicateSpec, SupportiveBehavior
+from supportive.tasks.behaviors import (
+    DERIVED_PREDICATES,
+    BehaviorCategory,
+    PredicateSpec,
+    SupportiveBehavior,
+    placeholders,
+)
 from supportive.tasks.formula import FormulaError, parse_formula, split_atom
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, internal_nodes
 from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
@@ -207,20 +213,50 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
     if len(explicit) > 1:
         index = next(i for i, d in enumerate(demos) if d.has_states != demos[0].has_states)
         raise fail("give explicit states in every demonstration or in none", ["demonstrations", index])
-    predicates, behaviors = _behaviors(model, actions, structure, fail)
-    return TaskSpec(model.name, actions, structure, tuple(demos), predicates, behaviors)
+    objects = tuple((kind, tuple(names)) for kind, names in (model.objects or {}).items())
+    predicates, behaviors = _behaviors(model, actions, structure, dict(objects), fail)
+    return TaskSpec(model.name, actions, structure, tuple(demos), predicates, behaviors, objects)
+
+
+def _predicate(p: PredicateIn, loc: list[str | int], objects: dict[str, tuple[str, ...]], fail: Any) -> PredicateSpec:
+    """A declared predicate, its templates and parameter types checked."""
+    typed = p.typed()
+    params = tuple(name for name, _ in typed)
+    if len(set(params)) != len(params):
+        raise fail(f"predicate {p.name!r} names a parameter twice", [*loc, "params"])
+    for j, (_, kind) in enumerate(typed):
+        if kind is not None and objects and kind not in objects:
+            raise fail(f"type {kind!r} is not declared in 'objects' (declared: {', '.join(objects)})", [*loc, "params", j])
+    for key, template in (("text", p.text), ("negative", p.negative)):
+        if template is None:
+            continue
+        used = placeholders(template)
+        unknown = [u for u in used if u not in params]
+        unsaid = [q for q in params if q not in used]
+        if unknown or unsaid:
+            wrong = f"uses ?{unknown[0]}, which is not a parameter" if unknown else f"does not say ?{unsaid[0]}"
+            expected = ", ".join(f"?{q}" for q in params) or "no placeholders"
+            raise fail(f"template {template!r} {wrong} (parameters of {p.name}: {expected})", [*loc, key])
+    types = tuple(kind for _, kind in typed) if any(kind for _, kind in typed) else ()
+    return PredicateSpec(p.name, params, p.text, p.negative, types)
 
 
 def _behaviors(
-    model: TaskIn, actions: tuple[Action, ...], structure: Node | None, fail: Any
+    model: TaskIn,
+    actions: tuple[Action, ...],
+    structure: Node | None,
+    objects: dict[str, tuple[str, ...]],
+    fail: Any,
 ) -> tuple[tuple[PredicateSpec, ...], tuple[SupportiveBehavior, ...]]:
-    """The predicates and supportive behaviors, every formula checked against them and the structure."""
+    """The predicates and supportive behaviors, every formula checked against them, the structure and the
+    declared objects."""
     predicates: dict[str, PredicateSpec] = {}
     for i, p in enumerate(model.predicates or ()):
         if p.name in predicates or p.name in DERIVED_PREDICATES:
             taken = "declared twice" if p.name in predicates else "derived from the structure"
             raise fail(f"predicate {p.name!r} is {taken}", ["predicates", i, "name"])
-        predicates[p.name] = PredicateSpec(p.name, tuple(p.params), p.text, p.negative)
+        predicates[p.name] = _predicate(p, ["predicates", i], objects, fail)
+    known = {name for names in objects.values() for name in names}
     subtasks = (
         {node.name for node in internal_nodes(structure) if node.name} if structure is not None else set()
     )
@@ -241,6 +277,8 @@ def _behaviors(
                 raise fail(f"{literal}: predicate {name!r} is not declared in 'predicates'", loc)
             elif len(args) != len(predicates[name].params):
                 raise fail(f"{literal}: {name} takes {len(predicates[name].params)} arguments", loc)
+            elif objects:
+                _check_arguments(literal, predicates[name], args, objects, known, loc, fail)
 
     for i, action in enumerate(actions):
         for j, effect in enumerate(action.effects):
@@ -260,6 +298,24 @@ def _behaviors(
             )
         )
     return tuple(predicates.values()), tuple(behaviors)
+
+
+def _check_arguments(
+    literal: str,
+    predicate: PredicateSpec,
+    args: tuple[str, ...],
+    objects: dict[str, tuple[str, ...]],
+    known: set[str],
+    loc: list[str | int],
+    fail: Any,
+) -> None:
+    """Each argument is a declared object, of its parameter's type when the parameter has one."""
+    types = predicate.types or (None,) * len(args)
+    for param, kind, arg in zip(predicate.params, types, args, strict=True):
+        if kind is not None and arg not in objects[kind]:
+            raise fail(f"{literal}: ?{param} of {predicate.name} is a {kind} ({', '.join(objects[kind])}), got {arg!r}", loc)
+        if kind is None and arg not in known:
+            raise fail(f"{literal}: {arg!r} is not declared in 'objects'", loc)
 
 
 def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, seen: Counter[str]) -> Node:
@@ -369,6 +425,11 @@ def _step_to_data(step: Step) -> object:
     return data
 
 
+def _params_to_data(predicate: PredicateSpec) -> list[object]:
+    types = predicate.types or (None,) * len(predicate.params)
+    return [name if kind is None else {name: kind} for name, kind in zip(predicate.params, types, strict=True)]
+
+
 def task_to_dict(spec: TaskSpec) -> dict[str, Any]:
     """The task as plain data in the file schema (shorthands used where nothing is lost)."""
     data: dict[str, Any] = {"name": spec.name}
@@ -387,9 +448,11 @@ def task_to_dict(spec: TaskSpec) -> dict[str, Any]:
             item["steps"] = [_step_to_data(s) for s in demo.steps]
             demos.append(item)
         data["demonstrations"] = demos
+    if spec.objects:
+        data["objects"] = {kind: list(names) for kind, names in spec.objects}
     if spec.predicates:
         data["predicates"] = [
-            {"name": p.name, "params": list(p.params), "text": p.text}
+            {"name": p.name, "params": _params_to_data(p), "text": p.text}
             | ({"negative": p.negative} if p.negative else {})
             for p in spec.predicates
         ]

@@ -9,9 +9,10 @@ initiation and termination regions as formulas (:mod:`supportive.tasks.formula`)
 from __future__ import annotations
 
 import enum
+import re
 from dataclasses import dataclass
 
-__all__ = ["DERIVED_PREDICATES", "BehaviorCategory", "PredicateSpec", "SupportiveBehavior"]
+__all__ = ["DERIVED_PREDICATES", "BehaviorCategory", "PredicateSpec", "SupportiveBehavior", "placeholders"]
 
 DERIVED_PREDICATES: dict[str, PredicateSpec] = {}
 """Predicates every task with a structure has, over its named subtasks: ``done(S)`` (all of S is done),
@@ -40,12 +41,15 @@ class PredicateSpec:
         text: How to say it holds, with ``?param`` placeholders (``"?x is attached to ?y"``).
         negative: How to say it does not hold (default: ``text`` with "not" after its first is/are/has, or
             "it is not the case that …").
+        types: The type of each parameter (None: untyped), or empty when none is typed; a task that declares
+            its objects by type only accepts objects of a parameter's type as its argument.
     """
 
     name: str
     params: tuple[str, ...]
     text: str
     negative: str | None = None
+    types: tuple[str | None, ...] = ()
 
     def say(self, args: tuple[str, ...], positive: bool = True) -> str:
         """The template filled in with ``args`` (underscores read as spaces).
@@ -60,9 +64,20 @@ class PredicateSpec:
         if len(args) != len(self.params):
             raise ValueError(f"{self.name} takes {len(self.params)} arguments, got {len(args)}")
         template = self.text if positive else (self.negative or _negate(self.text))
-        for param, arg in sorted(zip(self.params, args, strict=True), key=lambda pa: -len(pa[0])):
-            template = template.replace(f"?{param}", arg.replace("_", " "))
-        return template
+        values = {param: arg.replace("_", " ") for param, arg in zip(self.params, args, strict=True)}
+        return _PLACEHOLDER.sub(lambda m: values.get(m.group(1), m.group(0)), template)
+
+
+_PLACEHOLDER = re.compile(r"\?([A-Za-z_][A-Za-z0-9_]*)")
+
+
+def placeholders(template: str) -> list[str]:
+    """The ``?name`` placeholders a predicate's template uses, in order.
+
+    >>> placeholders("?y holds the ?x_end of ?y")
+    ['y', 'x_end', 'y']
+    """
+    return _PLACEHOLDER.findall(template)
 
 
 def _negate(text: str) -> str:

@@ -81,7 +81,9 @@ class TaskSpec:
 
     ``actions`` is the declared vocabulary (empty when the file declares none: then the vocabulary is whatever
     the structure and demonstrations use). ``structure`` is the ground-truth hierarchy when known.
-    ``predicates`` and ``behaviors`` describe the supportive behaviors a person asked for (§3.3).
+    ``predicates`` and ``behaviors`` describe the supportive behaviors a person asked for (§3.3); ``objects``
+    lists the task's objects by type, as ``(type, names)`` pairs (empty: the task declares none, and
+    predicates' arguments are not checked against types).
     """
 
     name: str
@@ -90,6 +92,7 @@ class TaskSpec:
     demonstrations: tuple[Demonstration, ...] = field(default=())
     predicates: tuple[PredicateSpec, ...] = ()
     behaviors: tuple[SupportiveBehavior, ...] = ()
+    objects: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
     def action_ids(self) -> tuple[str, ...]:
         """Every action id: the declared ones, or those used by the structure and demonstrations."""
