@@ -7,9 +7,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.io import parse_task_file
-from supportive.language.demonstrated import _cross_validated, learn_region
+from supportive.errors import LearningError
+from supportive.io import parse_task_file, parse_task_string
+from supportive.language.demonstrated import BehaviorRecorder, _cross_validated, learn_region
 from supportive.language.dnf import TruthTable
+from supportive.language.explain import initiation_states, scope
 from supportive.language.states import TaskStates
 
 CHAIR = Path(__file__).parents[2] / "examples" / "ikea-chair.yaml"
@@ -61,3 +63,58 @@ def test_bad_input() -> None:
         learn_region(table, ["a"], bandwidths=[0.0])
     with pytest.raises(KeyError):
         learn_region(table, ["z"])
+
+
+FRAME = [
+    "get_left_frame", "place_left_frame", "peg_left_front", "peg_left_rear", "get_right_frame", "place_right_frame",
+    "peg_right_front", "peg_right_rear", "get_front_support", "attach_front_support", "get_back_support",
+    "attach_back_support",
+]
+
+
+def test_a_recorded_behavior_gets_the_regions_it_was_shown() -> None:
+    chair = TaskStates.of(parse_task_file(CHAIR))
+    key = next(b for b in chair.spec.behaviors if b.name == "hand-hex-key")
+    hazard = chair.state_after([*FRAME, "insert_bolt_rl"])
+    recorder = BehaviorRecorder(chair, key, level=0.1, bandwidths=(1.0,), hazardous=[hazard])
+    for bolt in ("insert_bolt_fl", "insert_bolt_fr", "insert_bolt_rr"):
+        recorder.start([*FRAME, bolt])
+    recorder.stop([*FRAME, "insert_bolt_fl", "tighten_nut_fl"])
+    learned = recorder.fit().behavior_
+    within = scope(chair, key)
+    assert set(recorder.starts) <= initiation_states(chair, learned)
+    assert initiation_states(chair, learned) == recorder.initiation_.states & within
+    assert len(initiation_states(chair, learned)) > len(recorder.starts)  # it generalised
+    assert hazard not in initiation_states(chair, learned) and hazard in chair.region(learned.termination)
+    assert recorder.termination_ is not None
+    assert chair.region(learned.termination) & within == (recorder.termination_.states | {hazard}) & within
+    assert learned.subtasks == key.subtasks and learned.name == key.name
+    unsafe = BehaviorRecorder(chair, key, level=0.1, bandwidths=(1.0,))
+    unsafe.starts = recorder.starts
+    assert hazard in initiation_states(chair, unsafe.fit().behavior_)  # the hazard is what kept it out
+    untouched = BehaviorRecorder(chair, key)
+    untouched.start([*FRAME, "insert_bolt_fl"])
+    assert untouched.fit().behavior_.termination == key.termination and untouched.termination_ is None
+
+
+def test_recording_refuses_what_it_cannot_learn() -> None:
+    chair = TaskStates.of(parse_task_file(CHAIR))
+    key = chair.spec.behaviors[0]
+    with pytest.raises(LearningError, match="record at least one state"):
+        BehaviorRecorder(chair, key).fit()
+    with pytest.raises(ValueError, match="not a way the task can begin"):
+        BehaviorRecorder(chair, key).start(["get_seat"])
+    start = chair.state_after(FRAME)
+    with pytest.raises(LearningError, match="hazardous"):
+        recorder = BehaviorRecorder(chair, key, hazardous=[start])
+        recorder.start(start)
+        recorder.fit()
+    # two states no predicate tells apart: one shown, the other hazardous
+    twins = TaskStates.of(parse_task_string(
+        "name: t\nstructure: {chain: [{clique: [a, b], name: Pick one}, c], name: All}\n"
+        "behaviors: [{name: beep, text: beep, category: enhancing awareness, subtasks: [All]}]\n", "yaml"
+    ))
+    twin = BehaviorRecorder(twins, twins.spec.behaviors[0], hazardous=[twins.state_after(["b"])])
+    twin.start(["a"])
+    with pytest.raises(LearningError, match="cannot tell"):
+        twin.fit()

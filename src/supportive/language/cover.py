@@ -36,7 +36,7 @@ from scipy import sparse
 from scipy.optimize import Bounds, LinearConstraint, milp
 
 from supportive.errors import SupportiveError
-from supportive.language.dnf import DNF, Conjunction, Literal, TruthTable
+from supportive.language.dnf import DNF, Conjunction, Literal, TruthTable, simplify
 
 __all__ = [
     "ESPRESSO_MAX_ATOMS",
@@ -44,6 +44,7 @@ __all__ = [
     "CoverMethod",
     "NoCoverError",
     "describe_precision",
+    "exact_formula",
     "minimal_cover",
 ]
 
@@ -115,6 +116,39 @@ class Cover:
     objective: float | None
     exact: bool
     optimal: bool = True
+
+
+def exact_formula(
+    table: TruthTable, region: Iterable[Hashable], within: Iterable[Hashable] | None = None, *, max_literals: int = 3
+) -> DNF:
+    """A formula that denotes exactly ``region`` among ``within`` (default: every state): the minimal cover
+    when one of at most ``max_literals`` literals per term exists, else one clause per valuation of the atoms in
+    the region, shortened with :func:`~supportive.language.dnf.simplify`.
+
+    Raises:
+        ValueError: when a state of ``within`` outside the region has the same atoms as one inside: no formula
+            over the table's atoms tells them apart.
+
+    >>> table = TruthTable.from_sets(["s0", "s1", "s2", "s3"], {"p": {"s1", "s3"}, "q": {"s2", "s3"}})
+    >>> str(exact_formula(table, ["s3"])), str(exact_formula(table, ["s3"], within=["s2", "s3"]))
+    ('p and q', 'p')
+    """
+    inside = table.mask(DNF.true()) if within is None else table.mask_of(within)
+    target = table.mask_of(region) & inside
+    try:
+        return minimal_cover(
+            table, _states(table, target), irrelevant=_states(table, inside & ~target), max_literals=max_literals
+        ).formula
+    except NoCoverError:
+        pass
+    rows = {tuple(row) for row in table.values[target]}
+    if any(tuple(row) in rows for row in table.values[inside & ~target]):
+        raise ValueError("the predicates cannot tell some states outside the region from states in it")
+    clauses = tuple(
+        Conjunction(frozenset(Literal(atom, bool(value)) for atom, value in zip(table.atoms, row, strict=True)))
+        for row in sorted(rows)
+    )
+    return simplify(DNF(clauses), table, _states(table, inside))
 
 
 def describe_precision(cover: Cover) -> str:

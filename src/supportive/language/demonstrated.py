@@ -10,20 +10,30 @@ state joins the region when its density reaches ``level`` times the lowest densi
 The thesis warns that for behaviors with dangerous failure modes such generalisation is "highly
 undesirable". So states marked *hazardous* are never included, and neither is any state nearer (in feature
 space) to a hazardous state than to every marked one: generalisation never crosses a hazard.
+
+:class:`BehaviorRecorder` is the recording half: it collects the states where a person started a behavior
+and where they stopped it, learns the initiation region from the first (never in or across a hazard) and the
+termination region from the second (plus every hazardous state: the behavior must stop there), and writes
+them as the behavior's formulas.
 """
 
 from __future__ import annotations
 
 from collections.abc import Hashable, Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.spatial.distance import cdist
 from scipy.special import logsumexp
 
+from supportive.errors import LearningError
+from supportive.language.cover import exact_formula
 from supportive.language.dnf import TruthTable
+from supportive.language.explain import scope
+from supportive.language.states import State, TaskStates
+from supportive.tasks.behaviors import SupportiveBehavior
 
-__all__ = ["BANDWIDTHS", "DemonstratedRegion", "learn_region"]
+__all__ = ["BANDWIDTHS", "BehaviorRecorder", "DemonstratedRegion", "learn_region"]
 
 BANDWIDTHS: tuple[float, ...] = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
 """Candidate bandwidths (in feature-space distance: √(atoms that differ)) tried by cross-validation."""
@@ -130,3 +140,108 @@ def learn_region(
     states = frozenset(s for s, k in zip(table.states, keep, strict=True) if k)
     kept_out = frozenset(s for s, k in zip(table.states, inside & excluded, strict=True) if k) | danger
     return DemonstratedRegion(states, bandwidth, threshold, chosen, kept_out)
+
+
+class BehaviorRecorder:
+    """Records where a person starts and stops a behavior, and learns its regions from that (§3.3.4.2).
+
+    Call :meth:`start` or :meth:`stop` with the task's state (or the actions done so far) whenever the person
+    triggers or stops the behavior, then :meth:`fit`.
+
+    Args:
+        states: The task's states.
+        behavior: The behavior being shown (its subtasks are kept; its regions are learned).
+        hazardous: States where it must never run: never in the initiation region, always in the termination
+            region.
+        level: Of :func:`learn_region` (smaller generalises further).
+        bandwidths: Of :func:`learn_region`.
+
+    Attributes:
+        starts: The states where the person started it, in order.
+        stops: The states where they stopped it.
+        initiation_: The learned initiation region (after :meth:`fit`).
+        termination_: The learned termination region (None when no stop was shown).
+        behavior_: The behavior with the learned regions as formulas; without stops, its termination is kept.
+
+    >>> from supportive.examples import load
+    >>> chair = TaskStates.of(load("ikea-chair"))
+    >>> screws = next(b for b in chair.spec.behaviors if b.name == "give-screws")
+    >>> recorder = BehaviorRecorder(chair, screws)
+    >>> done = ["get_left_frame", "place_left_frame", "peg_left_front", "peg_left_rear", "get_right_frame",
+    ...         "place_right_frame", "peg_right_front", "peg_right_rear", "get_front_support",
+    ...         "attach_front_support", "get_back_support", "attach_back_support", "insert_bolt_fl",
+    ...         "tighten_nut_fl", "insert_bolt_fr", "tighten_nut_fr", "insert_bolt_rl", "tighten_nut_rl",
+    ...         "insert_bolt_rr", "tighten_nut_rr", "get_seat", "place_seat"]
+    >>> recorder.start(done)
+    >>> recorder.stop([*done, "screw_seat_left"])
+    >>> learned = recorder.fit().behavior_
+    >>> learned.initiation, learned.termination
+    ('not active(Screw seat)', 'attached(seat, left_frame)')
+    """
+
+    def __init__(
+        self,
+        states: TaskStates,
+        behavior: SupportiveBehavior,
+        *,
+        hazardous: Iterable[State] = (),
+        level: float = 1.0,
+        bandwidths: Sequence[float] = BANDWIDTHS,
+    ) -> None:
+        self.states = states
+        self.behavior = behavior
+        self.hazardous = frozenset(hazardous)
+        self.level = level
+        self.bandwidths = tuple(bandwidths)
+        self.starts: list[State] = []
+        self.stops: list[State] = []
+
+    def _state(self, at: State | Sequence[str]) -> State:
+        return at if isinstance(at, frozenset) else self.states.state_after(at)
+
+    def start(self, at: State | Sequence[str]) -> None:
+        """The person started the behavior in this state (or after these actions).
+
+        Raises:
+            ValueError: for actions that are no valid beginning of the task.
+        """
+        self.starts.append(self._state(at))
+
+    def stop(self, at: State | Sequence[str]) -> None:
+        """The person stopped the behavior in this state (or after these actions).
+
+        Raises:
+            ValueError: for actions that are no valid beginning of the task.
+        """
+        self.stops.append(self._state(at))
+
+    def fit(self) -> BehaviorRecorder:
+        """Learn the regions from what was recorded.
+
+        Raises:
+            LearningError: with no start recorded, a start in a hazardous state, or a learned region the task's
+                predicates cannot say exactly (a state in it looks, by its atoms, like one outside it).
+        """
+        if not self.starts:
+            raise LearningError(f"{self.behavior.name}: record at least one state where it starts")
+        if set(self.starts) & self.hazardous:
+            raise LearningError(f"{self.behavior.name}: it was started in a state marked hazardous")
+        table = self.states.table
+        self.initiation_ = learn_region(
+            table, self.starts, hazardous=self.hazardous, bandwidths=self.bandwidths, level=self.level
+        )
+        self.termination_: DemonstratedRegion | None = None
+        termination = self.behavior.termination
+        within = scope(self.states, self.behavior)
+        if self.stops:
+            self.termination_ = learn_region(table, self.stops, bandwidths=self.bandwidths, level=self.level)
+            termination = self._said(self.termination_.states | self.hazardous, within, "stops")
+        initiation = self._said(self.initiation_.states, within, "starts")
+        self.behavior_ = replace(self.behavior, initiation=initiation, termination=termination)
+        return self
+
+    def _said(self, region: frozenset[Hashable], within: frozenset[Hashable], what: str) -> str:
+        try:
+            return str(exact_formula(self.states.table, region, within))
+        except ValueError as exc:
+            raise LearningError(f"{self.behavior.name}: where it {what}: {exc}") from None

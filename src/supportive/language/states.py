@@ -17,7 +17,8 @@ formula of its predicates denotes a set of states.
 
 from __future__ import annotations
 
-from collections import deque
+from collections import Counter, deque
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -134,6 +135,23 @@ class TaskStates:
     def activity(self, subtask: str) -> str:
         """A subtask as what the person is doing at it ("screwing seat", "working on yellow tower")."""
         return activity(subtask, self.verbs)
+
+    def state_after(self, actions: Sequence[str]) -> State:
+        """The state once ``actions`` (ids, in the order performed) are done; a repeated action is its next
+        performance.
+
+        Raises:
+            ValueError: when the actions are no valid beginning of the task.
+        """
+        counts: Counter[str] = Counter()
+        leaves = set()
+        for action in actions:
+            counts[action] += 1
+            leaves.add((action, counts[action]))
+        state = frozenset(leaves)
+        if state not in self.table.state_index:
+            raise ValueError(f"{', '.join(actions) or 'nothing'}: not a way the task can begin")
+        return state
 
     def say(self, literal: Literal) -> str:
         """A literal in words, with its predicate's template (a subtask said as an activity).
