@@ -126,6 +126,8 @@ def test_a_new_sentence_at_a_question_is_answered_as_itself(tmp_path: Path) -> N
     assert parse_task_file(path) == before
     assert "I take that as something new, so I changed nothing for the question I asked." in shown
     assert shown[-1].startswith("When you are screwing seat, I can give you screws")
+    _console(path, ["When I am tightening the bolts, I want you to shine a light on the bolt", "Yes, please."], shown).run()
+    assert any(b.text == "shine a light on the bolt" for b in parse_task_file(path).behaviors)
 
 
 def test_a_subtask_the_robot_does_not_know_is_not_proposed(tmp_path: Path) -> None:

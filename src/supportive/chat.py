@@ -17,6 +17,7 @@ Anything it cannot read is answered with what it understood and the form to use,
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -42,6 +43,8 @@ __all__ = ["ChatConsole"]
 QUIT = {"quit", "exit", "bye", "done"}
 YES = {"yes", "y", "yeah", "yep", "correct", "right", "ok"}
 NO = {"no", "n", "nope", "nah", "wrong", "neither", "none", "cancel", ""}
+SHORT_ANSWER = 3
+"""An answer of at most this many words is read by its first ("yes please", "no, thanks", "2.")."""
 KNOWN_SHOWN = 5
 """Subtasks named, outermost first, when a phrase names none the robot knows."""
 
@@ -139,7 +142,8 @@ class ChatConsole:
             answer = self.read().strip()
         except EOFError:
             return None
-        word = answer.lower().strip(".!")
+        words = re.findall(r"\w+", answer.lower())
+        word = words[0] if words and len(words) <= SHORT_ANSWER else " ".join(words)
         if word in YES:
             return ranked[0].key
         if word.isdigit() and 1 <= int(word) <= len(ranked):
