@@ -254,3 +254,8 @@ def test_a_stop_that_holds_throughout_is_said_as_stopping_at_once() -> None:
     assert text.startswith("While you are switching lights, I will beep at any point, until the r light is not on")
     instant = explain_behavior(lights, replace(stuck, termination="true")).text
     assert instant == "While you are switching lights, I will beep at any point, but stop at once: I stop wherever I start."
+
+
+def test_the_statement_made_when_confident_keeps_the_negation(chair: TaskStates) -> None:
+    said = _said(chair, "Don't hold the side frames steady when I'm mounting the front support", ("Mount front support",))
+    assert said.confirmation == "OK: when you are mounting front support, I will not hold the side frames steady."

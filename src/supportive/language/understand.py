@@ -252,7 +252,8 @@ class Understanding:
             updated = prefer(self.states, existing, chosen, start, stop)
         names = " or ".join(chosen) or "any subtask"
         if confident:
-            confirmation = f"OK: when you are {self._activities(chosen)}, I will {updated.text}."
+            will = "will not" if preference.negative else "will"
+            confirmation = f"OK: when you are {self._activities(chosen)}, I {will} {updated.text}."
         else:
             options = "; ".join(", ".join(f"{c.key} ({c.probability:.0%})" for c in r) for r in ranked)
             confirmation = f"Do you mean {names}? (I considered: {options}) Yes or no?"
