@@ -241,6 +241,11 @@ def test_a_negative_preference_takes_the_states_away(chair: TaskStates) -> None:
     assert not initiation_states(chair, key.behavior) & left
     assert key.before is not None
     assert initiation_states(chair, key.behavior) == initiation_states(chair, key.before) - left
+    narrowed = _said(chair, "Don't hand me the hex key when I'm fastening the bolts if the front left bolt is tight",
+                     ("Fasten nuts and bolts",))
+    bolts = chair.during("Fasten nuts and bolts")
+    assert narrowed.behavior.subtasks == ("Fasten nuts and bolts",)  # a condition narrows it: the subtask stays
+    assert initiation_states(chair, narrowed.behavior) == bolts - chair.region("bolted(front_left)")
     nothing = _said(chair, "Don't give me screws when I'm fastening the bolts", ("Fasten nuts and bolts",))
     assert nothing.behavior == nothing.before and nothing.acknowledgement.endswith("anyway; I changed nothing.")
     with pytest.raises(UnderstandingError, match="behaviors I have"):

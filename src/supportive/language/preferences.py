@@ -119,10 +119,11 @@ def refuse(
         states.during(subtask)
     if not subtasks and start is None:
         raise ValueError("say when not to: name a subtask or a condition")
-    excluded = (during(subtasks) if subtasks else DNF.true()) & (DNF.true() if start is None else start)
+    # not (D and C) = not D or not C: negating the short parts keeps the formula small
+    allowed = (~during(subtasks) if subtasks else DNF(())) | (~start if start is not None else DNF(()))
     remaining = tuple(s for s in behavior.subtasks if s not in subtasks)
     if start is None and remaining and len(remaining) < len(behavior.subtasks):
         behavior = replace(behavior, subtasks=remaining)
     old_start = parse_formula(behavior.initiation)
-    initiation = _shortened(states, behavior, old_start & ~excluded, behavior.initiation, old_start)
+    initiation = _shortened(states, behavior, old_start & allowed, behavior.initiation, old_start)
     return replace(behavior, initiation=initiation)
