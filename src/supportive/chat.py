@@ -33,7 +33,7 @@ from supportive.language.grammar import (
 )
 from supportive.language.grounding import Candidate, is_confident
 from supportive.language.states import TaskStates
-from supportive.language.understand import Understanding, Understood
+from supportive.language.understand import Understanding
 from supportive.tasks.behaviors import SupportiveBehavior
 from supportive.tasks.htn import ChainNode, CliqueNode, Node
 from supportive.tasks.spec import TaskSpec
@@ -168,7 +168,7 @@ class ChatConsole:
             except UnderstandingError as exc:
                 self.write(str(exc))
                 continue
-            if not _unchanged(understood):
+            if understood.behavior != understood.before:
                 self._save(understood.behavior)
             explanation = explain_behavior(self.states, understood.behavior).text
             self.write(f"{understood.acknowledgement} {explanation}")
@@ -195,10 +195,6 @@ class ChatConsole:
             self.write(f"I have no behavior like '{request.behavior_phrase}'. I know how to: {known}.")
             return
         self.write(explain_behavior(self.states, behavior).text)
-
-
-def _unchanged(understood: Understood) -> bool:
-    return understood.before == understood.behavior
 
 
 def _outermost_first(states: TaskStates) -> list[str]:
