@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from supportive.envs.circuits.pieces import PieceType, piece_type
 from supportive.errors import CircuitError
@@ -78,11 +78,18 @@ class BoardPose:
 
     def snap_points(self, kind: str | PieceType) -> tuple[Point, ...]:
         """The points of a piece's snaps, in the order of its terminals."""
-        return tuple(self.point(offset) for offset in _kind(kind).snaps)
+        return _points(self, _kind(kind), True)
 
     def footprint(self, kind: str | PieceType) -> tuple[Point, ...]:
         """Every point the piece covers, first snap to last."""
-        return tuple(self.point(offset) for offset in range(_kind(kind).span + 1))
+        return _points(self, _kind(kind), False)
+
+
+@lru_cache(maxsize=65536)
+def _points(pose: BoardPose, kind: PieceType, snaps_only: bool) -> tuple[Point, ...]:
+    """A piece's snap points or footprint at a pose (remembered: planners ask for the same ones often)."""
+    offsets = kind.snaps if snaps_only else range(kind.span + 1)
+    return tuple(pose.point(offset) for offset in offsets)
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 from supportive.envs.tabletop.geometry import Point, Rect
 from supportive.errors import PlanningError
@@ -74,12 +75,7 @@ class TableLayout:
 
     def cells(self, footprint: Rect) -> frozenset[tuple[str, int, int]]:
         """The space cells a footprint covers, as ``("cell", column, row)``."""
-        origin = self.bounds
-        c0 = math.floor((footprint.x0 - origin.x0) / self.cell)
-        c1 = math.floor((footprint.x1 - origin.x0) / self.cell)
-        r0 = math.floor((footprint.y0 - origin.y0) / self.cell)
-        r1 = math.floor((footprint.y1 - origin.y0) / self.cell)
-        return frozenset(("cell", c, r) for c in range(c0, c1 + 1) for r in range(r0, r1 + 1))
+        return _cells(self, footprint)
 
     def sample_point(self, u: float, v: float, w: float) -> Point:
         """A point on the surfaces from three uniform numbers in [0, 1): ``u`` picks the surface (by area),
@@ -94,3 +90,14 @@ class TableLayout:
                 break
             pick -= area
         return (chosen.x0 + v * chosen.width, chosen.y0 + w * chosen.height)
+
+
+@lru_cache(maxsize=65536)
+def _cells(layout: TableLayout, footprint: Rect) -> frozenset[tuple[str, int, int]]:
+    """The space cells of a footprint (remembered: planners ask about the same footprints again and again)."""
+    origin = layout.bounds
+    c0 = math.floor((footprint.x0 - origin.x0) / layout.cell)
+    c1 = math.floor((footprint.x1 - origin.x0) / layout.cell)
+    r0 = math.floor((footprint.y0 - origin.y0) / layout.cell)
+    r1 = math.floor((footprint.y1 - origin.y0) / layout.cell)
+    return frozenset(("cell", c, r) for c in range(c0, c1 + 1) for r in range(r0, r1 + 1))

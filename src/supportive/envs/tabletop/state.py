@@ -45,11 +45,24 @@ class TabletopState(Generic[GoalT]):
 
     def moved(self, item: int, pose: TablePose | None, status: Status) -> TabletopState[GoalT]:
         """The state with object ``item`` at ``pose`` with ``status``."""
-        poses = list(self.poses)
-        poses[item] = pose
-        statuses = list(self.status)
-        statuses[item] = status
-        return replace(self, poses=tuple(poses), status=tuple(statuses))
+        return self.changed(item, pose, status)
+
+    def changed(
+        self,
+        item: int,
+        pose: TablePose | None,
+        status: Status,
+        goal: GoalT | None = None,
+        hand: tuple[bool, Point] | None = None,
+    ) -> TabletopState[GoalT]:
+        """The state with object ``item`` at ``pose`` with ``status`` and, when given, a new goal area and
+        one hand (``(True, point)`` for the lead's, ``(False, point)`` for the support agent's) moved."""
+        poses = (*self.poses[:item], pose, *self.poses[item + 1 :])
+        statuses = (*self.status[:item], status, *self.status[item + 1 :])
+        hands = self.hands
+        if hand is not None:
+            hands = (hand[1], hands[1]) if hand[0] else (hands[0], hand[1])
+        return TabletopState(poses, statuses, self.goal if goal is None else goal, hands)
 
     def with_hand(self, lead: bool, point: Point) -> TabletopState[GoalT]:
         """The state with the lead's (or the support agent's) hand at ``point``."""

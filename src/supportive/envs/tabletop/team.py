@@ -97,7 +97,7 @@ class TeamResult(Generic[GoalT]):
         support_decisions: Times the support agent chose what to do.
         support_planning_seconds: Wall-clock seconds its planner spent.
         conflicts: Counts of what went wrong, by kind (``support yielded``, ``lead yielded``,
-            ``object taken``, ``waited for an object``).
+            ``object taken``, ``waited for an object``, ``waited for a plan``).
         final: The last state.
         events: What happened, in order.
     """
@@ -165,7 +165,7 @@ class _Run(Generic[GoalT, TargetT]):
         self.retreating = {LEAD: False, SUPPORT: False}
         self.hands = {LEAD: world.lead_arm.home, SUPPORT: world.support_arm.home}
         self.result: TeamResult[GoalT] = TeamResult(False, 0.0)
-        self.lead_target: Install[TargetT] | None = None
+        self.lead_target: tuple[int, Install[TargetT]] | None = None  # the object the lead is going for
 
     # -- helpers -------------------------------------------------------------------------------------------
 
@@ -212,14 +212,16 @@ class _Run(Generic[GoalT, TargetT]):
         self.retreating[agent] = False
 
     def planning_view(self) -> TabletopState[GoalT]:
-        """The state with the object in the lead's hand counted as installed (where the lead is going)."""
+        """The state the lead is making: the object it is going for, or holds, counted as installed (the
+        support agent sees where the lead's arm is going, so it plans around that object)."""
         self.sync_hands()
-        held = self.state.held_by(Status.HELD_LEAD)
-        if held is None or self.lead_target is None:
+        if self.lead_target is None:
             return self.state
-        goal = self.world.receive(self.state.goal, held, self.lead_target.target)
-        moved = self.state.moved(held, None, Status.GOAL)
-        return TabletopState(moved.poses, moved.status, goal, self.state.hands)
+        item, op = self.lead_target
+        if self.state.status[item] not in (Status.TABLE, Status.HELD_LEAD):
+            return self.state
+        goal = self.world.receive(self.state.goal, item, op.target)
+        return self.state.changed(item, None, Status.GOAL, goal)
 
     # -- the lead ------------------------------------------------------------------------------------------
 
@@ -238,7 +240,8 @@ class _Run(Generic[GoalT, TargetT]):
                 return
 
     def lead_step(self) -> Generator[_Segment, None, bool]:
-        """One step of the lead; True when its policy has nothing more to do."""
+        """One step of the lead; True when the goal is reached. A policy with no step while the goal is not
+        reached (its objects are in the other agent's hand, say) waits and asks again."""
         world = self.world
         self.sync_hands()
         step = self.lead.next_step(world, self.state)
@@ -246,7 +249,11 @@ class _Run(Generic[GoalT, TargetT]):
         self.result.lead_planning_seconds += step.seconds
         self.result.lead_plans += step.replanned
         if step.op is None:
-            return True
+            if world.goal_reached(self.state):
+                return True
+            self.result.conflicts["waited for a plan"] += 1
+            yield self.pause(LEAD, _WAIT)
+            return False
         op = step.op
         item = world.bind(self.state, op)
         if item is None or not world.can_receive(self.state.goal, op.kind, op.target):
@@ -257,16 +264,17 @@ class _Run(Generic[GoalT, TargetT]):
         if pose is None:
             raise PlanningError(f"{world.items[item].id} lies nowhere")
         self.busy[LEAD] = True
+        self.lead_target = (item, op)
         yield self.travel(LEAD, pose.point)
         self.hands[LEAD] = pose.point
         if self.state.status[item] is not Status.TABLE or self.state.poses[item] != pose:
             self.busy[LEAD] = False
+            self.lead_target = None
             self.result.conflicts["object taken"] += 1
             self.log(LEAD, f"{world.items[item].id} is gone: plan again")
             self.lead.interrupted()
             return False
         self.state = self.state.moved(item, pose, Status.HELD_LEAD)
-        self.lead_target = op
         turns = quarter_turns(pose.rotation, world.target_rotation(op.target), world.types[op.kind].symmetric)
         yield self.pause(LEAD, world.lead_arm.handling(grasps=1, turns=turns))
         target = world.target_point(op.target)

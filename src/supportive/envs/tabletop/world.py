@@ -296,25 +296,22 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
             if item is None:
                 raise PlanningError(f"no {operator.kind} within the lead's reach")
             goal = self.receive(state.goal, item, operator.target)
-            moved = state.moved(item, None, Status.GOAL)
-            return TabletopState(moved.poses, moved.status, goal, state.hands).with_hand(
-                True, self.target_point(operator.target)
-            )
+            return state.changed(item, None, Status.GOAL, goal, (True, self.target_point(operator.target)))
         if isinstance(operator, Pick):
             item = operator.item
             lead = agent == LEAD
             status = Status.HELD_LEAD if lead else Status.HELD_SUPPORT
             pose = state.poses[item]
             if state.status[item] is Status.GOAL:
-                released = self.release(state.goal, item)
-                state = TabletopState(state.poses, state.status, released, state.hands)
+                goal = self.release(state.goal, item)
                 pose = TablePose(*self.layout.goal_area.center, 0)
+                return state.changed(item, pose, status, goal, (lead, pose.point))
             if pose is None:
                 raise PlanningError(f"{self.items[item].id} lies nowhere")
-            return state.moved(item, pose, status).with_hand(lead, pose.point)
+            return state.changed(item, pose, status, None, (lead, pose.point))
         if isinstance(operator, Put):
-            return state.moved(operator.item, operator.pose, Status.TABLE).with_hand(
-                agent == LEAD, operator.pose.point
+            return state.changed(
+                operator.item, operator.pose, Status.TABLE, None, (agent == LEAD, operator.pose.point)
             )
         raise PlanningError(f"not an operator of this world: {operator!r}")
 

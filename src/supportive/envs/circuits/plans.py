@@ -1,0 +1,60 @@
+"""The known plan set Π_T of a circuit task: every loop the layout planner finds with the table's pieces,
+as build-order lead plans, the quickest first (Algorithm 5 without support in s_0).
+
+Which loops exist depends only on the board, the goal and how many pieces of each kind there are, so the
+enumeration is remembered for those; the ranking depends on where the pieces lie.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from functools import lru_cache
+
+from supportive.envs.circuits.board import BoardPose
+from supportive.envs.circuits.goals import CircuitGoal
+from supportive.envs.circuits.layout import LayoutSearch, Loop
+from supportive.envs.circuits.world import CircuitState, CircuitWorld
+from supportive.envs.tabletop.operators import Install, TabletopOperator
+from supportive.envs.tabletop.world import Move
+from supportive.errors import PlanningError
+from supportive.planning.duration import estimate_duration
+from supportive.planning.hypothetical import Hypothetical
+
+__all__ = ["CircuitPlan", "known_plans", "loop_plan"]
+
+CircuitPlan = tuple[TabletopOperator[BoardPose], ...]
+"""A lead plan of the circuit world: Install steps in build order."""
+
+
+def loop_plan(loop: Loop) -> CircuitPlan:
+    """The lead plan that builds ``loop``: one Install per piece, level 0 first."""
+    return tuple(Install(segment.kind, segment.pose) for segment in loop.build_order)
+
+
+@lru_cache(maxsize=32)
+def _loops(
+    columns: int, rows: int, goal: CircuitGoal, inventory: tuple[tuple[str, int], ...], max_pieces: int
+) -> tuple[Loop, ...]:
+    search = LayoutSearch(columns, rows, goal, max_pieces=max_pieces, node_limit=10_000_000)
+    return tuple(search.loops(dict(inventory)))
+
+
+def known_plans(world: CircuitWorld, count: int = 30, *, max_pieces: int = 6) -> tuple[CircuitPlan, ...]:
+    """Π_T: the ``count`` quickest plans (in s_0, without support) among every loop of at most
+    ``max_pieces`` pieces the world's pieces allow; ties keep the search's order.
+
+    Raises:
+        PlanningError: when the pieces allow no circuit that meets the goal.
+    """
+    state = world.initial_state
+    inventory = tuple(sorted(Counter(item.kind for item in world.items).items()))
+    loops = _loops(world.board.columns, world.board.rows, world.goal, inventory, max_pieces)
+    if not loops:
+        raise PlanningError(
+            f"no circuit of at most {max_pieces} pieces meets the goal ({world.goal.text}) with these pieces"
+        )
+    idle = Hypothetical[CircuitState, TabletopOperator[BoardPose], Move].idle(state)
+    plans = [loop_plan(loop) for loop in loops]
+    durations = [estimate_duration(world, plan, idle, float("inf")) for plan in plans]
+    order = sorted(range(len(plans)), key=lambda i: (durations[i], i))
+    return tuple(plans[i] for i in order[:count])
