@@ -10,7 +10,6 @@ import csv
 import io
 import json
 from collections import Counter
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, Literal
 
@@ -19,6 +18,7 @@ from pydantic import ValidationError
 
 from supportive.errors import TaskFileError
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
+from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.text import read_text
 from supportive.tasks.behaviors import (
     DERIVED_PREDICATES,
@@ -81,101 +81,19 @@ def parse_task_string(
         raise TaskFileError("file is empty", path=path)
     if format == "csv":
         return _parse_csv(text, path, name or (Path(path).stem if path else "task"))
-    data = _load(text, format, path)
+    data = load_structured(text, format, path, TaskFileError)
     if not isinstance(data, dict):
-        raise TaskFileError(f"expected a mapping with at least 'name', got {_kind(data)}", path=path, line=1)
+        raise TaskFileError(f"expected a mapping with at least 'name', got {kind_of(data)}", path=path, line=1)
     try:
         model = TaskIn.model_validate(data)
     except ValidationError as exc:
-        raise _schema_error(exc, text, path) from None
+        raise schema_error(exc, text, path, TaskFileError) from None
     return _to_spec(model, text, path)
-
-
-def _load(text: str, format: Format, path: str | Path | None) -> Any:
-    try:
-        if format == "json":
-            return json.loads(text)
-        return yaml.safe_load(text)
-    except json.JSONDecodeError as exc:
-        raise TaskFileError(f"invalid JSON: {exc.msg}", path=path, line=exc.lineno) from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-        raise TaskFileError(
-            f"invalid YAML: {problem}", path=path, line=None if mark is None else mark.line + 1
-        ) from None
-
-
-def _kind(value: object) -> str:
-    return {dict: "a mapping", list: "a list", str: "a string", type(None): "nothing"}.get(
-        type(value), f"{type(value).__name__} {value!r}"
-    )
-
-
-def _place(loc: Sequence[str | int]) -> str:
-    out = ""
-    for part in loc:
-        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
-    return out
-
-
-def _line(text: str, loc: Sequence[str | int]) -> int | None:
-    """The line of the deepest node along ``loc`` that exists in the text (YAML and most JSON)."""
-    try:
-        node = yaml.compose(text)
-    except yaml.YAMLError:
-        return None
-    line = None
-    for part in loc:
-        if node is None:
-            break
-        line = node.start_mark.line + 1
-        if isinstance(node, yaml.MappingNode):
-            node = next((v for k, v in node.value if k.value == part), None)
-        elif isinstance(node, yaml.SequenceNode) and isinstance(part, int) and part < len(node.value):
-            node = node.value[part]
-        else:
-            node = None
-    if node is not None:
-        line = node.start_mark.line + 1
-    return line
-
-
-_MESSAGES = {
-    "missing": "missing required key {key!r}",
-    "extra_forbidden": "unknown key {key!r}",
-    "list_type": "expected a list, got {got}",
-    "string_type": "expected a string, got {got}",
-    "float_type": "expected a number, got {got}",
-    "float_parsing": "expected a number, got {got}",
-    "model_type": "expected a mapping, got {got}",
-    "dict_type": "expected a mapping, got {got}",
-    "string_too_short": "must not be empty",
-    "too_short": "must not be empty",
-}
-
-
-def _schema_error(exc: ValidationError, text: str, path: str | Path | None) -> TaskFileError:
-    error = exc.errors()[0]
-    loc = [p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))]
-    kind = error["type"]
-    key = loc[-1] if loc else ""
-    if kind in ("missing", "extra_forbidden"):
-        place_loc = loc[:-1]
-        line_loc = loc if kind == "extra_forbidden" else loc[:-1]
-    else:
-        place_loc = line_loc = loc
-    template = _MESSAGES.get(kind)
-    if template is None:
-        message = error["msg"].removeprefix("Value error, ")
-    else:
-        message = template.format(key=key, got=_kind(error.get("input")))
-    return TaskFileError(message, path=path, place=_place(place_loc) or None, line=_line(text, line_loc))
 
 
 def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
     def fail(problem: str, loc: list[str | int]) -> TaskFileError:
-        return TaskFileError(problem, path=path, place=_place(loc), line=_line(text, loc))
+        return TaskFileError(problem, path=path, place=place_of(loc), line=line_of(text, loc))
 
     actions = tuple(Action(a.id, a.text, a.events(), tuple(a.effects or ())) for a in model.actions or ())
     declared = {a.id for a in actions}

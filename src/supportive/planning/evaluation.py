@@ -32,11 +32,11 @@ _CHUNKS_PER_WORKER = 4
 
 @dataclass(frozen=True)
 class ScoringContext(Generic[StateT, OperatorT, MoveT]):
-    """What scoring a candidate needs besides the candidate: fixed for one fitted planner."""
+    """What scoring a candidate needs besides the candidate and the plan weights: fixed for one fitted
+    planner (so worker processes receive it once)."""
 
     world: SupportWorld[StateT, OperatorT, MoveT]
     plans: tuple[tuple[OperatorT, ...], ...]
-    weights: tuple[float, ...]
     penalty: float
     decay: Decay
     lead: str
@@ -50,19 +50,21 @@ class ScoringContext(Generic[StateT, OperatorT, MoveT]):
             ]
         )
 
-    def score(self, support: Hypothetical[StateT, OperatorT, MoveT]) -> float:
+    def score(self, support: Hypothetical[StateT, OperatorT, MoveT], weights: Sequence[float]) -> float:
         """Σ_π w_π · duration(π, ξ): plans of weight 0 are not estimated."""
         total = 0.0
-        for weight, plan in zip(self.weights, self.plans, strict=True):
+        for weight, plan in zip(weights, self.plans, strict=True):
             if weight != 0.0:
                 total += weight * estimate_duration(
                     self.world, plan, support, self.penalty, self.decay, self.lead
                 )
         return total
 
-    def scores(self, candidates: Sequence[Hypothetical[StateT, OperatorT, MoveT]]) -> list[float]:
+    def scores(
+        self, candidates: Sequence[Hypothetical[StateT, OperatorT, MoveT]], weights: Sequence[float]
+    ) -> list[float]:
         """The score of every candidate, in order."""
-        return [self.score(candidate) for candidate in candidates]
+        return [self.score(candidate, weights) for candidate in candidates]
 
 
 class Scorer(Protocol):
@@ -70,8 +72,10 @@ class Scorer(Protocol):
 
     description: str
 
-    def scores(self, candidates: Sequence[Hypothetical[Any, Any, Any]]) -> list[float]:
-        """The score of every candidate, in order."""
+    def scores(
+        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+    ) -> list[float]:
+        """The score of every candidate under plan weights ``weights``, in order."""
         ...
 
     def close(self) -> None:
@@ -86,9 +90,11 @@ class InProcessScorer:
     context: ScoringContext[Any, Any, Any]
     description: str = "in process"
 
-    def scores(self, candidates: Sequence[Hypothetical[Any, Any, Any]]) -> list[float]:
+    def scores(
+        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+    ) -> list[float]:
         """The score of every candidate, in order."""
-        return self.context.scores(candidates)
+        return self.context.scores(candidates, weights)
 
     def close(self) -> None:
         """Nothing to release."""
@@ -102,14 +108,18 @@ def _install(context: ScoringContext[Any, Any, Any]) -> None:
     _WORKER_CONTEXT = context
 
 
-def _score_in_worker(candidates: Sequence[Hypothetical[Any, Any, Any]]) -> list[float]:
+def _score_in_worker(
+    candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+) -> list[float]:
     if _WORKER_CONTEXT is None:  # pragma: no cover - the pool's initializer always ran
         raise PlanningError("worker process has no scoring context")
-    return _WORKER_CONTEXT.scores(candidates)
+    return _WORKER_CONTEXT.scores(candidates, weights)
 
 
-def _score_on_dask(context: ScoringContext[Any, Any, Any], candidates: Sequence[Any]) -> list[float]:
-    return context.scores(candidates)
+def _score_on_dask(
+    context: ScoringContext[Any, Any, Any], candidates: Sequence[Any], weights: Sequence[float]
+) -> list[float]:
+    return context.scores(candidates, weights)
 
 
 def _chunks(items: Sequence[Any], parts: int) -> list[Sequence[Any]]:
@@ -126,12 +136,15 @@ class ProcessScorer:
         self.description = f"{workers} local processes"
         self._pool = ProcessPoolExecutor(max_workers=workers, initializer=_install, initargs=(context,))
 
-    def scores(self, candidates: Sequence[Hypothetical[Any, Any, Any]]) -> list[float]:
+    def scores(
+        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+    ) -> list[float]:
         """The score of every candidate, in order."""
         if not candidates:
             return []
         parts = _chunks(list(candidates), self.workers * _CHUNKS_PER_WORKER)
-        return [score for chunk in self._pool.map(_score_in_worker, parts) for score in chunk]
+        chunks = self._pool.map(_score_in_worker, parts, [tuple(weights)] * len(parts))
+        return [score for chunk in chunks for score in chunk]
 
     def close(self) -> None:
         """Stop the worker processes."""
@@ -148,12 +161,17 @@ class DaskScorer:
         self._parts = workers * _CHUNKS_PER_WORKER
         self.description = f"dask, {workers} workers"
 
-    def scores(self, candidates: Sequence[Hypothetical[Any, Any, Any]]) -> list[float]:
+    def scores(
+        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+    ) -> list[float]:
         """The score of every candidate, in order."""
         if not candidates:
             return []
         parts = _chunks(list(candidates), self._parts)
-        futures = [self._client.submit(_score_on_dask, self._context, part, pure=False) for part in parts]
+        futures = [
+            self._client.submit(_score_on_dask, self._context, part, tuple(weights), pure=False)
+            for part in parts
+        ]
         return [score for chunk in self._client.gather(futures) for score in chunk]
 
     def close(self) -> None:

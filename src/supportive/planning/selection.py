@@ -91,6 +91,10 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         decay: γ, the weight of each step of a lead plan (default: none).
         penalty_factor: PLAN_NULLIFICATION_PENALTY as a multiple of the worst known plan's duration in
             s_0 (> 1, the thesis's "greater than the cost of the worst known plan").
+        reweight: Weigh the plans at every decision by their durations from s_c, over the plans still
+            possible there (those the state does not contradict; the others weigh 0), instead of once by
+            their durations from s_0 (the thesis's definition of m). Once the lead has started, the plans it
+            may be following are then the ones that count, and the best of them sets m.
         workers: Local worker processes that score candidates (1: in this process).
         client: A ``dask.distributed.Client`` to score on instead.
 
@@ -110,6 +114,7 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         alpha: float = 0.5,
         decay: Decay = no_decay,
         penalty_factor: float = 2.0,
+        reweight: bool = True,
         workers: int = 1,
         client: Any = None,
     ) -> None:
@@ -124,6 +129,7 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         self.alpha = alpha
         self.decay = decay
         self.penalty_factor = penalty_factor
+        self.reweight = reweight
         self.workers = workers
         self.client = client
         self._scorer: Scorer | None = None
@@ -151,9 +157,7 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         self.weights_ = tuple(float(w) for w in weights)
         self.penalty_ = self.penalty_factor * max(baseline)
         self.close()
-        self._context = ScoringContext(
-            world, problem.plans, self.weights_, self.penalty_, self.decay, problem.lead_agent
-        )
+        self._context = ScoringContext(world, problem.plans, self.penalty_, self.decay, problem.lead_agent)
         return self
 
     def decide(
@@ -167,8 +171,10 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         context = self._fitted(problem)
         candidates = hypothetical_environments(problem, self.environments, seed)
         idle = Hypothetical[StateT, OperatorT, MoveT].idle(problem.state)
-        idle_score = context.score(idle)
-        scores = self._scorer_for(context).scores(candidates.environments)
+        idle_durations = context.durations(idle)
+        weights = self._weights_at(idle_durations) if self.reweight else self.weights_
+        idle_score = float(np.dot(weights, idle_durations))
+        scores = self._scorer_for(context).scores(candidates.environments, weights) if any(weights) else []
         chosen, score = idle, idle_score
         if scores:
             best = int(np.argmin(scores))
@@ -178,12 +184,28 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
             chosen,
             score,
             idle_score,
-            context.weights,
-            tuple(float(d) for d in context.durations(idle)),
-            tuple(float(d) for d in context.durations(chosen)),
+            tuple(weights),
+            tuple(float(d) for d in idle_durations),
+            tuple(float(d) for d in (idle_durations if chosen is idle else context.durations(chosen))),
             candidates,
             tuple(scores),
         )
+
+    def _weights_at(self, durations: np.ndarray) -> tuple[float, ...]:
+        """Plan weights from the plans' durations at s_c: the plans still possible are weighted by the
+        scheme, the others weigh 0; all weigh 0 once a plan is finished (there is nothing left to help)."""
+        possible = durations < self.penalty_
+        if not possible.any() or np.any(durations[possible] <= 0):
+            return tuple(0.0 for _ in durations)
+        weights = np.zeros(len(durations))
+        weights[possible] = plan_weights(
+            durations[possible].tolist(),
+            self.scheme,
+            power=self.power,
+            epsilon=self.epsilon,
+            alpha=self.alpha,
+        )
+        return tuple(float(w) for w in weights)
 
     def close(self) -> None:
         """Stop any worker processes the planner started."""

@@ -10,8 +10,11 @@ from __future__ import annotations
 from collections import Counter
 from functools import lru_cache
 
+import numpy as np
+
 from supportive.envs.circuits.board import BoardPose
 from supportive.envs.circuits.goals import CircuitGoal
+from supportive.envs.circuits.greedy import greedy_search
 from supportive.envs.circuits.layout import LayoutSearch, Loop
 from supportive.envs.circuits.world import CircuitState, CircuitWorld
 from supportive.envs.tabletop.operators import Install, TabletopOperator
@@ -39,9 +42,15 @@ def _loops(
     return tuple(search.loops(dict(inventory)))
 
 
-def known_plans(world: CircuitWorld, count: int = 30, *, max_pieces: int = 6) -> tuple[CircuitPlan, ...]:
-    """Π_T: the ``count`` quickest plans (in s_0, without support) among every loop of at most
-    ``max_pieces`` pieces the world's pieces allow; ties keep the search's order.
+def known_plans(
+    world: CircuitWorld, quickest: int = 15, spread: int = 15, *, max_pieces: int = 6, greedy: bool = True
+) -> tuple[CircuitPlan, ...]:
+    """Π_T: a set of plans that represents the ways the task can be done, good and bad.
+
+    Every loop of at most ``max_pieces`` pieces that the world's pieces allow is ranked by Algorithm 5 in
+    s_0 without support (ties keep the search's order); Π_T holds the ``quickest`` first ones, ``spread``
+    more taken evenly from the rest of the ranking down to the slowest, and (with ``greedy``) the circuit the
+    greedy proximity planner of §3.2.9.2 builds from s_0, which may be larger than ``max_pieces``.
 
     Raises:
         PlanningError: when the pieces allow no circuit that meets the goal.
@@ -57,4 +66,14 @@ def known_plans(world: CircuitWorld, count: int = 30, *, max_pieces: int = 6) ->
     plans = [loop_plan(loop) for loop in loops]
     durations = [estimate_duration(world, plan, idle, float("inf")) for plan in plans]
     order = sorted(range(len(plans)), key=lambda i: (durations[i], i))
-    return tuple(plans[i] for i in order[:count])
+    chosen = order[:quickest]
+    rest = order[quickest:]
+    if spread and rest:
+        picks = np.unique(np.linspace(0, len(rest) - 1, min(spread, len(rest))).round().astype(int))
+        chosen += [rest[i] for i in picks]
+    known = [plans[i] for i in chosen]
+    if greedy:
+        loop, _ = greedy_search(world, state)
+        if loop is not None and loop_plan(loop) not in known:
+            known.append(loop_plan(loop))
+    return tuple(known)

@@ -262,7 +262,9 @@ class EpisodeLimits:
 
     def __post_init__(self) -> None:
         if self.max_steps < 1 or self.threshold < 1:
-            raise ValueError(f"max_steps and threshold must be >= 1, got {self.max_steps} and {self.threshold}")
+            raise ValueError(
+                f"max_steps and threshold must be >= 1, got {self.max_steps} and {self.threshold}"
+            )
 
 
 @dataclass
@@ -332,9 +334,14 @@ class EpisodeState:
 
     def status(self, p_safe: float | None = None) -> str:
         """One status line: step, damage, the last bump, P(safe | τ) when known, a candle in hand."""
-        parts = [f"step {self.steps}/{self.limits.max_steps}", f"damage {self.damage}/{self.limits.threshold}"]
+        parts = [
+            f"step {self.steps}/{self.limits.max_steps}",
+            f"damage {self.damage}/{self.limits.threshold}",
+        ]
         if self.collision is not None:
-            parts.append(f"bumped into {self.collision.kind} at {self.collision.cell} (+{self.collision.damage})")
+            parts.append(
+                f"bumped into {self.collision.kind} at {self.collision.cell} (+{self.collision.damage})"
+            )
         if p_safe is not None:
             parts.append(f"P(safe) {p_safe:.2f}")
         if self.world.carrying:

@@ -64,8 +64,15 @@ class Terrain(enum.Enum):
     BIN = "B"
 
 
-_SYMBOLS = {".": Terrain.FLOOR, "R": Terrain.FLOOR, "#": Terrain.WALL, "S": Terrain.STAIRS, "T": Terrain.TABLE,
-            "C": Terrain.TABLE, "B": Terrain.BIN}
+_SYMBOLS = {
+    ".": Terrain.FLOOR,
+    "R": Terrain.FLOOR,
+    "#": Terrain.WALL,
+    "S": Terrain.STAIRS,
+    "T": Terrain.TABLE,
+    "C": Terrain.TABLE,
+    "B": Terrain.BIN,
+}
 _COMMENT = ";"
 
 
@@ -225,22 +232,27 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
             if kind is None:
                 raise MapFileError(
                     f"unknown map character {char!r} (expected one of # . S T C B R)",
-                    path=path, line=number, column=column,
+                    path=path,
+                    line=number,
+                    column=column,
                 )
             cell = (len(terrain), column - 1)
             if char == "C":
                 candles.add(cell)
             if char == "R":
                 if caregiver is not None:
-                    raise MapFileError("a second caregiver start 'R' (at most one)", path=path, line=number,
-                                       column=column)
+                    raise MapFileError(
+                        "a second caregiver start 'R' (at most one)", path=path, line=number, column=column
+                    )
                 caregiver = cell
             row.append(kind)
         if width is None:
             width = len(row)
         elif len(row) != width:
             raise MapFileError(
-                f"row is {len(row)} cells wide, the first row is {width}", path=path, line=number,
+                f"row is {len(row)} cells wide, the first row is {width}",
+                path=path,
+                line=number,
                 column=min(len(row), width) + 1,
             )
         terrain.append(tuple(row))
@@ -255,11 +267,17 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
         if not any(n in area for _, n in grid.neighbours(cell)):
             raise MapFileError(
                 "toy bin cannot be reached: no open floor of the play area borders it",
-                path=path, line=lines[cell[0]], column=cell[1] + 1,
+                path=path,
+                line=lines[cell[0]],
+                column=cell[1] + 1,
             )
     if caregiver is not None and caregiver not in area:
-        raise MapFileError("the caregiver start 'R' is not on the play area", path=path,
-                           line=lines[caregiver[0]], column=caregiver[1] + 1)
+        raise MapFileError(
+            "the caregiver start 'R' is not on the play area",
+            path=path,
+            line=lines[caregiver[0]],
+            column=caregiver[1] + 1,
+        )
     return grid
 
 

@@ -193,7 +193,9 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
             RuntimeError: before the first :meth:`reset`.
         """
         if self.render_mode is None:
-            gymnasium.logger.warn("render() called without a render_mode; create the env with render_mode='ansi'")
+            gymnasium.logger.warn(
+                "render() called without a render_mode; create the env with render_mode='ansi'"
+            )
             return None
         return self.episode.render(self._p_safe)
 

@@ -192,7 +192,9 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         move = action_name(actions["novice"], NOVICE_ACTIONS, "novice")
         turn = np.asarray(actions["caregiver"]).reshape(-1)
         if turn.shape != (CAREGIVER_TURN,):
-            raise ValueError(f"the caregiver takes {CAREGIVER_TURN} actions per step, got {actions['caregiver']!r}")
+            raise ValueError(
+                f"the caregiver takes {CAREGIVER_TURN} actions per step, got {actions['caregiver']!r}"
+            )
         names = [action_name(index, CAREGIVER_ACTIONS, "caregiver") for index in turn]
         episode = self.episode
         self._applied = tuple(episode.world.act_caregiver(name) for name in names)
@@ -216,7 +218,9 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
             RuntimeError: before the first :meth:`reset`.
         """
         if self.render_mode is None:
-            gymnasium.logger.warn("render() called without a render_mode; create the env with render_mode='ansi'")
+            gymnasium.logger.warn(
+                "render() called without a render_mode; create the env with render_mode='ansi'"
+            )
             return None
         return self.episode.render()
 

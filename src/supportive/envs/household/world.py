@@ -130,7 +130,9 @@ class HouseholdWorld:
         if self.caregiver is None:
             raise ValueError("this world has no caregiver")
         if action not in CAREGIVER_ACTIONS:
-            raise ValueError(f"unknown caregiver action {action!r} (expected one of {', '.join(CAREGIVER_ACTIONS)})")
+            raise ValueError(
+                f"unknown caregiver action {action!r} (expected one of {', '.join(CAREGIVER_ACTIONS)})"
+            )
         if action in MOVES:
             dr, dc = MOVES[action]
             target = (self.caregiver[0] + dr, self.caregiver[1] + dc)

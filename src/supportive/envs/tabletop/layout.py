@@ -9,10 +9,14 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
+import numpy as np
+
 from supportive.envs.tabletop.geometry import Point, Rect
 from supportive.errors import PlanningError
 
 __all__ = ["TableLayout"]
+
+_STAGING_TRIES = 20
 
 
 @dataclass(frozen=True)
@@ -27,6 +31,10 @@ class TableLayout:
         support_reach: What the support agent reaches (default: the table and the tray).
         cell: Side of a space cell, cm.
         clearance: Least gap between two objects lying side by side, cm.
+        staging: The share of sampled placements drawn near the goal area (the rest are uniform over the
+            surfaces): the thesis samples "legal placement positions and poses in the task area"; most useful
+            places are next to where the lead builds, so half the samples look there.
+        staging_band: How far from the goal area those placements may be, cm.
     """
 
     table: Rect
@@ -36,6 +44,8 @@ class TableLayout:
     support_reach: Rect | None = None
     cell: float = 10.0
     clearance: float = 1.0
+    staging: float = 0.5
+    staging_band: float = 15.0
 
     def __post_init__(self) -> None:
         if not self.table.encloses(self.goal_area):
@@ -44,6 +54,8 @@ class TableLayout:
             raise PlanningError(f"the tray {self.tray} overlaps the table {self.table}")
         if self.cell <= 0 or self.clearance < 0:
             raise PlanningError("cell must be > 0 and clearance >= 0")
+        if not 0 <= self.staging <= 1 or self.staging_band <= 0:
+            raise PlanningError("staging must be in [0, 1] and staging_band > 0")
 
     @property
     def surfaces(self) -> tuple[Rect, ...]:
@@ -77,19 +89,26 @@ class TableLayout:
         """The space cells a footprint covers, as ``("cell", column, row)``."""
         return _cells(self, footprint)
 
-    def sample_point(self, u: float, v: float, w: float) -> Point:
-        """A point on the surfaces from three uniform numbers in [0, 1): ``u`` picks the surface (by area),
-        ``v`` and ``w`` the position on it."""
+    def sample_placement(self, rng: np.random.Generator) -> Point:
+        """A position to try putting an object down: with probability ``staging``, uniform in the band of
+        ``staging_band`` cm around the goal area (on the table, outside the goal area); otherwise uniform over
+        the surfaces, each picked by its area."""
+        if self.staging > 0 and rng.random() < self.staging:
+            band = self.goal_area.grown(self.staging_band)
+            for _ in range(_STAGING_TRIES):
+                x, y = band.x0 + rng.random() * band.width, band.y0 + rng.random() * band.height
+                if self.table.contains((x, y)) and not self.goal_area.contains((x, y)):
+                    return (x, y)
         surfaces = self.surfaces
         areas = [s.width * s.height for s in surfaces]
-        pick = u * sum(areas)
+        pick = rng.random() * sum(areas)
         chosen = surfaces[-1]
         for surface, area in zip(surfaces, areas, strict=True):
             if pick < area:
                 chosen = surface
                 break
             pick -= area
-        return (chosen.x0 + v * chosen.width, chosen.y0 + w * chosen.height)
+        return (chosen.x0 + rng.random() * chosen.width, chosen.y0 + rng.random() * chosen.height)
 
 
 @lru_cache(maxsize=65536)

@@ -408,19 +408,26 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
         return tuple(op for op in steps if done.get(op.target) != op.kind)
 
     def sample_moves(self, state: TabletopState[GoalT], rng: np.random.Generator, count: int) -> list[Move]:
-        """``count`` single-object moves: an object not in anyone's hand, and a pose drawn uniformly from the
-        surfaces (whole centimetres, any of the four rotations). Objects in the goal area are drawn too; it is
-        P that forbids moving them."""
+        """``count`` single-object moves (§3.2.5.1: "a randomly sampled new location and/or pose"): an object
+        not in anyone's hand, then, each a third of the time, a new rotation where it lies, a new location
+        with its rotation, or both; locations come from the layout's placement sampler (whole centimetres).
+        Objects in the goal area are drawn too; it is P that forbids moving them."""
         movable = [i for i, s in enumerate(state.status) if s in (Status.TABLE, Status.GOAL)]
         if not movable:
             return []
         moves = []
         for _ in range(count):
             item = movable[int(rng.integers(len(movable)))]
-            x, y = self.layout.sample_point(*rng.random(3))
-            x = round(x / _POSITION_STEP) * _POSITION_STEP
-            y = round(y / _POSITION_STEP) * _POSITION_STEP
-            moves.append(Move(item, TablePose(x, y, int(rng.integers(4)))))
+            pose = state.poses[item]
+            mode = int(rng.integers(3)) if pose is not None and state.status[item] is Status.TABLE else 2
+            if mode == 0 and pose is not None:
+                x, y = pose.x, pose.y
+            else:
+                x, y = self.layout.sample_placement(rng)
+                x = round(x / _POSITION_STEP) * _POSITION_STEP
+                y = round(y / _POSITION_STEP) * _POSITION_STEP
+            rotation = pose.rotation if mode == 1 and pose is not None else int(rng.integers(4))
+            moves.append(Move(item, TablePose(x, y, rotation)))
         return moves
 
     def support_plan(self, state: TabletopState[GoalT], move: Move) -> tuple[Pick, Put] | None:
