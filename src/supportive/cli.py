@@ -330,6 +330,84 @@ def caregiver(
         err.print(f"wrote {gif} ({len(result.frames)} frames)", markup=False)
 
 
+class SupportLead(StrEnum):
+    """Leads ``support --simulate`` can run."""
+
+    plans = "plans"
+    greedy = "greedy"
+
+
+@app.command()
+def support(
+    file: Annotated[Path, typer.Argument(help="Circuit scenario file (.yaml, .yml or .json).")],
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the sampling (same seed, same choice).")] = 0,
+    environments: Annotated[
+        int | None, typer.Option("--environments", "-e", min=1, help="Hypothetical environments to sample.")
+    ] = None,
+    scheme: Annotated[
+        str | None, typer.Option("--scheme", help="Plan weights: conservative, greedy or aggressive.")
+    ] = None,
+    workers: Annotated[int, typer.Option("--workers", "-w", min=1, help="Local processes scoring them.")] = 1,
+    render: Annotated[
+        Path | None, typer.Option("--render", help="Draw the table before and after as a PNG (needs matplotlib).")
+    ] = None,
+    simulate: Annotated[
+        bool, typer.Option("--simulate", help="Also run the lead alone and with the support agent.")
+    ] = False,
+    lead: Annotated[SupportLead, typer.Option("--lead", help="The lead --simulate runs.")] = SupportLead.plans,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of sentences.")] = False,
+) -> None:
+    """Show what a support robot would do at a circuit table (§3.2): the supportive action it chooses, the
+    known plans it favours and the lead's expected saving."""
+    from dataclasses import replace
+
+    from supportive.envs.circuits.advice import advise
+    from supportive.envs.circuits.advice import simulate as run_simulation
+    from supportive.envs.circuits.render import write_before_after
+    from supportive.envs.circuits.scenario import parse_scenario_file
+    from supportive.planning.weighting import parse_scheme
+
+    scenario = parse_scenario_file(file)
+    if environments is not None:
+        scenario = replace(scenario, environments=environments)
+    if scheme is not None:
+        scenario = replace(scenario, scheme=parse_scheme(scheme))
+    plans = scenario.plans()
+    advice, decision = advise(scenario, plans, seed=seed, workers=workers)
+    report: dict[str, object] = advice.as_dict()
+    if simulate:
+        alone, helped = run_simulation(scenario, plans, lead.value, seed=seed, workers=workers)
+        report["simulation"] = {
+            "lead": lead.value,
+            "alone": {"makespan": alone.makespan, "completed": alone.completed, "lead_nodes": alone.lead_nodes},
+            "supported": {
+                "makespan": helped.makespan,
+                "completed": helped.completed,
+                "lead_nodes": helped.lead_nodes,
+                "support_actions": helped.support_actions,
+                "conflicts": dict(helped.conflicts),
+            },
+        }
+    if as_json:
+        sys.stdout.write(json.dumps(report, indent=2) + "\n")
+    else:
+        for line in advice.lines():
+            out.print(line, markup=False)
+        if simulate:
+            gain = 100.0 * (1.0 - helped.makespan / alone.makespan) if alone.makespan else 0.0
+            out.print(
+                f"Simulated ({lead.value} lead): alone {alone.makespan:.1f} s, with support {helped.makespan:.1f} s "
+                f"({gain:+.1f} % faster, {helped.support_actions} supportive actions); lead search nodes "
+                f"{alone.lead_nodes} -> {helped.lead_nodes}",
+                markup=False,
+            )
+    if render is not None:
+        world = scenario.world
+        after = decision.chosen.state
+        write_before_after(world, world.initial_state, after, render, moved=decision.chosen.move)
+        err.print(f"wrote {render}", markup=False)
+
+
 @app.command()
 def reproduce(
     name: Annotated[str, typer.Argument(help="Experiment to run (e.g. edge-reduction), or 'all'.")],

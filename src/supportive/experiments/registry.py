@@ -62,6 +62,7 @@ _BUILTINS = (
     "supportive.experiments.captaincook",
     "supportive.experiments.transfer",
     "supportive.experiments.caregiver",
+    "supportive.experiments.support_tamp",
 )
 _registry: dict[str, Experiment] = {}
 _builtins_loaded = False

@@ -13,7 +13,7 @@ import time
 from collections.abc import Hashable, Sequence
 from typing import Generic, TypeVar
 
-from supportive.envs.tabletop.operators import Install, TabletopOperator
+from supportive.envs.tabletop.operators import TabletopOperator
 from supportive.envs.tabletop.state import TabletopState
 from supportive.envs.tabletop.team import LeadStep
 from supportive.envs.tabletop.world import Move, TabletopWorld
@@ -34,11 +34,11 @@ class PlanFollowingLead(Generic[GoalT, TargetT]):
         plans: The plans the lead knows (a subset of Π_T).
     """
 
-    def __init__(self, plans: Sequence[Sequence[Install[TargetT]]]) -> None:
+    def __init__(self, plans: Sequence[Sequence[TabletopOperator[TargetT]]]) -> None:
         if not plans:
             raise PlanningError("the lead must know at least one plan")
         self.plans = tuple(tuple(plan) for plan in plans)
-        self.current: tuple[Install[TargetT], ...] | None = None
+        self.current: tuple[TabletopOperator[TargetT], ...] | None = None
 
     def next_step(
         self, world: TabletopWorld[GoalT, TargetT], state: TabletopState[GoalT]

@@ -26,7 +26,7 @@ from typing import Any, Generic, Protocol, TypeVar
 
 from supportive.envs.tabletop.geometry import Point, segment_distance
 from supportive.envs.tabletop.items import quarter_turns
-from supportive.envs.tabletop.operators import Install, Pick, Put
+from supportive.envs.tabletop.operators import Install, Pick, Put, TabletopOperator
 from supportive.envs.tabletop.state import Status, TabletopState
 from supportive.envs.tabletop.world import TabletopWorld
 from supportive.errors import PlanningError
@@ -148,7 +148,7 @@ class _Run(Generic[GoalT, TargetT]):
         world: TabletopWorld[GoalT, TargetT],
         lead: LeadPolicy[GoalT, TargetT],
         planner: SupportPlanner[Any, Any, Any] | None,
-        plans: tuple[tuple[Install[TargetT], ...], ...],
+        plans: tuple[tuple[TabletopOperator[TargetT], ...], ...],
         seed: int,
         record: bool,
     ) -> None:
@@ -427,7 +427,7 @@ def run_team(
     world: TabletopWorld[GoalT, TargetT],
     lead: LeadPolicy[GoalT, TargetT],
     planner: SupportPlanner[Any, Any, Any] | None = None,
-    plans: tuple[tuple[Install[TargetT], ...], ...] = (),
+    plans: tuple[tuple[TabletopOperator[TargetT], ...], ...] = (),
     *,
     seed: int = 0,
     dt: float = 0.05,
