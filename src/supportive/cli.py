@@ -339,7 +339,9 @@ class SupportLead(StrEnum):
 
 @app.command()
 def support(
-    file: Annotated[Path, typer.Argument(help="Circuit scenario file (.yaml, .yml or .json).")],
+    file: Annotated[
+        Path, typer.Argument(help="Circuit scenario file (.yaml, .yml or .json), or a bundled one's name.")
+    ],
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the sampling (same seed, same choice).")] = 0,
     environments: Annotated[
         int | None, typer.Option("--environments", "-e", min=1, help="Hypothetical environments to sample.")
@@ -365,8 +367,11 @@ def support(
     from supportive.envs.circuits.advice import simulate as run_simulation
     from supportive.envs.circuits.render import write_before_after
     from supportive.envs.circuits.scenario import parse_scenario_file
+    from supportive.examples import circuit_names, circuit_path
     from supportive.planning.weighting import parse_scheme
 
+    if not file.suffix and not file.exists() and str(file) in circuit_names():
+        file = circuit_path(str(file))
     scenario = parse_scenario_file(file)
     if environments is not None:
         scenario = replace(scenario, environments=environments)

@@ -37,7 +37,11 @@ def test_parse_tiny_map() -> None:
     assert grid.stairs == ((2, 5),)
     assert grid.tables == ((1, 4),) and grid.candles == frozenset({(1, 4)})
     assert grid.caregiver_start == (2, 1)
-    assert grid.at((0, 0)) is Terrain.WALL and grid.at((-1, 3)) is Terrain.WALL and grid.at((1, 2)) is Terrain.FLOOR
+    assert (
+        grid.at((0, 0)) is Terrain.WALL
+        and grid.at((-1, 3)) is Terrain.WALL
+        and grid.at((1, 2)) is Terrain.FLOOR
+    )
     assert len(grid.play_area) == 6  # (1, 5) is walled in by the candle table and the stairs
     assert parse_map(grid.render(), "tiny") == grid
 

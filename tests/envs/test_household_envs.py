@@ -97,7 +97,9 @@ def test_parallel_episode_ends_and_empties_agents(name: str) -> None:
         actions = {agent: env.action_space(agent).sample() for agent in env.agents}
         _, rewards, terminations, truncations, infos = env.step(actions)
         steps += 1
-        assert rewards["novice"] == rewards["caregiver"] == -float(DAMAGE.get(infos["novice"]["collision"], 0))
+        assert (
+            rewards["novice"] == rewards["caregiver"] == -float(DAMAGE.get(infos["novice"]["collision"], 0))
+        )
         done = terminations["novice"] or truncations["novice"]
         assert terminations["novice"] == terminations["caregiver"] == (infos["novice"]["damage"] >= 15)
     assert done and steps <= 50
@@ -119,7 +121,10 @@ def test_make_by_id_and_register_twice() -> None:
     assert env.observation_space.contains(obs)
     assert env.action_space == gymnasium.spaces.Discrete(4)
     assert {k: info[k] for k in ("step", "damage", "collision", "cells_explored")} == {
-        "step": 0, "damage": 0, "collision": None, "cells_explored": 1
+        "step": 0,
+        "damage": 0,
+        "collision": None,
+        "cells_explored": 1,
     }
     obs, reward, *_, info = env.step(env.action_space.sample())
     assert env.observation_space.contains(obs) and reward <= 0 and info["step"] == 1
@@ -240,7 +245,9 @@ def test_parallel_caregiver_moves_and_carries_a_candle() -> None:
     env = HouseholdParallelEnv(parse_map(WORKSHOP, "workshop"), render_mode="ansi")
     observations, infos = env.reset(seed=0, options={"novice": (3, 1)})
     start = observations["caregiver"]
-    assert start[2, 1] == CellCode.CAREGIVER and start[2, 5] == CellCode.CANDLE and start[1, 6] == CellCode.TABLE
+    assert (
+        start[2, 1] == CellCode.CAREGIVER and start[2, 5] == CellCode.CANDLE and start[1, 6] == CellCode.TABLE
+    )
     assert env.observation_space("novice").contains(start)
 
     def turn(*names: str, novice: int = SOUTH) -> tuple[Any, ...]:

@@ -1,7 +1,8 @@
-"""The bundled example tasks (also in the repository's ``examples/``): a registry by name.
+"""The bundled example tasks and circuit scenarios (also in the repository's ``examples/``): registries by
+name.
 
->>> "ikea-chair" in names()
-True
+>>> "ikea-chair" in names(), "two-cells-led" in circuit_names()
+(True, True)
 """
 
 from __future__ import annotations
@@ -9,11 +10,11 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-from supportive.errors import TaskFileError
+from supportive.errors import ScenarioFileError, TaskFileError
 from supportive.io.taskfile import parse_task_file
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["load", "names", "path"]
+__all__ = ["circuit_names", "circuit_path", "load", "names", "path"]
 
 
 def _folder() -> Path:
@@ -40,3 +41,20 @@ def path(name: str) -> Path:
 def load(name: str) -> TaskSpec:
     """Parse a bundled example."""
     return parse_task_file(path(name))
+
+
+def circuit_names() -> list[str]:
+    """Names of the bundled circuit scenarios (``examples/circuits``), sorted."""
+    return sorted(p.stem for p in (_folder() / "circuits").glob("*.yaml"))
+
+
+def circuit_path(name: str) -> Path:
+    """The file of a bundled circuit scenario.
+
+    Raises:
+        ScenarioFileError: for an unknown name.
+    """
+    file = _folder() / "circuits" / f"{name}.yaml"
+    if not file.is_file():
+        raise ScenarioFileError(f"no bundled circuit scenario {name!r}; known: {', '.join(circuit_names())}")
+    return file
