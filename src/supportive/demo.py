@@ -45,6 +45,7 @@ __all__ = [
     "WatchedStep",
     "caregiver_contrast",
     "keep_novice_safe",
+    "rearrange_the_table",
     "run_demo",
     "subtask_findings",
     "talk_about_helping",
@@ -185,6 +186,7 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
         watch_held_out(console, spec)
     teach_with_questions(console)
     talk_about_helping(console, spec)
+    rearrange_the_table(console)
     keep_novice_safe(console)
     console.print(Panel.fit("Try it on your own task:  supportive learn my-task.yaml --format json"))
     return learner
@@ -410,7 +412,9 @@ def talk_about_helping(console: Console, spec: TaskSpec) -> list[tuple[str, str]
             if not understood.confident:
                 exchange.append(("robot", understood.confirmation))
                 exchange.append(("person", "yes"))
-            states = TaskStates.of(replace(spec, behaviors=(*spec.behaviors, understood.behavior)), states.structure)
+            states = TaskStates.of(
+                replace(spec, behaviors=(*spec.behaviors, understood.behavior)), states.structure
+            )
             understanding = Understanding(states)
             exchange.append(("robot", f"OK. {explain_behavior(states, understood.behavior).text}"))
     console.print(
@@ -423,3 +427,47 @@ def talk_about_helping(console: Console, spec: TaskSpec) -> list[tuple[str, str]
         console.print(f"  [bold]{who}:[/] {escape(what)}")
     console.print("  Talk to it yourself: supportive chat examples/ikea-chair.yaml")
     return exchange
+
+
+@dataclass(frozen=True)
+class TableContrast:
+    """A slow lead building the bundled circuit alone and with a fast support robot."""
+
+    actions: tuple[str, ...]
+    expected_saving: float
+    alone: float
+    supported: float
+    support_actions: int
+
+
+def rearrange_the_table(console: Console, scenario_name: str = "two-cells-led") -> TableContrast:
+    """Print the support-planning section of the demo (§3.2): one decision of the support robot at the bundled
+    circuit table, and the lead's makespan alone and supported. Returns what it showed."""
+    from supportive.envs.circuits.advice import advise, describe_plan, simulate
+    from supportive.envs.circuits.scenario import parse_scenario_file
+
+    scenario = parse_scenario_file(examples.circuit_path(scenario_name))
+    plans = scenario.plans()
+    advice, _ = advise(scenario, plans)
+    alone, helped = simulate(scenario, plans)
+    console.print(
+        "\n[bold]Helping without touching the goal[/] (§3.2): a slow lead builds a circuit (two cells in series "
+        f"drive an LED through a switch) from {len(scenario.world.items)} pieces scattered on a table; the "
+        "support robot may not touch the board. It samples single-piece moves, estimates how long each of the "
+        f"{len(plans)} known plans would take after each (Algorithm 5), weights the plans and picks the best move:"
+    )
+    for line in advice.lines()[1:]:
+        console.print(f"  {escape(line)}")
+    quickest = describe_plan(plans[0])
+    console.print(
+        f"  Simulated with both arms moving at once (the lead follows the quickest plan, {quickest}): alone "
+        f"{alone.makespan:.1f} s, supported {helped.makespan:.1f} s after {helped.support_actions} supportive "
+        f"actions ({100 * (1 - helped.makespan / alone.makespan):.0f} % faster)."
+    )
+    console.print(
+        "  Try it: supportive support two-cells-led --simulate --render table.png;"
+        " supportive reproduce support-tamp --workers 2"
+    )
+    return TableContrast(
+        advice.actions, advice.expected_saving, alone.makespan, helped.makespan, helped.support_actions
+    )

@@ -15,7 +15,8 @@ Two readings of the thesis's listing are corrected here (docs/support.md says wh
   reached only after ξ.d.
 
 Steps the lead has already done in s_c are skipped (``world.remaining_plan``); a state the plan contradicts
-gets the penalty too.
+gets the penalty too. A decision taken while the lead is in the middle of a step (the state counts that step
+done) gives the seconds the lead still needs for it as ``lead_busy``: the support plan runs on meanwhile.
 """
 
 from __future__ import annotations
@@ -69,6 +70,7 @@ def estimate_duration(
     penalty: float,
     decay: Decay = no_decay,
     lead: str = LEAD,
+    lead_busy: float = 0.0,
 ) -> float:
     """Algorithm 5: the estimated execution duration of lead plan ``plan`` given support plan ``support``.
 
@@ -79,6 +81,9 @@ def estimate_duration(
         penalty: PLAN_NULLIFICATION_PENALTY, returned when a step's preconditions fail.
         decay: γ, the weight of each step by its position among the steps still to do.
         lead: The lead agent's name.
+        lead_busy: Seconds the lead still needs for the step it is in the middle of, before the plan's next
+            step can start (0 between steps); the support plan runs on meanwhile, so that much less of it is
+            left to wait for. The estimate counts from the end of that step.
 
     Returns:
         Seconds (weighted by γ), or ``penalty``.
@@ -88,7 +93,7 @@ def estimate_duration(
     if steps is None:
         return penalty
     elapsed = 0.0
-    left = support.duration
+    left = max(0.0, support.duration - lead_busy)
     shared = support.resources
     for i, op in enumerate(steps, start=1):
         if not world.preconditions_hold(state, op, lead):

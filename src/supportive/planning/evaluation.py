@@ -32,8 +32,8 @@ _CHUNKS_PER_WORKER = 4
 
 @dataclass(frozen=True)
 class ScoringContext(Generic[StateT, OperatorT, MoveT]):
-    """What scoring a candidate needs besides the candidate and the plan weights: fixed for one fitted
-    planner (so worker processes receive it once)."""
+    """What scoring a candidate needs besides the candidate, the plan weights and the lead's busy time:
+    fixed for one fitted planner (so worker processes receive it once)."""
 
     world: SupportWorld[StateT, OperatorT, MoveT]
     plans: tuple[tuple[OperatorT, ...], ...]
@@ -41,30 +41,38 @@ class ScoringContext(Generic[StateT, OperatorT, MoveT]):
     decay: Decay
     lead: str
 
-    def durations(self, support: Hypothetical[StateT, OperatorT, MoveT]) -> np.ndarray:
+    def durations(
+        self, support: Hypothetical[StateT, OperatorT, MoveT], lead_busy: float = 0.0
+    ) -> np.ndarray:
         """Algorithm 5 for every known plan under ``support`` (weight-0 plans included)."""
-        return np.array(
-            [
-                estimate_duration(self.world, plan, support, self.penalty, self.decay, self.lead)
-                for plan in self.plans
-            ]
-        )
+        return np.array([self._estimate(plan, support, lead_busy) for plan in self.plans])
 
-    def score(self, support: Hypothetical[StateT, OperatorT, MoveT], weights: Sequence[float]) -> float:
+    def score(
+        self,
+        support: Hypothetical[StateT, OperatorT, MoveT],
+        weights: Sequence[float],
+        lead_busy: float = 0.0,
+    ) -> float:
         """Σ_π w_π · duration(π, ξ): plans of weight 0 are not estimated."""
         total = 0.0
         for weight, plan in zip(weights, self.plans, strict=True):
             if weight != 0.0:
-                total += weight * estimate_duration(
-                    self.world, plan, support, self.penalty, self.decay, self.lead
-                )
+                total += weight * self._estimate(plan, support, lead_busy)
         return total
 
     def scores(
-        self, candidates: Sequence[Hypothetical[StateT, OperatorT, MoveT]], weights: Sequence[float]
+        self,
+        candidates: Sequence[Hypothetical[StateT, OperatorT, MoveT]],
+        weights: Sequence[float],
+        lead_busy: float = 0.0,
     ) -> list[float]:
         """The score of every candidate, in order."""
-        return [self.score(candidate, weights) for candidate in candidates]
+        return [self.score(candidate, weights, lead_busy) for candidate in candidates]
+
+    def _estimate(
+        self, plan: tuple[OperatorT, ...], support: Hypothetical[StateT, OperatorT, MoveT], lead_busy: float
+    ) -> float:
+        return estimate_duration(self.world, plan, support, self.penalty, self.decay, self.lead, lead_busy)
 
 
 class Scorer(Protocol):
@@ -73,7 +81,10 @@ class Scorer(Protocol):
     description: str
 
     def scores(
-        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+        self,
+        candidates: Sequence[Hypothetical[Any, Any, Any]],
+        weights: Sequence[float],
+        lead_busy: float = 0.0,
     ) -> list[float]:
         """The score of every candidate under plan weights ``weights``, in order."""
         ...
@@ -91,10 +102,13 @@ class InProcessScorer:
     description: str = "in process"
 
     def scores(
-        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+        self,
+        candidates: Sequence[Hypothetical[Any, Any, Any]],
+        weights: Sequence[float],
+        lead_busy: float = 0.0,
     ) -> list[float]:
         """The score of every candidate, in order."""
-        return self.context.scores(candidates, weights)
+        return self.context.scores(candidates, weights, lead_busy)
 
     def close(self) -> None:
         """Nothing to release."""
@@ -109,17 +123,20 @@ def _install(context: ScoringContext[Any, Any, Any]) -> None:
 
 
 def _score_in_worker(
-    candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+    candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float], lead_busy: float
 ) -> list[float]:
     if _WORKER_CONTEXT is None:  # pragma: no cover - the pool's initializer always ran
         raise PlanningError("worker process has no scoring context")
-    return _WORKER_CONTEXT.scores(candidates, weights)
+    return _WORKER_CONTEXT.scores(candidates, weights, lead_busy)
 
 
 def _score_on_dask(
-    context: ScoringContext[Any, Any, Any], candidates: Sequence[Any], weights: Sequence[float]
+    context: ScoringContext[Any, Any, Any],
+    candidates: Sequence[Any],
+    weights: Sequence[float],
+    lead_busy: float,
 ) -> list[float]:
-    return context.scores(candidates, weights)
+    return context.scores(candidates, weights, lead_busy)
 
 
 def _chunks(items: Sequence[Any], parts: int) -> list[Sequence[Any]]:
@@ -137,13 +154,17 @@ class ProcessScorer:
         self._pool = ProcessPoolExecutor(max_workers=workers, initializer=_install, initargs=(context,))
 
     def scores(
-        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+        self,
+        candidates: Sequence[Hypothetical[Any, Any, Any]],
+        weights: Sequence[float],
+        lead_busy: float = 0.0,
     ) -> list[float]:
         """The score of every candidate, in order."""
         if not candidates:
             return []
         parts = _chunks(list(candidates), self.workers * _CHUNKS_PER_WORKER)
-        chunks = self._pool.map(_score_in_worker, parts, [tuple(weights)] * len(parts))
+        repeat = len(parts)
+        chunks = self._pool.map(_score_in_worker, parts, [tuple(weights)] * repeat, [lead_busy] * repeat)
         return [score for chunk in chunks for score in chunk]
 
     def close(self) -> None:
@@ -162,14 +183,17 @@ class DaskScorer:
         self.description = f"dask, {workers} workers"
 
     def scores(
-        self, candidates: Sequence[Hypothetical[Any, Any, Any]], weights: Sequence[float]
+        self,
+        candidates: Sequence[Hypothetical[Any, Any, Any]],
+        weights: Sequence[float],
+        lead_busy: float = 0.0,
     ) -> list[float]:
         """The score of every candidate, in order."""
         if not candidates:
             return []
         parts = _chunks(list(candidates), self._parts)
         futures = [
-            self._client.submit(_score_on_dask, self._context, part, tuple(weights), pure=False)
+            self._client.submit(_score_on_dask, self._context, part, tuple(weights), lead_busy, pure=False)
             for part in parts
         ]
         return [score for chunk in self._client.gather(futures) for score in chunk]

@@ -33,6 +33,8 @@ class SupportProblem(Generic[StateT, OperatorT, MoveT]):
         lead_agent: The lead agent whose plans Π_T are.
         capabilities: C_s, the operator prototypes a_s may use.
         prohibited: P, the predicate prototypes a_s must never add or delete.
+        lead_busy: Seconds the lead still needs for the step it is in the middle of (s_c counts that step
+            done); 0 between steps (see :func:`~supportive.planning.duration.estimate_duration`).
     """
 
     world: SupportWorld[StateT, OperatorT, MoveT]
@@ -42,6 +44,7 @@ class SupportProblem(Generic[StateT, OperatorT, MoveT]):
     lead_agent: str = LEAD
     capabilities: frozenset[str] = frozenset()
     prohibited: tuple[Prototype, ...] = ()
+    lead_busy: float = 0.0
 
     @classmethod
     def of(
@@ -75,6 +78,6 @@ class SupportProblem(Generic[StateT, OperatorT, MoveT]):
             **agents,
         )
 
-    def at(self, state: StateT) -> SupportProblem[StateT, OperatorT, MoveT]:
-        """The same problem with s_c = ``state``."""
-        return replace(self, state=state)
+    def at(self, state: StateT, lead_busy: float = 0.0) -> SupportProblem[StateT, OperatorT, MoveT]:
+        """The same problem with s_c = ``state`` (and the lead busy for ``lead_busy`` more seconds)."""
+        return replace(self, state=state, lead_busy=lead_busy)

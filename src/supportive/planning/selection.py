@@ -171,10 +171,13 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         context = self._fitted(problem)
         candidates = hypothetical_environments(problem, self.environments, seed)
         idle = Hypothetical[StateT, OperatorT, MoveT].idle(problem.state)
-        idle_durations = context.durations(idle)
+        busy = problem.lead_busy
+        idle_durations = context.durations(idle, busy)
         weights = self._weights_at(idle_durations) if self.reweight else self.weights_
         idle_score = float(np.dot(weights, idle_durations))
-        scores = self._scorer_for(context).scores(candidates.environments, weights) if any(weights) else []
+        scores = (
+            self._scorer_for(context).scores(candidates.environments, weights, busy) if any(weights) else []
+        )
         chosen, score = idle, idle_score
         if scores:
             best = int(np.argmin(scores))
@@ -186,7 +189,7 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
             idle_score,
             tuple(weights),
             tuple(float(d) for d in idle_durations),
-            tuple(float(d) for d in (idle_durations if chosen is idle else context.durations(chosen))),
+            tuple(float(d) for d in (idle_durations if chosen is idle else context.durations(chosen, busy))),
             candidates,
             tuple(scores),
         )

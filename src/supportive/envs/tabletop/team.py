@@ -164,6 +164,7 @@ class _Run(Generic[GoalT, TargetT]):
         self.busy = {LEAD: False, SUPPORT: False}  # holding or going for an object
         self.retreating = {LEAD: False, SUPPORT: False}
         self.hands = {LEAD: world.lead_arm.home, SUPPORT: world.support_arm.home}
+        self.positions = dict(self.hands)  # where the hands are now, mid-segment included
         self.result: TeamResult[GoalT] = TeamResult(False, 0.0)
         self.lead_target: tuple[int, Install[TargetT]] | None = None  # the object the lead is going for
 
@@ -211,17 +212,33 @@ class _Run(Generic[GoalT, TargetT]):
         self.hands[agent] = self.world.arm(agent).home
         self.retreating[agent] = False
 
-    def planning_view(self) -> TabletopState[GoalT]:
-        """The state the lead is making: the object it is going for, or holds, counted as installed (the
-        support agent sees where the lead's arm is going, so it plans around that object)."""
+    def planning_view(self) -> tuple[TabletopState[GoalT], float]:
+        """The state the lead is making — the object it is going for, or holds, counted as installed (the
+        support agent sees where the lead's arm is going, so it plans around that object) — and the seconds
+        the lead still needs to finish that step."""
         self.sync_hands()
         if self.lead_target is None:
-            return self.state
+            return self.state, 0.0
         item, op = self.lead_target
-        if self.state.status[item] not in (Status.TABLE, Status.HELD_LEAD):
-            return self.state
-        goal = self.world.receive(self.state.goal, item, op.target)
-        return self.state.changed(item, None, Status.GOAL, goal)
+        status = self.state.status[item]
+        if status not in (Status.TABLE, Status.HELD_LEAD):
+            return self.state, 0.0
+        world, arm, hand = self.world, self.world.lead_arm, self.positions[LEAD]
+        target = world.target_point(op.target)
+        pose = self.state.poses[item]
+        if status is Status.TABLE and pose is not None:
+            turns = quarter_turns(
+                pose.rotation, world.target_rotation(op.target), world.types[op.kind].symmetric
+            )
+            left = (
+                arm.travel(hand, pose.point)
+                + arm.handling(grasps=1, turns=turns)
+                + arm.travel(pose.point, target)
+            )
+        else:
+            left = arm.travel(hand, target)
+        goal = world.receive(self.state.goal, item, op.target)
+        return self.state.changed(item, None, Status.GOAL, goal), left + arm.handling(releases=1)
 
     # -- the lead ------------------------------------------------------------------------------------------
 
@@ -360,7 +377,8 @@ class _Run(Generic[GoalT, TargetT]):
     def planner_decide(self, seed: int) -> Any:
         if self.planner is None or self.problem is None:
             raise PlanningError("no support planner")
-        return self.planner.decide(self.problem.at(self.planning_view()), seed)
+        state, busy = self.planning_view()
+        return self.planner.decide(self.problem.at(state, busy), seed)
 
     # -- the clock -----------------------------------------------------------------------------------------
 
@@ -377,7 +395,7 @@ class _Run(Generic[GoalT, TargetT]):
     def run(self, dt: float, limit: float, buffer: float) -> TeamResult[GoalT]:
         processes: dict[str, Process | None] = {LEAD: self.lead_process(), SUPPORT: self.support_process()}
         segments: dict[str, _Segment | None] = {LEAD: None, SUPPORT: None}
-        positions = dict(self.hands)
+        positions = self.positions
 
         def resume(agent: str, throw: BaseException | None = None) -> None:
             process = processes[agent]

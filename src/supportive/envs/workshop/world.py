@@ -76,7 +76,10 @@ class WorkshopWorld(TabletopWorld[Assembly, str]):
         }
         empty: Assembly = ()
         initial = TabletopState(
-            tuple(pose for _, _, pose in pieces), tuple(Status.TABLE for _ in pieces), empty, (lead.home, support.home)
+            tuple(pose for _, _, pose in pieces),
+            tuple(Status.TABLE for _ in pieces),
+            empty,
+            (lead.home, support.home),
         )
         super().__init__(layout, types, [Item(i, k) for i, k, _ in pieces], initial, lead, support)
 
