@@ -87,10 +87,11 @@ def run_trial(trial: Trial) -> dict[str, Any]:
         out["scenarios"][scenario] = {}
         timing[scenario] = {}
         for pairing, (lead_speed, support_speed) in PAIRINGS.items():
-            world = base.world.with_speeds(lead_speed, support_speed)
+            # A fresh world for each run: its memories of boards must not speed up the run after it.
             began = time.perf_counter()
-            alone = run_team(world, _lead(scenario, known))
+            alone = run_team(base.world.with_speeds(lead_speed, support_speed), _lead(scenario, known))
             alone_seconds = time.perf_counter() - began
+            world = base.world.with_speeds(lead_speed, support_speed)
             planner = base.planner(scheme=scheme).fit(SupportProblem.of(world, plans))
             began = time.perf_counter()
             with planner:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import statistics
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -52,6 +53,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 entry[condition] = {
                     "makespan": mean_ci([o["makespan"] for o in outcomes], 3),
                     "lead_nodes": mean_ci([o["lead_nodes"] for o in outcomes], 1),
+                    "lead_nodes_median": statistics.median(o["lead_nodes"] for o in outcomes),
                     "lead_plans": mean_ci([o["lead_plans"] for o in outcomes], 2),
                     "lead_steps": mean_ci([o["lead_steps"] for o in outcomes], 2),
                     "support_actions": mean_ci([o["support_actions"] for o in outcomes], 2),
@@ -129,7 +131,7 @@ def report(metrics: Mapping[str, Any]) -> str:
             "",
             f"## Scenario `{scenario}`: {title}",
             "",
-            "| pairing | makespan alone (s) | supported (s) | gain | thesis | faster / slower tables | lead search nodes alone → supported |",
+            "| pairing | makespan alone (s) | supported (s) | gain | thesis | faster / slower tables | lead search nodes alone → supported, mean (median) |",
             "|---|---:|---:|---:|---:|---:|---:|",
         ]
         for pairing in PAIRINGS:
@@ -138,7 +140,8 @@ def report(metrics: Mapping[str, Any]) -> str:
                 f"| {pairing} | {format_ci(entry['alone']['makespan'], 1)} | "
                 f"{format_ci(entry['supported']['makespan'], 1)} | {entry['makespan_gain_percent']:.1f} % | "
                 f"{THESIS['makespan_gain_percent'][pairing]:.1f} % | {entry['tables_faster']} / {entry['tables_slower']} | "
-                f"{entry['alone']['lead_nodes']['mean']:.0f} → {entry['supported']['lead_nodes']['mean']:.0f} |"
+                f"{entry['alone']['lead_nodes']['mean']:.0f} ({entry['alone']['lead_nodes_median']:.0f}) → "
+                f"{entry['supported']['lead_nodes']['mean']:.0f} ({entry['supported']['lead_nodes_median']:.0f}) |"
             )
         gap = metrics["scenarios"][scenario]["slow lead helped vs fast lead alone"]
         lines += [
