@@ -9,7 +9,8 @@ backend or the number of workers.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Hashable, Sequence
+from abc import ABC, abstractmethod
+from collections.abc import Hashable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from typing import Any, Generic, Protocol, TypeVar
@@ -145,13 +146,11 @@ def _chunks(items: Sequence[Any], parts: int) -> list[Sequence[Any]]:
     return [items[a:b] for a, b in itertools.pairwise(bounds) if b > a]
 
 
-class ProcessScorer:
-    """Scores candidates in ``workers`` local processes that received the context once, at start."""
+class _ChunkedScorer(ABC):
+    """Cuts the candidates into contiguous chunks, has them scored elsewhere, and puts the scores back in
+    order; subclasses say where (:meth:`_score_chunks`)."""
 
-    def __init__(self, context: ScoringContext[Any, Any, Any], workers: int) -> None:
-        self.workers = workers
-        self.description = f"{workers} local processes"
-        self._pool = ProcessPoolExecutor(max_workers=workers, initializer=_install, initargs=(context,))
+    _parts: int
 
     def scores(
         self,
@@ -162,17 +161,35 @@ class ProcessScorer:
         """The score of every candidate, in order."""
         if not candidates:
             return []
-        parts = _chunks(list(candidates), self.workers * _CHUNKS_PER_WORKER)
-        repeat = len(parts)
-        chunks = self._pool.map(_score_in_worker, parts, [tuple(weights)] * repeat, [lead_busy] * repeat)
+        chunks = self._score_chunks(_chunks(list(candidates), self._parts), tuple(weights), lead_busy)
         return [score for chunk in chunks for score in chunk]
+
+    @abstractmethod
+    def _score_chunks(
+        self, parts: list[Sequence[Any]], weights: tuple[float, ...], lead_busy: float
+    ) -> Iterable[list[float]]:
+        """The scores of every chunk, in order."""
+
+
+class ProcessScorer(_ChunkedScorer):
+    """Scores candidates in ``workers`` local processes that received the context once, at start."""
+
+    def __init__(self, context: ScoringContext[Any, Any, Any], workers: int) -> None:
+        self._parts = workers * _CHUNKS_PER_WORKER
+        self.description = f"{workers} local processes"
+        self._pool = ProcessPoolExecutor(max_workers=workers, initializer=_install, initargs=(context,))
+
+    def _score_chunks(
+        self, parts: list[Sequence[Any]], weights: tuple[float, ...], lead_busy: float
+    ) -> Iterable[list[float]]:
+        return self._pool.map(_score_in_worker, parts, [weights] * len(parts), [lead_busy] * len(parts))
 
     def close(self) -> None:
         """Stop the worker processes."""
         self._pool.shutdown(wait=True, cancel_futures=True)
 
 
-class DaskScorer:
+class DaskScorer(_ChunkedScorer):
     """Scores candidates as tasks on a ``dask.distributed`` client; the context is scattered once."""
 
     def __init__(self, context: ScoringContext[Any, Any, Any], client: Any) -> None:
@@ -182,21 +199,15 @@ class DaskScorer:
         self._parts = workers * _CHUNKS_PER_WORKER
         self.description = f"dask, {workers} workers"
 
-    def scores(
-        self,
-        candidates: Sequence[Hypothetical[Any, Any, Any]],
-        weights: Sequence[float],
-        lead_busy: float = 0.0,
-    ) -> list[float]:
-        """The score of every candidate, in order."""
-        if not candidates:
-            return []
-        parts = _chunks(list(candidates), self._parts)
+    def _score_chunks(
+        self, parts: list[Sequence[Any]], weights: tuple[float, ...], lead_busy: float
+    ) -> Iterable[list[float]]:
         futures = [
-            self._client.submit(_score_on_dask, self._context, part, tuple(weights), lead_busy, pure=False)
+            self._client.submit(_score_on_dask, self._context, part, weights, lead_busy, pure=False)
             for part in parts
         ]
-        return [score for chunk in self._client.gather(futures) for score in chunk]
+        gathered: list[list[float]] = self._client.gather(futures)
+        return gathered
 
     def close(self) -> None:
         """Forget the scattered context (the client is the caller's)."""
