@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test lint bench serve system clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -13,14 +13,26 @@ $(VENV)/.core: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.dev: pyproject.toml | $(BIN)/python
-	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings]'
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server]'
 	touch $(VENV)/.core $@
+
+$(VENV)/.server: pyproject.toml | $(BIN)/python
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[language,server]'
+	touch $(VENV)/.core $@
+
+# The browser and database the service tests drive: Debian's chromium and PostgreSQL (installed once, as root).
+system:
+	@command -v chromium >/dev/null 2>&1 || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null)
+	@ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq postgresql >/dev/null)
 
 demo: $(VENV)/.core
 	$(BIN)/supportive demo
 
-test: $(VENV)/.dev
+test: $(VENV)/.dev system
 	$(BIN)/pytest -q
+
+serve: $(VENV)/.server
+	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000
 
 lint: $(VENV)/.dev
 	$(BIN)/ruff check src tests benchmarks

@@ -241,9 +241,14 @@ def teach(
 
 @app.command()
 def chat(
-    file: Annotated[Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")
+    ],
     matcher: Annotated[
-        str, typer.Option("--matcher", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra).")
+        str,
+        typer.Option(
+            "--matcher", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra)."
+        ),
     ] = "bow",
 ) -> None:
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
@@ -278,16 +283,17 @@ def caregiver(
     ] = 0.5,
     seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same episode).")] = 0,
     steps: Annotated[int, typer.Option("--steps", min=1, help="Novice steps in the episode.")] = 200,
-    no_caregiver: Annotated[
-        bool, typer.Option("--no-caregiver", help="Let the novice play alone.")
-    ] = False,
+    no_caregiver: Annotated[bool, typer.Option("--no-caregiver", help="Let the novice play alone.")] = False,
     gif: Annotated[
-        Path | None, typer.Option("--gif", help="Also draw the episode as an animated GIF (needs matplotlib).")
+        Path | None,
+        typer.Option("--gif", help="Also draw the episode as an animated GIF (needs matplotlib)."),
     ] = None,
     every: Annotated[int, typer.Option("--every", min=1, help="Print every k-th step (and the last).")] = 1,
     delay: Annotated[
         float,
-        typer.Option("--delay", min=0.0, help="Seconds between printed steps (on a terminal: redrawn in place)."),
+        typer.Option(
+            "--delay", min=0.0, help="Seconds between printed steps (on a terminal: redrawn in place)."
+        ),
     ] = 0.0,
 ) -> None:
     """Watch a novice play in a house, with the caregiver robot keeping it safe (§3.5): the map and what the
@@ -342,7 +348,9 @@ def support(
     file: Annotated[
         Path, typer.Argument(help="Circuit scenario file (.yaml, .yml or .json), or a bundled one's name.")
     ],
-    seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the sampling (same seed, same choice).")] = 0,
+    seed: Annotated[
+        int, typer.Option("--seed", min=0, help="Seeds the sampling (same seed, same choice).")
+    ] = 0,
     environments: Annotated[
         int | None, typer.Option("--environments", "-e", min=1, help="Hypothetical environments to sample.")
     ] = None,
@@ -351,12 +359,15 @@ def support(
     ] = None,
     workers: Annotated[int, typer.Option("--workers", "-w", min=1, help="Local processes scoring them.")] = 1,
     render: Annotated[
-        Path | None, typer.Option("--render", help="Draw the table before and after as a PNG (needs matplotlib).")
+        Path | None,
+        typer.Option("--render", help="Draw the table before and after as a PNG (needs matplotlib)."),
     ] = None,
     simulate: Annotated[
         bool, typer.Option("--simulate", help="Also run the lead alone and with the support agent.")
     ] = False,
-    lead: Annotated[SupportLead, typer.Option("--lead", help="The lead --simulate runs.")] = SupportLead.plans,
+    lead: Annotated[
+        SupportLead, typer.Option("--lead", help="The lead --simulate runs.")
+    ] = SupportLead.plans,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of sentences.")] = False,
 ) -> None:
     """Show what a support robot would do at a circuit table (§3.2): the supportive action it chooses, the
@@ -384,7 +395,11 @@ def support(
         alone, helped = run_simulation(scenario, plans, lead.value, seed=seed, workers=workers)
         report["simulation"] = {
             "lead": lead.value,
-            "alone": {"makespan": alone.makespan, "completed": alone.completed, "lead_nodes": alone.lead_nodes},
+            "alone": {
+                "makespan": alone.makespan,
+                "completed": alone.completed,
+                "lead_nodes": alone.lead_nodes,
+            },
             "supported": {
                 "makespan": helped.makespan,
                 "completed": helped.completed,
@@ -411,6 +426,58 @@ def support(
         after = decision.chosen.state
         write_before_after(world, world.initial_state, after, render, moved=decision.chosen.move)
         err.print(f"wrote {render}", markup=False)
+
+
+@app.command()
+def serve(
+    task: Annotated[
+        Path | None,
+        typer.Option(
+            "--task", help="Task file whose structure (or learned HTN) is the board (default: the chair)."
+        ),
+    ] = None,
+    db: Annotated[
+        str,
+        typer.Option(
+            "--db", help="Database URL: sqlite:///board.db or postgresql+psycopg://user@127.0.0.1/db."
+        ),
+    ] = "sqlite:///board.db",
+    host: Annotated[str, typer.Option("--host", help="Address to listen on.")] = "127.0.0.1",
+    port: Annotated[int, typer.Option("--port", min=1, max=65535, help="Port to listen on.")] = 8000,
+    agent: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--agent",
+            help="name:kind:role[:token], repeatable (default: alice lead, robot assistant, screen observer).",
+        ),
+    ] = None,
+    lead_only: Annotated[
+        list[str] | None,
+        typer.Option("--lead-only", help="A subtask (name or action id) only leads may do; repeatable."),
+    ] = None,
+) -> None:
+    """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
+    subtasks through."""
+    from supportive.examples import path as example_path
+    from supportive.service.launch import prepare
+    from supportive.service.launch import serve as run_service
+
+    launch = prepare(
+        task or example_path("ikea-chair"),
+        db,
+        host=host,
+        port=port,
+        agents=agent or (),
+        lead_only=lead_only or (),
+    )
+    out.print(f"task board for {launch.settings.board.task} at {launch.url()}", markup=False)
+    for spec in launch.settings.agents:
+        out.print(f"  {spec.id} ({spec.kind}, {spec.role}): token {spec.token}", markup=False)
+    if launch.tokens_file is not None:
+        out.print(
+            f"  (tokens kept in {launch.tokens_file}; API docs at http://{host}:{port}/docs)", markup=False
+        )
+    run_service(launch)
 
 
 @app.command()

@@ -1,0 +1,1 @@
+"""The board service's routers: the board and its operations, and live updates."""

@@ -1,0 +1,28 @@
+"""Request bodies of the board API (pydantic); every field checked, unknown keys refused."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from pydantic import BaseModel, ConfigDict, Field
+
+__all__ = ["HandIn", "ProgressIn"]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class ProgressIn(_Strict):
+    """``{"progress": 0.5}``: the share of a leaf that is done."""
+
+    progress: Annotated[float, Field(ge=0.0, le=1.0, allow_inf_nan=False)]
+
+
+class HandIn(_Strict):
+    """``{"x": 0.4, "y": 0.2, "t": 12.5}``: where the agent's hand (or end effector) is, metres on the
+    workbench; ``t`` in seconds (default: the server's clock)."""
+
+    x: Annotated[float, Field(allow_inf_nan=False)]
+    y: Annotated[float, Field(allow_inf_nan=False)]
+    t: Annotated[float | None, Field(default=None, allow_inf_nan=False)] = None

@@ -1,0 +1,79 @@
+"""What a board service is made of: its database, its board, its agents and limits."""
+
+from __future__ import annotations
+
+import secrets
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import cast
+
+from supportive.errors import SupportiveError
+from supportive.learning.learner import learn
+from supportive.service.store import AgentKind, AgentSpec
+from supportive.service.tree import ROLES, TaskBoard
+from supportive.tasks.htn import CliqueNode
+from supportive.tasks.spec import TaskSpec
+
+__all__ = ["DEFAULT_AGENTS", "ServiceSettings", "board_of", "parse_agent"]
+
+DEFAULT_AGENTS = ("alice:human:lead", "robot:robot:assistant", "screen:human:observer")
+"""The agents a board starts with unless told otherwise: a human lead, a robot assistant, a screen."""
+
+
+@dataclass(frozen=True)
+class ServiceSettings:
+    """A board service.
+
+    Attributes:
+        database: SQLAlchemy URL (``sqlite:///board.db``, ``postgresql+psycopg://user@127.0.0.1/db``).
+        board: The board to create on first use.
+        agents: The agents to create on first use (and add later if new).
+        spec: The task file, when the board came from one (behaviors, observations, keyframes).
+        max_body: The largest request body accepted, bytes.
+    """
+
+    database: str
+    board: TaskBoard
+    agents: tuple[AgentSpec, ...]
+    spec: TaskSpec | None = None
+    max_body: int = 64 * 1024
+    static: Path = field(default_factory=lambda: Path(__file__).parent / "static")
+
+
+def board_of(spec: TaskSpec, lead_only: Sequence[str] = ()) -> TaskBoard:
+    """The board of a task: its ground-truth structure when the file has one, else the hierarchy learned from
+    its demonstrations (a partial hierarchy's top-level parts under one clique).
+
+    Raises:
+        SupportiveError: for a task with neither a structure nor demonstrations.
+    """
+    if spec.structure is not None:
+        root = spec.structure
+    elif spec.demonstrations:
+        htn = learn(spec).htn_
+        root = htn.roots[0] if htn.complete else CliqueNode(tuple(htn.roots), name=spec.name)
+    else:
+        raise SupportiveError(f"task {spec.name!r} has no structure and no demonstrations to learn one from")
+    return TaskBoard.from_node(spec.name, root, spec.texts(), lead_only)
+
+
+def parse_agent(text: str) -> AgentSpec:
+    """``name:kind:role[:token]`` (kind human or robot; role lead, assistant or observer); a token is drawn at
+    random when none is given.
+
+    Raises:
+        SupportiveError: for text of another shape.
+    """
+    parts = text.split(":")
+    if (
+        len(parts) not in (3, 4)
+        or not parts[0]
+        or parts[1] not in ("human", "robot")
+        or parts[2] not in ROLES
+    ):
+        raise SupportiveError(
+            f"agent {text!r}: expected name:kind:role[:token], kind human or robot, role {', '.join(ROLES)}"
+        )
+    token = parts[3] if len(parts) == 4 and parts[3] else secrets.token_urlsafe(18)
+    return AgentSpec(parts[0], cast(AgentKind, parts[1]), parts[2], token)

@@ -1,0 +1,210 @@
+"""The board service under test: an in-process app, real servers on 127.0.0.1, SQLite and PostgreSQL.
+
+PostgreSQL is a throwaway cluster made for the session with Debian's binaries (``make test`` installs
+them): ``initdb`` in a temporary directory (as the ``postgres`` user when the tests run as root), listening
+on 127.0.0.1 only, on a free port. Missing binaries fail the tests rather than skip them.
+"""
+
+from __future__ import annotations
+
+import glob
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import httpx
+import pytest
+from fastapi.testclient import TestClient
+
+from supportive.examples import path as example_path
+from supportive.io.taskfile import parse_task_file
+from supportive.service.app import create_app
+from supportive.service.settings import ServiceSettings, board_of, parse_agent
+
+TOKENS = {"alice": "tok-alice", "bob": "tok-bob", "robot": "tok-robot", "screen": "tok-screen"}
+AGENTS = (
+    "alice:human:lead:tok-alice",
+    "bob:human:lead:tok-bob",
+    "robot:robot:assistant:tok-robot",
+    "screen:human:observer:tok-screen",
+)
+LEAD_ONLY = ("Attach seat",)
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+def auth(agent: str) -> dict[str, str]:
+    return {"Authorization": f"Bearer {TOKENS[agent]}"}
+
+
+@dataclass
+class Postgres:
+    port: int
+    run_as: list[str]
+    binaries: Path
+
+    def fresh_database(self) -> str:
+        """A new, empty database on the cluster; its URL."""
+        name = f"board_{time.monotonic_ns()}"
+        command = [
+            str(self.binaries / "createdb"),
+            "-h",
+            "127.0.0.1",
+            "-p",
+            str(self.port),
+            "-U",
+            "postgres",
+            name,
+        ]
+        subprocess.run([*self.run_as, *command], check=True, capture_output=True)
+        return f"postgresql+psycopg://postgres@127.0.0.1:{self.port}/{name}"
+
+
+@pytest.fixture(scope="session")
+def postgres() -> Iterator[Postgres]:
+    found = sorted(glob.glob("/usr/lib/postgresql/*/bin/initdb"))
+    if not found:
+        raise RuntimeError("PostgreSQL is not installed: run `make test` (it installs Debian's postgresql)")
+    binaries = Path(found[-1]).parent
+    directory = Path(tempfile.mkdtemp(prefix="supportive-pg-"))
+    run_as: list[str] = []
+    if os.geteuid() == 0:
+        shutil.chown(directory, "postgres", "postgres")
+        run_as = ["runuser", "-u", "postgres", "--"]
+    data = directory / "data"
+    subprocess.run(
+        [*run_as, str(binaries / "initdb"), "-D", str(data), "-U", "postgres", "--auth=trust"],
+        check=True,
+        capture_output=True,
+    )
+    port = free_port()
+    options = f"-h 127.0.0.1 -p {port} -k {directory} -c fsync=on -c max_connections=200"
+    subprocess.run(
+        [
+            *run_as,
+            str(binaries / "pg_ctl"),
+            "-D",
+            str(data),
+            "-o",
+            options,
+            "-l",
+            str(directory / "log"),
+            "-w",
+            "start",
+        ],
+        check=True,
+        capture_output=True,
+    )
+    try:
+        yield Postgres(port, run_as, binaries)
+    finally:
+        subprocess.run(
+            [*run_as, str(binaries / "pg_ctl"), "-D", str(data), "-m", "immediate", "stop"],
+            capture_output=True,
+        )
+        shutil.rmtree(directory, ignore_errors=True)
+
+
+@pytest.fixture(params=["sqlite", "postgresql"])
+def database(request: pytest.FixtureRequest, tmp_path: Path) -> str:
+    """A fresh database of each kind."""
+    if request.param == "sqlite":
+        return f"sqlite:///{tmp_path / 'board.db'}"
+    cluster: Postgres = request.getfixturevalue("postgres")
+    return cluster.fresh_database()
+
+
+def chair_settings(database: str) -> ServiceSettings:
+    spec = parse_task_file(example_path("ikea-chair"))
+    return ServiceSettings(database, board_of(spec, LEAD_ONLY), tuple(parse_agent(a) for a in AGENTS), spec)
+
+
+@pytest.fixture
+def client(database: str) -> Iterator[TestClient]:
+    with TestClient(create_app(chair_settings(database))) as test_client:
+        yield test_client
+
+
+@dataclass
+class Server:
+    """A `supportive serve` process."""
+
+    url: str
+    database: str
+    port: int
+    process: subprocess.Popen[bytes]
+
+    def kill(self) -> None:
+        self.process.send_signal(signal.SIGKILL)
+        self.process.wait(10)
+
+    def stop(self) -> None:
+        if self.process.poll() is None:
+            self.process.terminate()
+            try:
+                self.process.wait(10)
+            except subprocess.TimeoutExpired:
+                self.kill()
+
+
+def start_server(database: str, port: int | None = None) -> Server:
+    port = port or free_port()
+    command = [
+        sys.executable,
+        "-m",
+        "supportive.cli",
+        "serve",
+        "--db",
+        database,
+        "--port",
+        str(port),
+        "--host",
+        "127.0.0.1",
+        *(x for a in AGENTS for x in ("--agent", a)),
+        *(x for name in LEAD_ONLY for x in ("--lead-only", name)),
+    ]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    url = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        if process.poll() is not None:
+            raise RuntimeError(f"server exited: {process.stderr.read().decode() if process.stderr else ''}")
+        try:
+            if httpx.get(f"{url}/api/me", headers=auth("screen"), timeout=1).status_code == 200:
+                return Server(url, database, port, process)
+        except httpx.HTTPError:
+            time.sleep(0.1)
+    process.kill()
+    raise RuntimeError("server did not start within 30 s")
+
+
+@pytest.fixture
+def server_factory() -> Iterator[Callable[..., Server]]:
+    started: list[Server] = []
+
+    def make(database: str, port: int | None = None) -> Server:
+        server = start_server(database, port)
+        started.append(server)
+        return server
+
+    yield make
+    for server in started:
+        server.stop()
+
+
+@pytest.fixture(scope="session")
+def headers() -> Callable[[str], dict[str, str]]:
+    """``headers("alice")``: the Authorization header of an agent."""
+    return auth

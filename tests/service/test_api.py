@@ -1,0 +1,228 @@
+"""The board API in process (TestClient), on SQLite and PostgreSQL: what it allows, what it refuses, and that
+a refused request leaves the board as it was."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import pytest
+from fastapi.testclient import TestClient
+
+Headers = Callable[[str], dict[str, str]]
+
+
+def board(client: TestClient, headers: Headers) -> dict[str, Any]:
+    response = client.get("/api/board", headers=headers("screen"))
+    assert response.status_code == 200
+    data: dict[str, Any] = response.json()
+    return data
+
+
+def node_named(data: dict[str, Any], name: str) -> dict[str, Any]:
+    return next(n for n in data["nodes"] if n["name"] == name)
+
+
+def test_the_board_is_the_chairs_tree(client: TestClient, headers: Headers) -> None:
+    data = board(client, headers)
+    assert data["task"] == "ikea-chair" and data["version"] == 0
+    root = data["nodes"][0]
+    assert root["id"] == "n0" and root["parent"] is None and root["name"] == "Assemble chair"
+    assert sum(n["kind"] == "action" for n in data["nodes"]) == 24
+    assert node_named(data, "Attach seat")["lead_only"]
+    me = client.get("/api/me", headers=headers("robot")).json()
+    assert me == {"id": "robot", "kind": "robot", "role": "assistant"}
+    assert [a["id"] for a in client.get("/api/agents", headers=headers("bob")).json()] == [
+        "alice",
+        "bob",
+        "robot",
+        "screen",
+    ]
+
+
+def test_claiming_claims_the_subtree_and_conflicts_are_refused(client: TestClient, headers: Headers) -> None:
+    frame = node_named(board(client, headers), "Build frame")["id"]
+    response = client.post(f"/api/nodes/{frame}/claim", headers=headers("robot"))
+    assert response.status_code == 200
+    data = response.json()["board"]
+    owned = {n["id"] for n in data["nodes"] if n["owner"] == "robot"}
+    assert frame in owned and len(owned) > 5 and data["version"] == 1
+    child = node_named(data, "pick up the left side frame")["id"]
+    for agent, node in (("alice", frame), ("alice", child), ("alice", "n0")):
+        refused = client.post(f"/api/nodes/{node}/claim", headers=headers(agent))
+        assert refused.status_code == 409 and "claimed by robot" in refused.json()["detail"]
+    assert board(client, headers)["version"] == 1
+    released = client.post(f"/api/nodes/{frame}/release", headers=headers("robot"))
+    assert released.status_code == 200 and not any(n["owner"] for n in released.json()["board"]["nodes"])
+    assert client.post(f"/api/nodes/{frame}/release", headers=headers("robot")).status_code == 409
+
+
+def test_completion_waits_for_prerequisites_and_propagates(client: TestClient, headers: Headers) -> None:
+    data = board(client, headers)
+    pegs = node_named(data, "Add left pegs")
+    assert client.post(f"/api/nodes/{pegs['parent']}/claim", headers=headers("alice")).status_code == 200
+    left = pegs["parent"]
+    chain = [n for n in data["nodes"] if n["parent"] == left]
+    first, second = chain[0]["id"], chain[1]["id"]
+    early = client.post(f"/api/nodes/{second}/complete", headers=headers("alice"))
+    assert early.status_code == 409 and "must wait for" in early.json()["detail"]
+    assert (
+        client.post(
+            f"/api/nodes/{first}/progress", headers=headers("alice"), json={"progress": 0.5}
+        ).status_code
+        == 200
+    )
+    assert client.post(f"/api/nodes/{first}/complete", headers=headers("alice")).status_code == 200
+    assert client.post(f"/api/nodes/{second}/complete", headers=headers("alice")).status_code == 200
+    for peg in pegs["children"]:
+        assert client.post(f"/api/nodes/{peg}/complete", headers=headers("alice")).status_code == 200
+    after = board(client, headers)
+    assert {n["id"]: n["done"] for n in after["nodes"]}[left] is True
+    assert node_named(after, "Add left pegs")["done"] and not after["nodes"][0]["done"]
+    again = client.post(f"/api/nodes/{first}/complete", headers=headers("alice"))
+    assert again.status_code == 409 and "already done" in again.json()["detail"]
+    assert client.post(f"/api/nodes/{left}/claim", headers=headers("bob")).status_code == 409
+
+
+def test_asymmetric_authority(client: TestClient, headers: Headers) -> None:
+    data = board(client, headers)
+    seat = node_named(data, "Attach seat")["id"]
+    assistant = client.post(f"/api/nodes/{seat}/claim", headers=headers("robot"))
+    assert assistant.status_code == 403 and "reserved for leads" in assistant.json()["detail"]
+    assert (
+        client.post("/api/nodes/n0/claim", headers=headers("robot")).status_code == 403
+    )  # contains the seat
+    observer = client.post(f"/api/nodes/{seat}/claim", headers=headers("screen"))
+    assert observer.status_code == 403 and "observers" in observer.json()["detail"]
+    assert client.post(f"/api/nodes/{seat}/claim", headers=headers("alice")).status_code == 200
+    assert board(client, headers)["version"] == 1
+
+
+@pytest.mark.parametrize(
+    ("request_args", "status", "detail"),
+    [
+        ({"method": "POST", "url": "/api/nodes/n1/claim"}, 401, "missing token"),
+        (
+            {"method": "POST", "url": "/api/nodes/n1/claim", "headers": {"Authorization": "Bearer nope"}},
+            401,
+            "unknown token",
+        ),
+        ({"method": "POST", "url": "/api/nodes/n999/claim", "agent": "alice"}, 404, "no subtask 'n999'"),
+        ({"method": "POST", "url": "/api/nodes/x1/claim", "agent": "alice"}, 422, "node"),
+        (
+            {
+                "method": "POST",
+                "url": "/api/nodes/n5/progress",
+                "agent": "alice",
+                "content": b"{bad",
+                "json_header": True,
+            },
+            400,
+            "not valid JSON",
+        ),
+        (
+            {"method": "POST", "url": "/api/nodes/n5/progress", "agent": "alice", "json": {"progress": 2}},
+            422,
+            "progress",
+        ),
+        (
+            {
+                "method": "POST",
+                "url": "/api/nodes/n5/progress",
+                "agent": "alice",
+                "json": {"progress": 0.1, "x": 1},
+            },
+            422,
+            "unknown field",
+        ),
+        (
+            {"method": "POST", "url": "/api/nodes/n5/progress", "agent": "alice", "json": {}},
+            422,
+            "missing field 'progress'",
+        ),
+        (
+            {"method": "POST", "url": "/api/nodes/n5/progress", "agent": "alice", "json": {"progress": 0.1}},
+            409,
+            "not claimed by alice",
+        ),
+        ({"method": "POST", "url": "/api/nodes/n1/complete", "agent": "alice"}, 400, "not a single action"),
+        (
+            {
+                "method": "POST",
+                "url": "/api/nodes/n5/progress",
+                "agent": "alice",
+                "content": b"[" * 70_000,
+                "json_header": True,
+            },
+            413,
+            "larger than",
+        ),
+    ],
+)
+def test_bad_requests_are_refused_and_change_nothing(
+    client: TestClient, headers: Headers, request_args: dict[str, Any], status: int, detail: str
+) -> None:
+    args = dict(request_args)
+    agent = args.pop("agent", None)
+    extra = args.pop("headers", {})
+    if args.pop("json_header", False):
+        extra = {**extra, "Content-Type": "application/json"}
+    before = board(client, headers)
+    response = client.request(**args, headers={**(headers(agent) if agent else {}), **extra})
+    assert response.status_code == status, response.text
+    assert detail in response.json()["detail"]
+    assert board(client, headers) == before
+
+
+def test_the_event_log_replays_to_the_board(client: TestClient, headers: Headers) -> None:
+    from supportive.service.tree import TaskBoard
+
+    frame = node_named(board(client, headers), "Build frame")["id"]
+    for op, agent in (("claim", "robot"), ("release", "robot"), ("claim", "bob")):
+        assert client.post(f"/api/nodes/{frame}/{op}", headers=headers(agent)).status_code == 200
+    events = client.get("/api/events", headers=headers("screen")).json()
+    assert [(e["seq"], e["op"], e["agent"]) for e in events] == [
+        (1, "claim", "robot"),
+        (2, "release", "robot"),
+        (3, "claim", "bob"),
+    ]
+    assert client.get("/api/events?after=2", headers=headers("screen")).json()[0]["seq"] == 3
+    roles = {a["id"]: a["role"] for a in client.get("/api/agents", headers=headers("screen")).json()}
+    state = client.app.state.service  # type: ignore[attr-defined]
+    replayed = state.store.initial()
+    for e in events:
+        replayed = replayed.apply(e["op"], e["node"], e["agent"], roles[e["agent"]], e["progress"])
+    current = board(client, headers)
+    assert {"version": current["version"], **replayed.as_dict()} == current
+    assert isinstance(replayed, TaskBoard)
+
+
+def test_every_change_is_pushed_over_the_websocket(client: TestClient, headers: Headers) -> None:
+    with client.websocket_connect("/api/ws?token=tok-screen") as socket:
+        first = socket.receive_json()
+        assert first["type"] == "snapshot" and first["board"]["version"] == 0
+        assert client.post("/api/nodes/n1/claim", headers=headers("robot")).status_code == 200
+        pushed = socket.receive_json()
+        assert (
+            pushed["type"] == "event" and pushed["event"]["op"] == "claim" and pushed["board"]["version"] == 1
+        )
+        assert pushed["board"]["nodes"][1]["owner"] == "robot"
+
+
+def test_websockets_need_a_token(client: TestClient) -> None:
+    from starlette.websockets import WebSocketDisconnect
+
+    with (
+        pytest.raises(WebSocketDisconnect) as refused,
+        client.websocket_connect("/api/ws?token=nope") as socket,
+    ):
+        socket.receive_json()
+    assert refused.value.code == 4401
+
+
+def test_docs_and_page_are_served(client: TestClient) -> None:
+    schema = client.get("/openapi.json").json()
+    assert "/api/nodes/{node}/claim" in schema["paths"] and client.get("/docs").status_code == 200
+    page = client.get("/")
+    assert page.status_code == 200 and "task board" in page.text
+    assert client.get("/static/app.js").status_code == 200
