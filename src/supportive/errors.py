@@ -21,6 +21,7 @@ __all__ = [
     "ObservationFileError",
     "PlanningError",
     "ScenarioFileError",
+    "SocialError",
     "SupportiveError",
     "TaskFileError",
     "TaskGraphError",
@@ -106,6 +107,11 @@ class PlanningError(SupportiveError, ValueError):
 class CircuitError(PlanningError):
     """A circuit piece placed where it cannot go (off the board, overlapping, unsupported), or an unknown
     piece kind."""
+
+
+class SocialError(SupportiveError, ValueError):
+    """Social force or a role policy was given input it cannot use (a sample out of time order, a non-finite
+    position, a threshold out of range, a subtask both claimed by another agent and one's own, …)."""
 
 
 class DatasetError(SupportiveError, ValueError):

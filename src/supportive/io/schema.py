@@ -1,7 +1,7 @@
 """The task-file schema (pydantic), shared by the YAML and JSON readers.
 
 Shorthands: an action may be written as its id alone, a step as its action id alone, a structure leaf as an
-action id. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an optional ``name``.
+action id, a keyframe as its ``[x, y]`` pair. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an optional ``name``.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ __all__ = [
     "ActionIn",
     "BehaviorIn",
     "DemonstrationIn",
+    "KeyframeIn",
     "NodeIn",
     "PredicateIn",
     "StepIn",
@@ -44,14 +45,38 @@ DEFAULT_EVENT_PROBABILITY = 0.9
 """Probability given to an observation listed without one."""
 
 
+def _keyframe_pair(value: Any) -> Any:
+    """``[x, y]`` → ``{x, y}``; any other list is refused with the expected forms."""
+    if isinstance(value, list | tuple):
+        if len(value) != 2:
+            raise ValueError(f"a keyframe is [x, y] or {{x, y, text, goal}}, got a list of length {len(value)}")
+        return {"x": value[0], "y": value[1]}
+    return value
+
+
+Coordinate = Annotated[float, Field(allow_inf_nan=False)]
+
+
+class KeyframeIn(_Strict):
+    """``{x, y, text, goal}`` or ``[x, y]``: a point the skill's end effector passes (workspace units, e.g.
+    metres), what happens there, and whether it is a goal state of the skill."""
+
+    x: Coordinate
+    y: Coordinate
+    text: str | None = None
+    goal: bool = False
+
+
 class ActionIn(_Strict):
-    """``{id, text, observations}``: observations are contact events, as a list (each holding with probability
-    0.9 while the action runs) or a mapping from event to probability."""
+    """``{id, text, observations, effects, keyframes}``: observations are contact events, as a list (each
+    holding with probability 0.9 while the action runs) or a mapping from event to probability; keyframes are
+    the points the skill's end effector passes, in order."""
 
     id: Name
     text: str | None = None
     observations: list[Name] | dict[str, Annotated[float, Field(gt=0.0, lt=1.0)]] | None = None
     effects: list[Name] | None = None
+    keyframes: list[Annotated[KeyframeIn, BeforeValidator(_keyframe_pair)]] | None = None
 
     def events(self) -> tuple[tuple[str, float], ...]:
         """The observations as ``(event, probability)`` pairs, sorted by event."""

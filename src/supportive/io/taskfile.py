@@ -29,7 +29,7 @@ from supportive.tasks.behaviors import (
 )
 from supportive.tasks.formula import FormulaError, parse_formula, split_atom
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, internal_nodes
-from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
+from supportive.tasks.spec import Action, Demonstration, Keyframe, Step, TaskSpec
 
 __all__ = [
     "CSV_COLUMNS",
@@ -95,7 +95,16 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
     def fail(problem: str, loc: list[str | int]) -> TaskFileError:
         return TaskFileError(problem, path=path, place=place_of(loc), line=line_of(text, loc))
 
-    actions = tuple(Action(a.id, a.text, a.events(), tuple(a.effects or ())) for a in model.actions or ())
+    actions = tuple(
+        Action(
+            a.id,
+            a.text,
+            a.events(),
+            tuple(a.effects or ()),
+            tuple(Keyframe(k.x, k.y, k.text, k.goal) for k in a.keyframes or ()),
+        )
+        for a in model.actions or ()
+    )
     declared = {a.id for a in actions}
     seen_actions: set[str] = set()
     for index, action in enumerate(actions):
@@ -327,6 +336,32 @@ def _action_to_data(action: Action) -> dict[str, object]:
         data["observations"] = dict(action.observations)
     if action.effects:
         data["effects"] = list(action.effects)
+    if action.keyframes:
+        data["keyframes"] = [_keyframe_to_data(k) for k in action.keyframes]
+    return data
+
+
+class _Pair(list[float]):
+    """A keyframe's ``[x, y]``, which YAML writes on one line."""
+
+
+class _Dumper(yaml.SafeDumper):
+    """The safe dumper, writing keyframe pairs in flow style."""
+
+
+_Dumper.add_representer(
+    _Pair, lambda dumper, pair: dumper.represent_sequence("tag:yaml.org,2002:seq", pair, flow_style=True)
+)
+
+
+def _keyframe_to_data(keyframe: Keyframe) -> object:
+    if keyframe.text is None and not keyframe.goal:
+        return _Pair((keyframe.x, keyframe.y))
+    data: dict[str, object] = {"x": keyframe.x, "y": keyframe.y}
+    if keyframe.text is not None:
+        data["text"] = keyframe.text
+    if keyframe.goal:
+        data["goal"] = True
     return data
 
 
@@ -409,7 +444,7 @@ def dump_task(spec: TaskSpec, format: Format) -> str:
     data = task_to_dict(spec)
     if format == "json":
         return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
-    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=110)
+    return yaml.dump(data, Dumper=_Dumper, sort_keys=False, allow_unicode=True, width=110)
 
 
 def _blank(value: float | None) -> object:

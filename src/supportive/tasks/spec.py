@@ -8,7 +8,28 @@ from dataclasses import dataclass, field, replace
 from supportive.tasks.behaviors import PredicateSpec, SupportiveBehavior
 from supportive.tasks.htn import Node, leaf_actions
 
-__all__ = ["Action", "Demonstration", "Step", "TaskSpec"]
+__all__ = ["Action", "Demonstration", "Keyframe", "Step", "TaskSpec"]
+
+
+@dataclass(frozen=True)
+class Keyframe:
+    """One keyframe of a skill (§3.4.2.1): where the end effector passes, projected onto the work surface.
+
+    ``x`` and ``y`` are in the task's workspace units (metres on the workbench). ``text`` says what happens
+    there (``open the gripper above the red block``). ``goal`` marks a goal state of the skill: an instructor
+    demonstrating the skill in stages never performs it (§3.4.5.3); when no keyframe of a skill is marked, its
+    last keyframe is the goal.
+    """
+
+    x: float
+    y: float
+    text: str | None = None
+    goal: bool = False
+
+    @property
+    def point(self) -> tuple[float, float]:
+        """The keyframe as an ``(x, y)`` pair."""
+        return (self.x, self.y)
 
 
 @dataclass(frozen=True)
@@ -18,13 +39,15 @@ class Action:
     ``observations`` maps contact events (Semantic Event Chains, §2.1.7.1: e.g. ``"hand-peg"`` for the hand
     touching a peg) to the probability that the event holds at a moment while the action is performed.
     ``effects`` are the atoms doing it makes true (``attached(seat, left_frame)``) or, written ``not …``,
-    false (§3.3: the predicates behaviors are described with).
+    false (§3.3: the predicates behaviors are described with). ``keyframes`` are the points its end effector
+    passes through, in order (§3.4.5: where social force is read for the skill); empty when unknown.
     """
 
     id: str
     text: str | None = None
     observations: tuple[tuple[str, float], ...] = ()
     effects: tuple[str, ...] = ()
+    keyframes: tuple[Keyframe, ...] = ()
 
     @property
     def label(self) -> str:
