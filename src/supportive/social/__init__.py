@@ -2,6 +2,8 @@
 
 * :class:`SocialForce` turns a stream of an agent's hand positions into an ellipse of where it is about to be
   and a force field in ``[0, 1]`` (§3.4.4); :class:`ForceField` combines several named agents.
+* :class:`StudentPolicy` (attractive force) and :class:`PeerPolicy` (repulsive force) choose among
+  :class:`Candidate` subtasks and return a :class:`RoleDecision` (§3.4.3, §3.4.5.1–2).
 
 See docs/social.md for the model and every reading of the thesis it takes.
 """
@@ -9,5 +11,19 @@ See docs/social.md for the model and every reading of the thesis it takes.
 from supportive.social.ellipse import ForceEllipse, fit_ellipse
 from supportive.social.field import ForceField
 from supportive.social.force import ForceSource, SocialForce
+from supportive.social.reading import reading
+from supportive.social.roles import Candidate, PeerPolicy, RoleAction, RoleDecision, StudentPolicy
 
-__all__ = ["ForceEllipse", "ForceField", "ForceSource", "SocialForce", "fit_ellipse"]
+__all__ = [
+    "Candidate",
+    "ForceEllipse",
+    "ForceField",
+    "ForceSource",
+    "PeerPolicy",
+    "RoleAction",
+    "RoleDecision",
+    "SocialForce",
+    "StudentPolicy",
+    "fit_ellipse",
+    "reading",
+]
