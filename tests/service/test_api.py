@@ -226,3 +226,25 @@ def test_docs_and_page_are_served(client: TestClient) -> None:
     page = client.get("/")
     assert page.status_code == 200 and "task board" in page.text
     assert client.get("/static/app.js").status_code == 200
+
+
+def test_insight_suggests_behaviors_and_follows_observations(client: TestClient, headers: Headers) -> None:
+    first = client.get("/api/insight", headers=headers("screen")).json()
+    assert first["inference"] is True and first["belief"] is None
+    assert "hand-hex-key" not in {b["name"] for b in first["behaviors"]}  # the bolts have not begun
+    seen = client.post("/api/observations", headers=headers("alice"), json={"events": ["hand-left_frame"]})
+    assert seen.status_code == 200 and seen.json()["subgoals"][0][0].startswith("get_left_frame")
+    belief = client.get("/api/insight", headers=headers("screen")).json()["belief"]
+    assert belief[0]["name"].startswith("get_left_frame") and 0 < belief[0]["probability"] <= 1
+    assert client.post("/api/observations", headers=headers("screen"), json={"events": []}).status_code == 403
+    assert client.post("/api/observations", headers=headers("alice"), json={"events": [""]}).status_code == 422
+
+
+def test_suggestions_follow_the_board(client: TestClient, headers: Headers) -> None:
+    data = board(client, headers)
+    leaves = [n for n in data["nodes"] if n["kind"] == "action"]
+    for leaf in leaves[:12]:  # the whole frame: both side frames, pegs, both rails
+        assert client.post(f"/api/nodes/{leaf['id']}/claim", headers=headers("alice")).status_code == 200
+        assert client.post(f"/api/nodes/{leaf['id']}/complete", headers=headers("alice")).status_code == 200
+    names = {b["name"] for b in client.get("/api/insight", headers=headers("screen")).json()["behaviors"]}
+    assert "hand-hex-key" in names or "point-next-bolt" in names

@@ -76,11 +76,16 @@ def prepare(
 
 def serve(launch: Launch) -> None:
     """Run the service until interrupted (uvicorn; one process)."""
+    import gc
+
     import uvicorn
 
     from supportive.service.app import create_app
 
-    uvicorn.run(create_app(launch.settings), host=launch.host, port=launch.port, log_level="warning")
+    app = create_app(launch.settings)
+    gc.collect()
+    gc.freeze()  # start-up objects never need collecting: full collections stay short under load
+    uvicorn.run(app, host=launch.host, port=launch.port, log_level="warning")
 
 
 def _tokens_file(database: str) -> Path | None:

@@ -6,7 +6,7 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field
 
-__all__ = ["HandIn", "ProgressIn"]
+__all__ = ["HandIn", "ObservationIn", "ProgressIn"]
 
 
 class _Strict(BaseModel):
@@ -26,3 +26,9 @@ class HandIn(_Strict):
     x: Annotated[float, Field(allow_inf_nan=False)]
     y: Annotated[float, Field(allow_inf_nan=False)]
     t: Annotated[float | None, Field(default=None, allow_inf_nan=False)] = None
+
+
+class ObservationIn(_Strict):
+    """``{"events": ["hand-seat"]}``: the contact events that hold at this moment (at most 64)."""
+
+    events: Annotated[list[Annotated[str, Field(min_length=1, max_length=80)]], Field(max_length=64)]

@@ -9,6 +9,7 @@ from typing import Annotated
 from fastapi import Depends, Header, HTTPException, Query, Request, WebSocket
 
 from supportive.service.hub import Hub
+from supportive.service.insight import Insight
 from supportive.service.settings import ServiceSettings
 from supportive.service.store import Agent, BoardStore, token_hash
 
@@ -23,8 +24,10 @@ class ServiceState:
     store: BoardStore
     hub: Hub
     tokens: dict[str, Agent] = field(default_factory=dict)
+    insight: Insight = field(init=False)
 
     def __post_init__(self) -> None:
+        self.insight = Insight(self.settings.spec)
         by_id = {agent.id: agent for agent in self.store.agents()}
         self.tokens = {
             token_hash(spec.token): by_id[spec.id] for spec in self.settings.agents if spec.id in by_id
@@ -47,7 +50,7 @@ def service(request: Request) -> ServiceState:
     return state
 
 
-def current_agent(request: Request, authorization: Annotated[str | None, Header()] = None) -> Agent:
+async def current_agent(request: Request, authorization: Annotated[str | None, Header()] = None) -> Agent:
     """The agent whose ``Authorization: Bearer <token>`` this is.
 
     Raises:
@@ -65,7 +68,7 @@ def current_agent(request: Request, authorization: Annotated[str | None, Header(
     return agent
 
 
-def socket_agent(websocket: WebSocket, token: Annotated[str, Query()] = "") -> Agent | None:
+async def socket_agent(websocket: WebSocket, token: Annotated[str, Query()] = "") -> Agent | None:
     """The agent of a WebSocket's ``?token=`` (None when it is missing or unknown)."""
     state: ServiceState = websocket.app.state.service
     return state.agent(token) if token else None

@@ -11,10 +11,13 @@ from __future__ import annotations
 
 import hashlib
 import json
+import queue
+import threading
 import time
 from collections.abc import Iterator, Sequence
+from concurrent.futures import Future
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from sqlalchemy import (
@@ -37,9 +40,11 @@ from sqlalchemy.engine import Connection
 from sqlalchemy.exc import ArgumentError, OperationalError
 
 from supportive.errors import SupportiveError
-from supportive.service.tree import ROLES, Role, TaskBoard
+from supportive.service.tree import ROLES, BoardError, Role, TaskBoard
 
 __all__ = ["Agent", "AgentKind", "AgentSpec", "BoardEvent", "BoardStore", "StoreError", "token_hash"]
+
+_BATCH = 256  # most operations in one group commit
 
 AgentKind = Literal["human", "robot"]
 
@@ -120,6 +125,17 @@ class BoardEvent:
         }
 
 
+@dataclass
+class _Pending:
+    """An operation waiting for the writer, and where its outcome goes."""
+
+    op: str
+    node: str
+    agent: Agent
+    progress: float | None
+    result: Future[tuple[TaskBoard, BoardEvent]] = field(default_factory=Future)
+
+
 def token_hash(token: str) -> str:
     """The stored form of a token."""
     return hashlib.sha256(token.encode("utf-8")).hexdigest()
@@ -144,6 +160,12 @@ class BoardStore:
         self.sqlite = self.engine.dialect.name == "sqlite"
         if self.sqlite:
             _serialise_sqlite(self.engine)
+        # One writer thread per store commits queued operations in groups; the database's own lock still
+        # orders writers of other processes.
+        self._lock = threading.Lock()
+        self._queue: queue.Queue[_Pending | None] = queue.Queue()
+        self._writer: threading.Thread | None = None
+        self._cached: tuple[int, TaskBoard] | None = None  # the board at a version this process wrote
 
     def initialize(self, board: TaskBoard, agents: Sequence[AgentSpec]) -> bool:
         """Create the tables and the board on first use; True when it was created now.
@@ -194,24 +216,86 @@ class BoardStore:
     def apply(
         self, op: str, node: str, agent: Agent, progress: float | None = None
     ) -> tuple[TaskBoard, BoardEvent]:
-        """Apply one operation atomically: read, check, write the new board and the event, commit.
+        """Apply one operation atomically and return once it is committed: the board after it, and its event.
+
+        Operations wait in a queue for the store's writer thread, which applies every operation waiting, each
+        checked on the board the ones before it left, and commits them in one transaction (a group commit):
+        an operation is acknowledged only after the transaction holding it has committed.
 
         Raises:
-            BoardError: when the board refuses it (nothing is written).
+            BoardError: when the board refuses it (nothing is written for it).
+            StoreError: when the transaction fails (nothing of it is acknowledged).
         """
-        with self._write() as connection:
-            query = select(boards.c.state, boards.c.version).where(boards.c.id == 1)
-            if not self.sqlite:
-                query = query.with_for_update()
-            row = connection.execute(query).one()
-            board = TaskBoard.from_dict(json.loads(row.state)).apply(op, node, agent.id, agent.role, progress)
-            seq = int(row.version) + 1
-            done = BoardEvent(seq, round(time.time(), 6), agent.id, op, node, progress)
-            connection.execute(
-                update(boards).where(boards.c.id == 1).values(state=json.dumps(board.as_dict()), version=seq)
-            )
-            connection.execute(insert(events_table).values(board=1, **done.as_dict()))
-        return board, done
+        pending = _Pending(op, node, agent, progress)
+        with self._lock:
+            if self._writer is None or not self._writer.is_alive():
+                self._writer = threading.Thread(target=self._write_forever, name="board-writer", daemon=True)
+                self._writer.start()
+        self._queue.put(pending)
+        return pending.result.result()
+
+    def _write_forever(self) -> None:
+        while True:
+            first = self._queue.get()
+            if first is None:
+                return
+            batch = [first]
+            while len(batch) < _BATCH:
+                try:
+                    item = self._queue.get_nowait()
+                except queue.Empty:
+                    break
+                if item is None:
+                    self._queue.put(None)
+                    break
+                batch.append(item)
+            self._commit(batch)
+
+    def _commit(self, batch: list[_Pending]) -> None:
+        """Apply ``batch`` in order in one transaction; resolve each operation once it has committed."""
+        outcomes: list[tuple[_Pending, tuple[TaskBoard, BoardEvent] | BaseException]] = []
+        try:
+            with self._write() as connection:
+                query = select(boards.c.version).where(boards.c.id == 1)
+                if not self.sqlite:
+                    query = query.with_for_update()
+                version = int(connection.execute(query).scalar_one())
+                current = self._cached
+                if current is None or current[0] != version:  # another process wrote, or first use
+                    text = connection.execute(select(boards.c.state).where(boards.c.id == 1)).scalar_one()
+                    current = (version, TaskBoard.from_dict(json.loads(text)))
+                board = current[1]
+                events: list[dict[str, Any]] = []
+                for item in batch:
+                    try:
+                        board = board.apply(item.op, item.node, item.agent.id, item.agent.role, item.progress)
+                    except BoardError as refused:
+                        outcomes.append((item, refused))
+                        continue
+                    version += 1
+                    done = BoardEvent(
+                        version, round(time.time(), 6), item.agent.id, item.op, item.node, item.progress
+                    )
+                    events.append({"board": 1, **done.as_dict()})
+                    outcomes.append((item, (board, done)))
+                if events:
+                    connection.execute(
+                        update(boards)
+                        .where(boards.c.id == 1)
+                        .values(state=json.dumps(board.as_dict()), version=version)
+                    )
+                    connection.execute(insert(events_table), events)
+                self._cached = (version, board)  # if the commit fails the version no longer matches: reread
+        except Exception as exc:  # the transaction failed: no operation of it is acknowledged
+            failure = StoreError(f"the board could not be saved: {exc}")
+            for item in batch:
+                item.result.set_exception(failure)
+            return
+        for item, outcome in outcomes:
+            if isinstance(outcome, BaseException):
+                item.result.set_exception(outcome)
+            else:
+                item.result.set_result(outcome)
 
     def events(self, after: int = 0, limit: int = 1000) -> list[BoardEvent]:
         """Acknowledged operations with a sequence number above ``after``, oldest first."""
@@ -240,7 +324,10 @@ class BoardStore:
         return [Agent(r.id, r.kind, r.role) for r in rows]
 
     def close(self) -> None:
-        """Close the connections."""
+        """Stop the writer (after what is queued) and close the connections."""
+        if self._writer is not None and self._writer.is_alive():
+            self._queue.put(None)
+            self._writer.join(30)
         self.engine.dispose()
 
     @contextmanager

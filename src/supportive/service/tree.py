@@ -68,6 +68,7 @@ class BoardNode:
         owner: The agent who claimed it, or None.
         done: Completed.
         progress: Reported progress of a leaf, 0–1.
+        occurrence: Which performance of its action a leaf is (1 unless the task repeats an action).
     """
 
     id: str
@@ -80,6 +81,7 @@ class BoardNode:
     owner: str | None = None
     done: bool = False
     progress: float = 0.0
+    occurrence: int = 1
 
 
 @dataclass(frozen=True)
@@ -119,7 +121,14 @@ class TaskBoard:
             if isinstance(node, ActionNode):
                 name = texts.get(node.action, node.action)
                 nodes[index] = BoardNode(
-                    ident, name, "action", parent, (), node.action, bool({name, node.action} & reserved)
+                    ident,
+                    name,
+                    "action",
+                    parent,
+                    (),
+                    node.action,
+                    bool({name, node.action} & reserved),
+                    occurrence=node.occurrence,
                 )
                 return ident
             children = tuple(add(child, ident) for child in node.children)
@@ -178,6 +187,11 @@ class TaskBoard:
     def ready(self, ident: str) -> bool:
         """Whether every prerequisite of ``ident`` is done."""
         return all(node.done for node in self.prerequisites(ident))
+
+    @property
+    def done_leaves(self) -> frozenset[tuple[str, int]]:
+        """The (action, occurrence) leaves completed so far: the task's state."""
+        return frozenset((n.action, n.occurrence) for n in self.nodes if n.done and n.action is not None)
 
     def claimable_by(self, ident: str, agent: str, role: Role) -> bool:
         """Whether ``agent`` could claim ``ident`` now."""
@@ -285,6 +299,7 @@ class TaskBoard:
                     n["owner"],
                     bool(n["done"]),
                     float(n["progress"]),
+                    int(n.get("occurrence", 1)),
                 )
                 for n in data["nodes"]
             ),
@@ -306,11 +321,26 @@ class TaskBoard:
                     "owner": n.owner,
                     "done": n.done,
                     "progress": n.progress,
-                    "ready": self.ready(n.id),
+                    "occurrence": n.occurrence,
+                    "ready": ready,
                 }
-                for n in self.nodes
+                for n, ready in zip(self.nodes, self._readiness(), strict=True)
             ],
         }
+
+    def _readiness(self) -> list[bool]:
+        """:meth:`ready` of every node in one pass down the tree: a node is ready when its parent is and, in
+        a chain, every earlier sibling is done."""
+        ready = [True] * len(self.nodes)
+        for index, node in enumerate(self.nodes):  # depth first: a parent comes before its children
+            if node.kind == "action":
+                continue
+            earlier_done = True
+            for child in node.children:
+                position = int(child[1:])
+                ready[position] = ready[index] and (earlier_done or node.kind != "chain")
+                earlier_done = earlier_done and self.nodes[position].done
+        return ready
 
     # -- helpers ---------------------------------------------------------------------------------------------
 

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import json
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body, Depends, Path, Request
+from fastapi import APIRouter, Body, Depends, Path, Request, Response
 from starlette.concurrency import run_in_threadpool
 
 from supportive.service.schemas import ProgressIn
@@ -47,36 +48,35 @@ async def read_agents(request: Request, me: Me) -> list[dict[str, str]]:
 
 async def _operate(
     request: Request, me: Agent, op: str, node: str, progress: float | None = None
-) -> dict[str, Any]:
+) -> Response:
+    """Apply the operation, push it to subscribers, answer with the event and the board (JSON encoded once)."""
     state = service(request)
     board, event = await run_in_threadpool(state.store.apply, op, node, me, progress)
-    snapshot = {"version": event.seq, **board.as_dict()}
-    state.hub.publish({"type": "event", "event": event.as_dict(), "board": snapshot})
-    return {"event": event.as_dict(), "board": snapshot}
+    message = {"event": event.as_dict(), "board": {"version": event.seq, **board.as_dict()}}
+    state.hub.publish({"type": "event", **message})
+    return Response(json.dumps(message), media_type="application/json")
 
 
 @router.post("/nodes/{node}/claim", responses=ERRORS, summary="Claim a subtask (and everything under it)")
-async def claim(request: Request, node: NodeId, me: Me) -> dict[str, Any]:
+async def claim(request: Request, node: NodeId, me: Me) -> Response:
     """Refused when another agent owns it, something under it or above it, or it is done."""
     return await _operate(request, me, "claim", node)
 
 
 @router.post("/nodes/{node}/release", responses=ERRORS, summary="Give a claimed subtask back")
-async def release(request: Request, node: NodeId, me: Me) -> dict[str, Any]:
+async def release(request: Request, node: NodeId, me: Me) -> Response:
     """Its unfinished parts go back to the pool."""
     return await _operate(request, me, "release", node)
 
 
 @router.post("/nodes/{node}/progress", responses=ERRORS, summary="Report progress on an action you own")
-async def progress(
-    request: Request, node: NodeId, me: Me, body: Annotated[ProgressIn, Body()]
-) -> dict[str, Any]:
+async def progress(request: Request, node: NodeId, me: Me, body: Annotated[ProgressIn, Body()]) -> Response:
     """``{"progress": 0.5}``."""
     return await _operate(request, me, "progress", node, body.progress)
 
 
 @router.post("/nodes/{node}/complete", responses=ERRORS, summary="Complete an action you own")
-async def complete(request: Request, node: NodeId, me: Me) -> dict[str, Any]:
+async def complete(request: Request, node: NodeId, me: Me) -> Response:
     """Refused until its prerequisites are done; finished subtasks above it complete too."""
     return await _operate(request, me, "complete", node)
 

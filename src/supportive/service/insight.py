@@ -1,0 +1,93 @@
+"""What the robot thinks, for the board's page: the goal-inference belief (§2.1.7, when the task's actions
+declare contact-event observations and it has demonstrations to learn from) and the supportive behaviors
+(§3.3) whose start condition holds in the board's current state and whose stop condition does not."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+from supportive.errors import SupportiveError
+from supportive.inference import HierarchicalHMM, ObservationModel
+from supportive.inference.hmm import GoalFilter
+from supportive.language.states import TaskStates
+from supportive.learning.learner import learn
+from supportive.service.tree import TaskBoard
+from supportive.tasks.spec import TaskSpec
+
+__all__ = ["Insight"]
+
+
+@dataclass
+class Insight:
+    """The belief and the suggestions of one board's task (None / empty when the task cannot give them)."""
+
+    spec: TaskSpec | None
+    filter: GoalFilter | None = field(default=None, init=False)
+    latest: dict[str, Any] | None = field(default=None, init=False)
+
+    @cached_property
+    def states(self) -> TaskStates | None:
+        """The task's states, when it has a structure and supportive behaviors."""
+        if self.spec is None or self.spec.structure is None or not self.spec.behaviors:
+            return None
+        return TaskStates.of(self.spec)
+
+    @cached_property
+    def model(self) -> HierarchicalHMM | None:
+        """The hierarchical HMM, when every action declares observations and there are demonstrations."""
+        spec = self.spec
+        if spec is None or not spec.demonstrations or not all(a.observations for a in spec.actions):
+            return None
+        return HierarchicalHMM(learn(spec).htn_, ObservationModel.from_spec(spec))
+
+    @property
+    def inference(self) -> bool:
+        """Whether goal inference is configured."""
+        return self.model is not None
+
+    def observe(self, events: list[str]) -> dict[str, Any]:
+        """Feed one moment's contact events to the filter; the belief after it.
+
+        Raises:
+            SupportiveError: when the task has no goal inference.
+        """
+        if self.model is None:
+            raise SupportiveError(
+                "this board's task has no goal inference (no observations or no demonstrations)"
+            )
+        if self.filter is None:
+            self.filter = self.model.filter()
+        self.latest = self.filter.summary(self.filter.update(set(events)))
+        return self.latest
+
+    def suggestions(self, board: TaskBoard) -> list[dict[str, str]]:
+        """The behaviors that may run now: their start condition holds, their stop condition does not, and
+        (when tied to subtasks) one of those subtasks is under way or about to begin."""
+        states = self.states
+        if states is None or self.spec is None:
+            return []
+        state = board.done_leaves
+        if state not in states.table.state_index:
+            return []
+        out = []
+        for behavior in self.spec.behaviors:
+            scope = [s for s in behavior.subtasks if s in states.subtasks]
+            during = not scope or any(state in states.during(s) for s in scope)
+            if (
+                during
+                and state in states.region(behavior.initiation)
+                and state not in states.region(behavior.termination)
+            ):
+                out.append(
+                    {"name": behavior.name, "text": behavior.text, "category": behavior.category.value}
+                )
+        return out
+
+    def belief(self) -> list[dict[str, Any]] | None:
+        """The latest belief's most likely subgoals as ``{"name", "probability"}``, None before any observation
+        (or without goal inference)."""
+        if self.latest is None:
+            return None
+        return [{"name": str(name), "probability": float(p)} for name, p in self.latest["subgoals"]]
