@@ -210,6 +210,10 @@ def test_bad_query_points_are_refused(points: object, message: str) -> None:
 def test_bad_ellipses_and_fits_are_refused() -> None:
     with pytest.raises(SocialError, match="half-axes"):
         ForceEllipse((0.0, 0.0), (1.0, 0.0), ((1.0, 0.0), (0.0, 1.0)))
+    with pytest.raises(SocialError, match="axes must be a unit vector"):
+        ForceEllipse((0.0, 0.0), (1.0, 1.0), ((2.0, 0.0), (0.0, 2.0)))
+    with pytest.raises(SocialError, match="axes must be a unit vector"):
+        ForceEllipse((0.0, 0.0), (1.0, 1.0), ((1.0, 0.0), (0.0, -1.0)))  # a mirror
     with pytest.raises(SocialError, match="at least one sample"):
         fit_ellipse(np.zeros((0, 2)), min_radius=R, sigmas=2.0)
     with pytest.raises(SocialError, match="min_radius"):

@@ -45,7 +45,7 @@ class ForceEllipse:
         center: The centre ``(x, y)``.
         half_axes: The half-lengths ``(major, minor)``, major first, both positive.
         axes: The unit directions ``(major, minor)`` of the axes; ``minor`` is ``major`` turned 90°
-            counter-clockwise, and ``major`` points to ``x ≥ 0``.
+            counter-clockwise (:func:`fit_ellipse` also makes ``major`` point to ``x ≥ 0``).
 
     >>> e = ForceEllipse((1.0, 0.0), (2.0, 1.0), ((1.0, 0.0), (0.0, 1.0)))
     >>> e.value((1.0, 0.0)), e.value((2.0, 0.0)), e.value((3.0, 0.0)), e.value((1.0, 0.5))
@@ -59,10 +59,15 @@ class ForceEllipse:
     def __post_init__(self) -> None:
         if not all(math.isfinite(h) and h > 0 for h in self.half_axes):
             raise SocialError(f"an ellipse's half-axes must be positive and finite, got {self.half_axes}")
+        (ux, uy), (vx, vy) = self.axes
+        if not (abs(ux * ux + uy * uy - 1.0) < 1e-9 and abs(vx + uy) < 1e-9 and abs(vy - ux) < 1e-9):
+            raise SocialError(
+                f"an ellipse's axes must be a unit vector and the same turned 90° counter-clockwise, got {self.axes}"
+            )
 
     @property
     def rotation(self) -> float:
-        """The major axis's angle from the x axis, in radians, in ``(−π/2, π/2]``."""
+        """The major axis's angle from the x axis, in radians (in ``(−π/2, π/2]`` for a fitted ellipse)."""
         return math.atan2(self.axes[0][1], self.axes[0][0])
 
     @property
