@@ -237,7 +237,9 @@ def test_insight_suggests_behaviors_and_follows_observations(client: TestClient,
     belief = client.get("/api/insight", headers=headers("screen")).json()["belief"]
     assert belief[0]["name"].startswith("get_left_frame") and 0 < belief[0]["probability"] <= 1
     assert client.post("/api/observations", headers=headers("screen"), json={"events": []}).status_code == 403
-    assert client.post("/api/observations", headers=headers("alice"), json={"events": [""]}).status_code == 422
+    assert (
+        client.post("/api/observations", headers=headers("alice"), json={"events": [""]}).status_code == 422
+    )
 
 
 def test_suggestions_follow_the_board(client: TestClient, headers: Headers) -> None:
@@ -248,3 +250,53 @@ def test_suggestions_follow_the_board(client: TestClient, headers: Headers) -> N
         assert client.post(f"/api/nodes/{leaf['id']}/complete", headers=headers("alice")).status_code == 200
     names = {b["name"] for b in client.get("/api/insight", headers=headers("screen")).json()["behaviors"]}
     assert "hand-hex-key" in names or "point-next-bolt" in names
+
+
+def test_hands_make_social_force(client: TestClient, headers: Headers) -> None:
+    for i in range(5):
+        response = client.post(
+            "/api/hands", headers=headers("alice"), json={"x": 0.2 + 0.05 * i, "y": 0.3, "t": 0.1 * i}
+        )
+        assert response.status_code == 200
+    social = client.get("/api/social?nx=10&ny=4", headers=headers("screen")).json()
+    alice = next(a for a in social["agents"] if a["id"] == "alice")
+    assert alice["hand"] == [0.4, 0.3] and alice["ellipse"]["center"][0] > 0.4  # the centre leads the hand
+    assert abs(alice["ellipse"]["angle"]) < 1e-6  # elongated along the motion
+    assert len(social["field"]["values"]) == 40 and max(social["field"]["values"]) > 0
+    assert social["workspace"] == [1.83, 0.762]
+    without = client.get("/api/social?nx=10&ny=4&exclude=alice", headers=headers("robot")).json()
+    assert max(without["field"]["values"]) == 0
+    backwards = client.post("/api/hands", headers=headers("alice"), json={"x": 0.1, "y": 0.1, "t": 0.0})
+    assert backwards.status_code == 409 and "before the latest" in backwards.json()["detail"]
+    assert client.post("/api/hands", headers=headers("screen"), json={"x": 0.1, "y": 0.1}).status_code == 403
+    bad = client.post(
+        "/api/hands",
+        headers={**headers("bob"), "Content-Type": "application/json"},
+        content=b'{"x": 1e999, "y": 0}',
+    )
+    assert bad.status_code == 422
+
+
+def test_workbench_readings_follow_the_hand(tmp_path: Any, headers: Headers) -> None:
+    from supportive.examples import path as example_path
+    from supportive.io.taskfile import parse_task_file
+    from supportive.service.app import create_app
+    from supportive.service.settings import ServiceSettings, board_of, parse_agent
+
+    spec = parse_task_file(example_path("workbench-blocks"))
+    settings = ServiceSettings(
+        f"sqlite:///{tmp_path / 'w.db'}",
+        board_of(spec),
+        (parse_agent("alice:human:lead:tok-alice"), parse_agent("screen:human:observer:tok-screen")),
+        spec,
+    )
+    with TestClient(create_app(settings)) as workbench:
+        for i in range(4):  # the hand closes in on the red block
+            workbench.post(
+                "/api/hands", headers=headers("alice"), json={"x": 1.2 + 0.05 * i, "y": 0.3, "t": 0.1 * i}
+            )
+        readings = {
+            r["action"]: r["reading"]
+            for r in workbench.get("/api/social", headers=headers("screen")).json()["readings"]
+        }
+    assert readings["pick_red"] > 0.2 and readings["pick_red"] == max(readings.values()) and readings["locate_blue"] == 0.0

@@ -20,7 +20,7 @@ from fastapi.staticfiles import StaticFiles
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from supportive.service.hub import Hub
-from supportive.service.routes import board, insight, live
+from supportive.service.routes import board, insight, live, social
 from supportive.service.settings import ServiceSettings
 from supportive.service.state import ServiceState
 from supportive.service.store import BoardStore
@@ -111,6 +111,7 @@ def create_app(settings: ServiceSettings) -> FastAPI:
     app.include_router(board.router)
     app.include_router(live.router)
     app.include_router(insight.router)
+    app.include_router(social.router)
     app.mount("/static", StaticFiles(directory=settings.static), name="static")
 
     @app.get("/", include_in_schema=False)

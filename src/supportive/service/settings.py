@@ -31,6 +31,8 @@ class ServiceSettings:
         agents: The agents to create on first use (and add later if new).
         spec: The task file, when the board came from one (behaviors, observations, keyframes).
         max_body: The largest request body accepted, bytes.
+        workspace: The workbench's width and depth (metres) that hand positions and the force field live in
+            (default: the thesis's 1.83 m × 0.762 m Collaborative Workbench).
     """
 
     database: str
@@ -38,6 +40,7 @@ class ServiceSettings:
     agents: tuple[AgentSpec, ...]
     spec: TaskSpec | None = None
     max_body: int = 64 * 1024
+    workspace: tuple[float, float] = (1.83, 0.762)
     static: Path = field(default_factory=lambda: Path(__file__).parent / "static")
 
 

@@ -3,6 +3,7 @@ authentication every route shares."""
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Annotated
 
@@ -12,6 +13,7 @@ from supportive.service.hub import Hub
 from supportive.service.insight import Insight
 from supportive.service.settings import ServiceSettings
 from supportive.service.store import Agent, BoardStore, token_hash
+from supportive.social.field import ForceField
 
 __all__ = ["ServiceState", "current_agent", "service", "socket_agent"]
 
@@ -25,10 +27,15 @@ class ServiceState:
     hub: Hub
     tokens: dict[str, Agent] = field(default_factory=dict)
     insight: Insight = field(init=False)
+    forces: ForceField = field(default_factory=ForceField)
+    started: float = field(default_factory=time.monotonic)
+
+    agents: dict[str, Agent] = field(init=False)
 
     def __post_init__(self) -> None:
         self.insight = Insight(self.settings.spec)
         by_id = {agent.id: agent for agent in self.store.agents()}
+        self.agents = by_id
         self.tokens = {
             token_hash(spec.token): by_id[spec.id] for spec in self.settings.agents if spec.id in by_id
         }
