@@ -189,6 +189,15 @@ def test_ties_are_broken_at_random_and_the_seed_decides(make: Callable[[int], An
     assert "chosen at random among the tied s0, s1, s2, s3, s4" in decision.reason
 
 
+def test_waiting_draws_nothing_from_the_generator() -> None:
+    fresh, waited = StudentPolicy(0.1, seed=7), StudentPolicy(0.1, seed=7)
+    for _ in range(5):
+        assert waited.decide(_tied(), Uniform(0.05)).action is RoleAction.WAIT  # tied, but all too weak
+    assert [waited.decide(_tied(), Uniform(0.5)).subtask for _ in range(10)] == [
+        fresh.decide(_tied(), Uniform(0.5)).subtask for _ in range(10)
+    ]
+
+
 def test_a_clear_winner_is_not_random() -> None:
     force = SocialForce(min_radius=0.1)
     force.update(0.0, (0.4, 0.5))

@@ -13,7 +13,8 @@ returns a :class:`RoleDecision` and changes nothing. Each subtask is read with
   halts when nothing is free and its own is less desirable than ``halt_below`` (§3.4.3, §3.4.5.2).
 
 Ties (readings within 1e-9 of each other, as when no one exerts any force) are broken at random, as the thesis
-does, by the policy's seeded generator: the same seed and the same calls give the same decisions.
+does, by the policy's seeded generator, drawn from only when a tie decides what to start or switch to: the same
+seed and the same calls give the same decisions.
 """
 
 from __future__ import annotations
@@ -146,12 +147,15 @@ class _Policy:
         free = [c for c in candidates if not c.claimed and not c.current]
         return readings, (current[0] if current else None), free
 
-    def _best(self, scored: list[tuple[str, float]]) -> tuple[str, float, list[str]]:
-        """The id with the highest score (random among ties), its score and the tied ids."""
+    @staticmethod
+    def _top(scored: list[tuple[str, float]]) -> tuple[float, list[str]]:
+        """The highest score and the ids tied at it."""
         top = max(score for _, score in scored)
-        tied = [name for name, score in scored if score >= top - TIE_TOLERANCE]
-        chosen = tied[int(self._rng.integers(len(tied)))] if len(tied) > 1 else tied[0]
-        return chosen, top, tied
+        return top, [name for name, score in scored if score >= top - TIE_TOLERANCE]
+
+    def _choose(self, tied: list[str]) -> str:
+        """One of the tied ids, at random when there are several (the generator is drawn from only then)."""
+        return tied[int(self._rng.integers(len(tied)))] if len(tied) > 1 else tied[0]
 
 
 def _tie_note(tied: list[str]) -> str:
@@ -197,7 +201,7 @@ class StudentPolicy(_Policy):
             )
         if not free:
             return RoleDecision(RoleAction.IDLE, None, used, "no subtask is free")
-        chosen, top, tied = self._best([(c.id, readings[c.id]) for c in free])
+        top, tied = self._top([(c.id, readings[c.id]) for c in free])
         if top < self.min_force:
             return RoleDecision(
                 RoleAction.WAIT,
@@ -205,6 +209,7 @@ class StudentPolicy(_Policy):
                 used,
                 f"waiting for a cue: the strongest, {top:.2f} at {', '.join(tied)}, is below {self.min_force:.2f}",
             )
+        chosen = self._choose(tied)
         return RoleDecision(
             RoleAction.START,
             chosen,
@@ -253,11 +258,12 @@ class PeerPolicy(_Policy):
         """
         readings, current, free = self._read(candidates, force)
         used = tuple(readings.items())
-        best = self._best([(c.id, -readings[c.id]) for c in free]) if free else None
+        best = self._top([(c.id, -readings[c.id]) for c in free]) if free else None
         if current is None:
             if best is None:
                 return RoleDecision(RoleAction.IDLE, None, used, "no subtask is free")
-            chosen, desirability, tied = best
+            desirability, tied = best
+            chosen = self._choose(tied)
             return RoleDecision(
                 RoleAction.START,
                 chosen,
@@ -267,8 +273,9 @@ class PeerPolicy(_Policy):
             )
         own = -readings[current.id]
         if best is not None:
-            chosen, desirability, tied = best
+            desirability, tied = best
             if desirability - own > self.switch_margin:
+                chosen = self._choose(tied)
                 return RoleDecision(
                     RoleAction.SWITCH,
                     chosen,
