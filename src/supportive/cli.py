@@ -480,6 +480,33 @@ def serve(
     run_service(launch)
 
 
+@app.command("workbench-sim")
+def workbench_sim(
+    role: Annotated[
+        str, typer.Option("--role", help="The robot's role: student, peer or instructor.")
+    ] = "student",
+    seconds: Annotated[float, typer.Option("--seconds", min=1.0, help="Simulated seconds at most.")] = 40.0,
+    url: Annotated[
+        str | None,
+        typer.Option(
+            "--url", help="A running board of the workbench task (default: one started in this process)."
+        ),
+    ] = None,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Breaks the robot's ties.")] = 0,
+) -> None:
+    """Run the Collaborative Workbench (§3.4) on this machine: a board service, a simulated person's hand and
+    a simulated robot that reads the person's social force and acts as a student, a peer or an instructor."""
+    from supportive.errors import SupportiveError
+    from supportive.workbench import ROLES, run_workbench
+
+    if role not in ROLES:
+        raise SupportiveError(f"--role: unknown role {role!r}; choose {', '.join(ROLES)}")
+    out.print(f"workbench-blocks, the robot as {role}:", markup=False)
+    run_workbench(
+        role, url=url, seconds=seconds, seed=seed, tell=lambda line: out.print(str(line), markup=False)
+    )
+
+
 @app.command()
 def reproduce(
     name: Annotated[str, typer.Argument(help="Experiment to run (e.g. edge-reduction), or 'all'.")],
