@@ -24,7 +24,7 @@ from supportive.service.routes import board, insight, live, social
 from supportive.service.settings import ServiceSettings
 from supportive.service.state import ServiceState
 from supportive.service.store import BoardStore
-from supportive.service.tree import BoardError
+from supportive.social.board import BoardError
 
 __all__ = ["create_app"]
 

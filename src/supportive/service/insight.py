@@ -13,7 +13,7 @@ from supportive.inference import HierarchicalHMM, ObservationModel
 from supportive.inference.hmm import GoalFilter
 from supportive.language.states import TaskStates
 from supportive.learning.learner import learn
-from supportive.service.tree import TaskBoard
+from supportive.social.board import TaskBoard
 from supportive.tasks.spec import TaskSpec
 
 __all__ = ["Insight"]

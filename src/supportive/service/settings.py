@@ -11,7 +11,7 @@ from typing import cast
 from supportive.errors import SupportiveError
 from supportive.learning.learner import learn
 from supportive.service.store import AgentKind, AgentSpec
-from supportive.service.tree import ROLES, TaskBoard
+from supportive.social.board import ROLES, TaskBoard
 from supportive.tasks.htn import CliqueNode
 from supportive.tasks.spec import TaskSpec
 

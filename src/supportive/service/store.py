@@ -40,7 +40,7 @@ from sqlalchemy.engine import Connection
 from sqlalchemy.exc import ArgumentError, OperationalError
 
 from supportive.errors import SupportiveError
-from supportive.service.tree import ROLES, BoardError, Role, TaskBoard
+from supportive.social.board import ROLES, BoardError, Role, TaskBoard
 
 __all__ = ["Agent", "AgentKind", "AgentSpec", "BoardEvent", "BoardStore", "StoreError", "token_hash"]
 

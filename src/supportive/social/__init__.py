@@ -6,10 +6,13 @@
   :class:`Candidate` subtasks and return a :class:`RoleDecision` (§3.4.3, §3.4.5.1–2).
 * :class:`InstructorPolicy` demonstrates skills in growing stages of their keyframes until the student's force
   at the skill reaches a trigger (§3.4.5.3).
+* :class:`TaskBoard` is the shared task tree agents claim subtasks from (§3.4.3); the board service
+  (:mod:`supportive.service`) keeps it in a database and serves it.
 
 See docs/social.md for the model and every reading of the thesis it takes.
 """
 
+from supportive.social.board import BoardError, BoardNode, TaskBoard
 from supportive.social.ellipse import ForceEllipse, fit_ellipse
 from supportive.social.field import ForceField
 from supportive.social.force import ForceSource, SocialForce
@@ -18,6 +21,8 @@ from supportive.social.reading import reading
 from supportive.social.roles import Candidate, PeerPolicy, RoleAction, RoleDecision, StudentPolicy
 
 __all__ = [
+    "BoardError",
+    "BoardNode",
     "Candidate",
     "ForceEllipse",
     "ForceField",
@@ -28,6 +33,7 @@ __all__ = [
     "RoleDecision",
     "SocialForce",
     "StudentPolicy",
+    "TaskBoard",
     "demonstrable",
     "fit_ellipse",
     "reading",

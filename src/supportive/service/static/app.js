@@ -145,7 +145,7 @@ function drawSocial(data) {
       const e = agent.ellipse;
       ctx.strokeStyle = ctx.fillStyle;
       ctx.beginPath();
-      ctx.ellipse(e.center[0] * sx, canvas.height - e.center[1] * sy, e.axes[0] * sx, e.axes[1] * sy, -e.angle, 0, 2 * Math.PI);
+      ctx.ellipse(e.center[0] * sx, canvas.height - e.center[1] * sy, e.half_axes[0] * sx, e.half_axes[1] * sy, -e.angle, 0, 2 * Math.PI);
       ctx.stroke();
     }
   }
