@@ -85,7 +85,7 @@ def serve(launch: Launch) -> None:
     app = create_app(launch.settings)
     gc.collect()
     gc.freeze()  # start-up objects never need collecting: full collections stay short under load
-    uvicorn.run(app, host=launch.host, port=launch.port, log_level="warning")
+    uvicorn.run(app, host=launch.host, port=launch.port, log_level="warning", timeout_graceful_shutdown=3)
 
 
 def _tokens_file(database: str) -> Path | None:

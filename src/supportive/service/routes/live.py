@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
-from typing import Annotated
+from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, WebSocket, WebSocketDisconnect
 from starlette.concurrency import run_in_threadpool
@@ -19,25 +20,40 @@ router = APIRouter(prefix="/api", tags=["live"])
 @router.websocket("/ws")
 async def updates(websocket: WebSocket, agent: Annotated[Agent | None, Depends(socket_agent)]) -> None:
     """``/api/ws?token=…``: first ``{"type": "snapshot", "board": …}``, then ``{"type": "event", "event": …,
-    "board": …}`` for every change. An unknown token is refused (close code 4401)."""
+    "board": …}`` for every change. An unknown token is refused (close code 4401). The socket ends when the
+    client goes, or falls too far behind (1013: reconnect)."""
     if agent is None:
         await websocket.close(code=4401, reason="missing or unknown token")
         return
     state: ServiceState = websocket.app.state.service
     await websocket.accept()
     queue = state.hub.subscribe()
+    gone = asyncio.ensure_future(_until_closed(websocket))
     try:
         board, version = await run_in_threadpool(state.store.board)
         await websocket.send_json({"type": "snapshot", "board": {"version": version, **board.as_dict()}})
         while True:
-            message = await queue.get()
-            if message is None:
+            message = asyncio.ensure_future(queue.get())
+            await asyncio.wait({message, gone}, return_when=asyncio.FIRST_COMPLETED)
+            if not message.done():
+                message.cancel()
+                return
+            update: dict[str, Any] | None = message.result()
+            if update is None:
                 await websocket.close(code=1013, reason="too slow: reconnect")
                 return
-            await websocket.send_json(message)
+            await websocket.send_json(update)
     except WebSocketDisconnect:
         return
     finally:
+        gone.cancel()
         state.hub.unsubscribe(queue)
         with contextlib.suppress(RuntimeError):
             await websocket.close()
+
+
+async def _until_closed(websocket: WebSocket) -> None:
+    """Read (and ignore) what the client sends until it disconnects."""
+    with contextlib.suppress(WebSocketDisconnect, RuntimeError):
+        while True:
+            await websocket.receive_text()
