@@ -175,7 +175,7 @@ def test_bad_requests_are_refused_and_change_nothing(
 
 
 def test_the_event_log_replays_to_the_board(client: TestClient, headers: Headers) -> None:
-    from supportive.service.tree import TaskBoard
+    from supportive.social.board import TaskBoard
 
     frame = node_named(board(client, headers), "Build frame")["id"]
     for op, agent in (("claim", "robot"), ("release", "robot"), ("claim", "bob")):

@@ -12,7 +12,7 @@ from typing import Any
 
 import httpx
 
-from supportive.service.tree import TaskBoard
+from supportive.social.board import TaskBoard
 
 AGENTS = {"alice": "lead", "bob": "lead", "robot": "assistant", "screen": "observer"}
 
