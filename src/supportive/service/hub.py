@@ -38,8 +38,3 @@ class Hub:
                 with suppress(asyncio.QueueEmpty):
                     queue.get_nowait()
                 queue.put_nowait(None)
-
-    @property
-    def subscribers(self) -> int:
-        """How many subscribers there are."""
-        return len(self._queues)

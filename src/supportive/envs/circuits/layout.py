@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from supportive.envs.circuits.board import DIRECTIONS, Board, BoardPose, Point
 from supportive.envs.circuits.goals import CircuitGoal
@@ -91,7 +91,6 @@ class _Walk:
     used: Counter[str]
     visited: set[Point]
     reused: int = 0
-    extra: dict[str, int] = field(default_factory=dict)
 
 
 class LayoutSearch:

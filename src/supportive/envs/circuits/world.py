@@ -14,7 +14,7 @@ from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
-from supportive.envs.circuits.board import DIRECTIONS, Board, BoardPose
+from supportive.envs.circuits.board import Board, BoardPose
 from supportive.envs.circuits.goals import CircuitGoal
 from supportive.envs.circuits.pieces import PIECE_TYPES, piece_type
 from supportive.envs.tabletop.arms import ArmModel
@@ -66,12 +66,6 @@ class BoardGeometry:
         x0, y0 = self.point(-0.5, -0.5)
         x1, y1 = self.point(self.columns - 0.5, self.rows - 0.5)
         return Rect(x0, y0, x1, y1)
-
-    def centre_of(self, kind: str, pose: BoardPose) -> Point:
-        """The table position of the middle of a piece of ``kind`` at ``pose``."""
-        half = piece_type(kind).span / 2
-        dc, dr = DIRECTIONS[pose.rotation]
-        return self.point(pose.col + half * dc, pose.row + half * dr)
 
 
 def circuit_item_types(pitch: float) -> dict[str, ItemType]:

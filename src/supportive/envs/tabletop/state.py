@@ -6,7 +6,7 @@ or held by an agent (keeping the pose it was picked from, which is what its turn
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from enum import IntEnum
 from typing import Generic, TypeVar
 
@@ -63,11 +63,6 @@ class TabletopState(Generic[GoalT]):
         if hand is not None:
             hands = (hand[1], hands[1]) if hand[0] else (hands[0], hand[1])
         return TabletopState(poses, statuses, self.goal if goal is None else goal, hands)
-
-    def with_hand(self, lead: bool, point: Point) -> TabletopState[GoalT]:
-        """The state with the lead's (or the support agent's) hand at ``point``."""
-        hands = (point, self.hands[1]) if lead else (self.hands[0], point)
-        return replace(self, hands=hands)
 
     def held_by(self, status: Status) -> int | None:
         """The object held with ``status`` (HELD_LEAD or HELD_SUPPORT), if any."""
