@@ -16,7 +16,6 @@ import argparse
 import asyncio
 import json
 import platform
-import socket
 import subprocess
 import sys
 import tempfile
@@ -27,15 +26,11 @@ from typing import Any
 import httpx
 import numpy as np
 
+from supportive.service.launch import free_port
+
 THROUGHPUT_TARGET = 500.0
 P99_TARGET_SECONDS = 0.050
 CLIENTS = 20
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def start(database: str, port: int) -> subprocess.Popen[bytes]:
@@ -47,7 +42,12 @@ def start(database: str, port: int) -> subprocess.Popen[bytes]:
     )
     for _ in range(300):
         try:
-            if httpx.get(f"http://127.0.0.1:{port}/api/me", headers={"Authorization": "Bearer t0"}).status_code == 200:
+            if (
+                httpx.get(
+                    f"http://127.0.0.1:{port}/api/me", headers={"Authorization": "Bearer t0"}
+                ).status_code
+                == 200
+            ):
                 return process
         except httpx.HTTPError:
             time.sleep(0.1)
@@ -101,8 +101,11 @@ def run(seconds: float) -> dict[str, Any]:
         server = start(f"sqlite:///{Path(directory) / 'board.db'}", port)
         try:
             url = f"http://127.0.0.1:{port}"
-            leaves = [n["id"] for n in httpx.get(f"{url}/api/board", headers={"Authorization": "Bearer t0"}).json()["nodes"]
-                      if n["kind"] == "action"]
+            leaves = [
+                n["id"]
+                for n in httpx.get(f"{url}/api/board", headers={"Authorization": "Bearer t0"}).json()["nodes"]
+                if n["kind"] == "action"
+            ]
             latencies, errors, elapsed = asyncio.run(load(port, leaves, seconds))
         finally:
             server.terminate()

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import socket
 import tempfile
 import threading
 import time
@@ -131,12 +130,6 @@ class ServedForce:
         return combined
 
 
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
 @contextmanager
 def serve_in_background(task: Path | None = None) -> Iterator[str]:
     """A board service for the workbench task on 127.0.0.1 in this process (a temporary SQLite database),
@@ -144,6 +137,7 @@ def serve_in_background(task: Path | None = None) -> Iterator[str]:
     import uvicorn
 
     from supportive.service.app import create_app
+    from supportive.service.launch import free_port
     from supportive.service.settings import ServiceSettings, board_of, parse_agent
 
     spec = parse_task_file(task or example_path("workbench-blocks"))
@@ -157,7 +151,7 @@ def serve_in_background(task: Path | None = None) -> Iterator[str]:
             ),
             spec,
         )
-        port = _free_port()
+        port = free_port()
         server = uvicorn.Server(
             uvicorn.Config(create_app(settings), host="127.0.0.1", port=port, log_level="warning")
         )

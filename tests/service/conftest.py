@@ -11,7 +11,6 @@ import glob
 import os
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -27,6 +26,7 @@ from fastapi.testclient import TestClient
 from supportive.examples import path as example_path
 from supportive.io.taskfile import parse_task_file
 from supportive.service.app import create_app
+from supportive.service.launch import free_port
 from supportive.service.settings import ServiceSettings, board_of, parse_agent
 
 TOKENS = {"alice": "tok-alice", "bob": "tok-bob", "robot": "tok-robot", "screen": "tok-screen"}
@@ -37,12 +37,6 @@ AGENTS = (
     "screen:human:observer:tok-screen",
 )
 LEAD_ONLY = ("Attach seat",)
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def auth(agent: str) -> dict[str, str]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import socket
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,7 +17,7 @@ from supportive.io.taskfile import parse_task_file
 from supportive.service.settings import DEFAULT_AGENTS, ServiceSettings, board_of, parse_agent
 from supportive.service.store import AgentSpec, StoreError
 
-__all__ = ["Launch", "prepare", "serve"]
+__all__ = ["Launch", "free_port", "prepare", "serve"]
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,13 @@ def serve(launch: Launch) -> None:
     gc.collect()
     gc.freeze()  # start-up objects never need collecting: full collections stay short under load
     uvicorn.run(app, host=launch.host, port=launch.port, log_level="warning", timeout_graceful_shutdown=3)
+
+
+def free_port() -> int:
+    """A TCP port on 127.0.0.1 that nothing listens on now."""
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
 
 
 def _tokens_file(database: str) -> Path | None:
