@@ -13,7 +13,7 @@ $(VENV)/.core: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.dev: pyproject.toml | $(BIN)/python
-	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server]'
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server,ros]'
 	touch $(VENV)/.core $@
 
 $(VENV)/.server: pyproject.toml | $(BIN)/python
