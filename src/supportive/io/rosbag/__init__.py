@@ -9,9 +9,14 @@ try:
 except ImportError as exc:  # pragma: no cover - the extra is installed wherever the tests run
     raise MissingExtraError("reading and writing ROS bags", "rosbags", "ros") from exc
 
-from supportive.io.rosbag.bags import Bag, open_bag, resolve_bag
+from supportive.io.rosbag.bags import Bag, bag_name, open_bag, resolve_bag
 from supportive.io.rosbag.beliefs import BeliefBag
-from supportive.io.rosbag.contacts import CONTACTS_TOPIC, ContactFrame, read_contact_frames, write_contact_frames
+from supportive.io.rosbag.contacts import (
+    CONTACTS_TOPIC,
+    ContactFrame,
+    read_contact_frames,
+    write_contact_frames,
+)
 from supportive.io.rosbag.demonstrations import (
     ACTIONS_TOPIC,
     SEGMENT_TOPIC,
@@ -32,6 +37,7 @@ __all__ = [
     "BeliefBag",
     "ContactFrame",
     "Storage",
+    "bag_name",
     "import_demonstrations",
     "load_definitions",
     "open_bag",

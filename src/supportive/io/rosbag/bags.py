@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
@@ -19,7 +20,7 @@ from rosbags.typesys import TypesysError
 from supportive.errors import BagError
 from supportive.io.rosbag.types import RosVersion, first_line, typestore
 
-__all__ = ["Bag", "open_bag", "resolve_bag", "seconds"]
+__all__ = ["Bag", "bag_name", "open_bag", "resolve_bag", "seconds"]
 
 
 def seconds(nanoseconds: int) -> float:
@@ -50,6 +51,16 @@ def resolve_bag(path: Path) -> tuple[Path, RosVersion]:
     )
 
 
+def bag_name(path: Path) -> str:
+    """A bag's name: its file's stem (ROS 1) or its directory's name (rosbag2).
+
+    Raises:
+        BagError: when the path is missing or is not a bag.
+    """
+    resolved, ros = resolve_bag(path)
+    return resolved.stem if ros == 1 else resolved.name
+
+
 class Bag:
     """An open bag: its topics, and the messages of one or more of them, deserialized.
 
@@ -65,7 +76,7 @@ class Bag:
     @property
     def name(self) -> str:
         """The bag's name: its file's stem or its directory's name."""
-        return self.path.stem if self.path.suffix == ".bag" else self.path.name
+        return bag_name(self.path)
 
     @property
     def start_time(self) -> int:
@@ -88,7 +99,7 @@ class Bag:
             raise BagError("the topic has no messages", path=self.path, place=f"topic {name}")
         return found
 
-    def messages(self, connections: Sequence[Connection]) -> Iterator[tuple[Connection, int, object]]:
+    def messages(self, connections: Sequence[Connection]) -> Iterator[tuple[Connection, int, Any]]:
         """The messages of these connections in time order: connection, time (ns), message.
 
         Raises:

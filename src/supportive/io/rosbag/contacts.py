@@ -16,6 +16,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
+from typing import Any
 
 from rosbags.interfaces import Connection
 
@@ -47,14 +48,16 @@ def _check_type(bag: Bag, connection: Connection) -> None:
         )
 
 
-def _events(message: object) -> frozenset[str]:
+def _events(message: Any) -> frozenset[str]:
     events = getattr(message, "events", None)
     if events is None:
-        return frozenset(e for e in _SEPARATORS.split(str(getattr(message, "data"))) if e)  # noqa: B009
+        return frozenset(e for e in _SEPARATORS.split(str(message.data)) if e)
     return frozenset(e for e in (str(x).strip() for x in events) if e)
 
 
-def read_contact_frames(path: Path, topic: str = CONTACTS_TOPIC, definitions: Sequence[Path] = ()) -> Iterator[ContactFrame]:
+def read_contact_frames(
+    path: Path, topic: str = CONTACTS_TOPIC, definitions: Sequence[Path] = ()
+) -> Iterator[ContactFrame]:
     """The frames of a contacts topic, in time order, read as they are consumed.
 
     Raises:

@@ -21,6 +21,7 @@ import bisect
 from collections.abc import Callable, Collection, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from rosbags.interfaces import Connection
 
@@ -60,26 +61,26 @@ class _Action:
     end: int | None
 
 
-def _nanoseconds(value: object) -> int:
+def _nanoseconds(value: Any) -> int:
     """A ``builtin_interfaces/Time`` or a number of seconds, in nanoseconds."""
     if isinstance(value, int | float) and not isinstance(value, bool):
         return round(value * _SECOND)
-    return int(getattr(value, "sec")) * _SECOND + int(getattr(value, "nanosec"))  # noqa: B009
+    return int(value.sec) * _SECOND + int(value.nanosec)
 
 
 def _fields(bag: Bag, connection: Connection) -> set[str]:
     return {name for name, _ in bag.reader.typestore.fielddefs[connection.msgtype][1]}
 
 
-def _action_reader(bag: Bag, connection: Connection) -> Callable[[object, int], _Action]:
+def _action_reader(bag: Bag, connection: Connection) -> Callable[[Any, int], _Action]:
     topic = connection.topic
     if connection.msgtype == _STRING:
-        return lambda msg, time: _Action(time, str(getattr(msg, "data")).strip(), time, None)  # noqa: B009
+        return lambda msg, time: _Action(time, str(msg.data).strip(), time, None)
     if {"action", "start", "end"} <= _fields(bag, connection):
 
-        def span(msg: object, time: int) -> _Action:
+        def span(msg: Any, time: int) -> _Action:
             start, end = (_nanoseconds(getattr(msg, key)) for key in ("start", "end"))
-            return _Action(time, str(getattr(msg, "action")).strip(), start or time, end or None)  # noqa: B009
+            return _Action(time, str(msg.action).strip(), start or time, end or None)
 
         return span
     raise BagError(
@@ -90,14 +91,14 @@ def _action_reader(bag: Bag, connection: Connection) -> Callable[[object, int], 
     )
 
 
-def _marker_reader(bag: Bag, connection: Connection) -> Callable[[object, int], _Marker]:
+def _marker_reader(bag: Bag, connection: Connection) -> Callable[[Any, int], _Marker]:
     if connection.msgtype == _STRING:
-        return lambda msg, time: _Marker(time, str(getattr(msg, "data")).strip() or None, None)  # noqa: B009
+        return lambda msg, time: _Marker(time, str(msg.data).strip() or None, None)
     if connection.msgtype == _EMPTY:
         return lambda msg, time: _Marker(time, None, None)
     if "id" in _fields(bag, connection):
         return lambda msg, time: _Marker(
-            time, str(getattr(msg, "id")).strip() or None, str(getattr(msg, "agent", "")).strip() or None  # noqa: B009
+            time, str(msg.id).strip() or None, str(getattr(msg, "agent", "")).strip() or None
         )
     raise BagError(
         f"messages of type {connection.msgtype}; expected {_STRING} (the demonstration's id), {_EMPTY}, or a "
@@ -140,7 +141,9 @@ def read_demonstrations(
         markers: list[_Marker] = []
         for connection, time, message in bag.messages([*action_connections, *marker_connections]):
             if connection.topic == actions_topic and connection.id in read_action:
-                actions.append(_checked(bag, actions_topic, read_action[connection.id](message, time), vocabulary))
+                actions.append(
+                    _checked(bag, actions_topic, read_action[connection.id](message, time), vocabulary)
+                )
             else:
                 markers.append(read_marker[connection.id](message, time))
         if segment_topic is None:
@@ -254,9 +257,9 @@ def write_demonstrations(
     start: int,
     actions_topic: str = ACTIONS_TOPIC,
     segment_topic: str = SEGMENT_TOPIC,
-) -> int:
-    """Write demonstrations one after another, each after a marker on ``segment_topic``; the time after the
-    last (ns).
+) -> list[int]:
+    """Write demonstrations one after another, each after a marker on ``segment_topic`` (the next begins a
+    second after the last step of the one before); when each begins (ns).
 
     A step's times are kept to the nanosecond. A step without a start comes one second after the step before
     it (the first: at its marker). When any step has an end, actions are ``supportive_msgs/msg/ActionSpan``
@@ -274,7 +277,9 @@ def write_demonstrations(
     actions = writer.topic(actions_topic, action_type)
     markers = writer.topic(segment_topic, DEMONSTRATION)
     origin = start
+    origins = []
     for demo in demonstrations:
+        origins.append(origin)
         writer.write(markers, origin, writer.message(DEMONSTRATION, id=demo.id or "", agent=demo.agent or ""))
         time = origin
         latest = origin
@@ -296,4 +301,4 @@ def write_demonstrations(
                 message = writer.message(_STRING, data=step.action)
             writer.write(actions, time, message)
         origin = latest + _SECOND
-    return origin
+    return origins

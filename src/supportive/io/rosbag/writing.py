@@ -13,7 +13,7 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 from types import TracebackType
-from typing import Literal, Self
+from typing import Any, Literal, Self
 
 from rosbags.interfaces import (
     Connection,
@@ -72,7 +72,9 @@ class BagWriter:
             want = "a .bag file" if storage == "rosbag1" else "a directory name without .bag"
             raise BagError(f"a {storage} bag is written as {want}", path=path)
         if path.exists():
-            raise BagError("exists already; a bag is never overwritten: remove it or choose another", path=path)
+            raise BagError(
+                "exists already; a bag is never overwritten: remove it or choose another", path=path
+            )
         self.path = path
         self.storage: Storage = storage
         self.ros: RosVersion = 1 if storage == "rosbag1" else 2
@@ -131,7 +133,7 @@ class BagWriter:
         qos = [LATCHED] if latched else []
         return writer.add_connection(name, msgtype, typestore=self.store, offered_qos_profiles=qos)
 
-    def message(self, msgtype: str, **fields: object) -> object:
+    def message(self, msgtype: str, **fields: Any) -> object:
         """A message of this bag's type store: ``message("std_msgs/msg/String", data="hi")``."""
         return self.store.types[msgtype](**fields)
 
@@ -142,10 +144,8 @@ class BagWriter:
 
     def header(self, nanoseconds: int, frame_id: str = "") -> object:
         """A ``std_msgs/msg/Header`` stamped at this time (ROS 1's carries a zero ``seq``)."""
-        extra: dict[str, object] = {"seq": 0} if self.ros == 1 else {}
-        return self.message(
-            "std_msgs/msg/Header", stamp=self.stamp(nanoseconds), frame_id=frame_id, **extra
-        )
+        extra: dict[str, Any] = {"seq": 0} if self.ros == 1 else {}
+        return self.message("std_msgs/msg/Header", stamp=self.stamp(nanoseconds), frame_id=frame_id, **extra)
 
     def write(self, connection: Connection, nanoseconds: int, message: object) -> None:
         """Write one message, received at ``nanoseconds`` on the bag's clock."""
