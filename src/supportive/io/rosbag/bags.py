@@ -97,6 +97,14 @@ class Bag:
             )
         if sum(c.msgcount for c in found) == 0:
             raise BagError("the topic has no messages", path=self.path, place=f"topic {name}")
+        for connection in found:
+            if connection.msgtype not in self.reader.typestore.fielddefs:
+                raise BagError(
+                    f"message type {connection.msgtype} is defined neither in the bag nor in ROS's standard "
+                    "types: give its .msg or .idl definition with --types FILE_OR_FOLDER",
+                    path=self.path,
+                    place=f"topic {name}",
+                )
         return found
 
     def messages(self, connections: Sequence[Connection]) -> Iterator[tuple[Connection, int, Any]]:

@@ -12,7 +12,8 @@ The convention (docs/ros.md):
   a message with ``id`` and ``agent`` string fields (``supportive_msgs/msg/Demonstration``) names it and who
   performed it. Without a segment topic the whole bag is one demonstration, named after the bag.
 * **Times** in the task file are seconds since the demonstration began: its segment marker, or the bag's first
-  message (where a player's clock starts). Steps are ordered by start.
+  message (where a player's clock starts; or the earliest start, for an action that began before the
+  recording did). Steps are ordered by start.
 """
 
 from __future__ import annotations
@@ -147,7 +148,8 @@ def read_demonstrations(
             else:
                 markers.append(read_marker[connection.id](message, time))
         if segment_topic is None:
-            return [_demonstration(bag, actions_topic, actions, bag.start_time, bag.name, agent)]
+            origin = min([bag.start_time, *(a.start for a in actions)])
+            return [_demonstration(bag, actions_topic, actions, origin, bag.name, agent)]
         return _segments(bag, actions_topic, segment_topic, actions, markers, agent)
 
 

@@ -14,7 +14,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Literal
 
-from rosbags.interfaces.typing import Typesdict
+from rosbags.interfaces import Nodetype
+from rosbags.interfaces.typing import FieldDesc, Typesdict
 from rosbags.typesys import Stores, TypesysError, get_types_from_idl, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
@@ -87,7 +88,7 @@ def _definitions_in(file: Path) -> Typesdict:
 def first_line(exc: BaseException) -> str:
     """An exception's message, its first line only (rosbags' messages may run over several)."""
     text = str(exc).strip()
-    return text.splitlines()[0] if text else type(exc).__name__
+    return text.splitlines()[0].rstrip(":") if text else type(exc).__name__
 
 
 @cache
@@ -111,8 +112,27 @@ def typestore(ros: RosVersion, definitions: Sequence[Path] = ()) -> Typestore:
     added: Typesdict = dict(_shipped())
     for path in definitions:
         added.update(load_definitions(path))
+    known = set(store.fielddefs) | set(added)
+    for name, (_, fields) in sorted(added.items()):
+        for field, desc in fields:
+            used = _used_type(desc)
+            if used is not None and used not in known:
+                raise BagError(
+                    f"message definitions do not fit together: {name} field {field!r} is a {used}, "
+                    "which no definition gives (add its .msg to --types)"
+                )
     try:
         store.register(added)
     except TypesysError as exc:
         raise BagError(f"message definitions do not fit together: {first_line(exc)}") from None
     return store
+
+
+def _used_type(desc: FieldDesc) -> str | None:
+    """The message type a field holds (itself or as array / sequence elements), if not a primitive."""
+    if desc[0] == Nodetype.NAME:
+        return desc[1]
+    if desc[0] in (Nodetype.ARRAY, Nodetype.SEQUENCE):
+        inner = desc[1][0]
+        return inner[1] if inner[0] == Nodetype.NAME else None
+    return None

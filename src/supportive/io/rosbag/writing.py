@@ -70,7 +70,7 @@ class BagWriter:
             raise BagError(f"unknown bag format {storage!r}; choose {', '.join(STORAGES)}", path=path)
         if (storage == "rosbag1") != (path.suffix == ".bag"):
             want = "a .bag file" if storage == "rosbag1" else "a directory name without .bag"
-            raise BagError(f"a {storage} bag is written as {want}", path=path)
+            raise BagError(f"{storage} bags are written as {want}", path=path)
         if path.exists():
             raise BagError(
                 "exists already; a bag is never overwritten: remove it or choose another", path=path
