@@ -141,9 +141,9 @@ def infer(
     from supportive.learning.learner import learn as learn_htn
 
     if (observations is None) == (bag is None):
-        raise TaskFileError("give the observations: --observations FILE or --bag BAG (not both)")
+        raise SupportiveError("give the observations: --observations FILE or --bag BAG (not both)")
     if write_bag is not None and bag is None:
-        raise TaskFileError("--write-bag needs --bag: it writes the beliefs beside a recording")
+        raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
     spec = parse_task_file(file)
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
