@@ -113,20 +113,15 @@ class Bag:
         Raises:
             BagError: when the bag turns out truncated or corrupt, or a message cannot be decoded.
         """
-        topics = ", ".join(sorted({c.topic for c in connections}))
-        stream = self.reader.messages(connections=connections)
-        while True:
-            try:
-                item = next(stream, None)
-                if item is None:
-                    return
-                connection, time, raw = item
-                message = self.reader.deserialize(raw, connection.msgtype)
-            except Exception as exc:  # rosbags raises many kinds for a damaged file; each is one line here
-                raise BagError(
-                    f"cannot read the bag: {first_line(exc)}", path=self.path, place=f"topic {topics}"
-                ) from None
-            yield connection, time, message
+        deserialize = self.reader.deserialize
+        try:
+            for connection, time, raw in self.reader.messages(connections=connections):
+                yield connection, time, deserialize(raw, connection.msgtype)
+        except Exception as exc:  # rosbags raises many kinds for a damaged file; each is one line here
+            topics = ", ".join(sorted({c.topic for c in connections}))
+            raise BagError(
+                f"cannot read the bag: {first_line(exc)}", path=self.path, place=f"topic {topics}"
+            ) from None
 
 
 @contextmanager

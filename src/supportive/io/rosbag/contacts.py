@@ -30,6 +30,7 @@ __all__ = ["CONTACTS_TOPIC", "ContactFrame", "read_contact_frames", "write_conta
 CONTACTS_TOPIC = "/contacts"
 _STRING = "std_msgs/msg/String"
 _SEPARATORS = re.compile(r"[\s,]+")
+_NOTHING = frozenset({""})
 
 ContactFrame = tuple[frozenset[str], int]
 """The contact events that hold at one moment, and the moment's time in the bag (ns)."""
@@ -50,9 +51,8 @@ def _check_type(bag: Bag, connection: Connection) -> None:
 
 def _events(message: Any) -> frozenset[str]:
     events = getattr(message, "events", None)
-    if events is None:
-        return frozenset(e for e in _SEPARATORS.split(str(message.data)) if e)
-    return frozenset(e for e in (str(x).strip() for x in events) if e)
+    found = frozenset(_SEPARATORS.split(message.data) if events is None else events)
+    return found - _NOTHING if "" in found else found
 
 
 def read_contact_frames(
