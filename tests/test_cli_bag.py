@@ -272,3 +272,21 @@ def test_infer_on_the_shipped_chair_bag_follows_its_first_demonstration(cli: Cli
     assert code == 0 and len(records) == 5 * len(truth)
     right = sum(r["subgoals"][0][0].split("#")[0] == truth[k // 5] for k, r in enumerate(records))
     assert right / len(records) > 0.7
+
+
+def test_without_the_ros_extra_a_bag_command_says_what_to_install(
+    cli: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import sys
+
+    for name in [
+        m for m in sys.modules if m == "rosbags" or m.startswith(("rosbags.", "supportive.io.rosbag"))
+    ]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.setitem(sys.modules, "rosbags", None)  # what an environment without rosbags imports
+    code, _, err = cli(["bag", "import", str(SHIPPED / "ikea-chair")])
+    assert code == 2
+    assert (
+        err
+        == "supportive: error: reading and writing ROS bags needs rosbags, which is not installed: pip install 'supportive[ros]'\n"
+    )
