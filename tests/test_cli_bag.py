@@ -290,3 +290,21 @@ def test_without_the_ros_extra_a_bag_command_says_what_to_install(
         err
         == "supportive: error: reading and writing ROS bags needs rosbags, which is not installed: pip install 'supportive[ros]'\n"
     )
+
+
+def test_damage_found_mid_stream_stops_infer_and_leaves_no_belief_bag(tmp_path: Path, cli: CliRunner) -> None:
+    frames = frames_of_chair(seed=3)
+    bag = tmp_path / "contacts.bag"
+    with BagWriter(bag, "rosbag1") as writer:
+        write_contact_frames(writer, frames)
+    data = bytearray(bag.read_bytes())
+    at = data.index(b"hand-seat")  # a frame late in the recording: the length of its first event is broken
+    data[at - 4 : at] = b"\xff\xff\xff\xff"
+    bag.write_bytes(bytes(data))
+    out = tmp_path / "beliefs"
+    code, printed, err = cli(
+        ["infer", str(examples.path("ikea-chair")), "--bag", str(bag), "--write-bag", str(out)]
+    )
+    assert code == 2 and err.startswith(f"supportive: error: {bag}: topic /contacts: cannot read the bag: ")
+    assert 0 < len(printed.splitlines()) < len(frames)  # the frames before the damage were reported
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["contacts.bag"]

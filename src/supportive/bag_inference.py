@@ -29,7 +29,7 @@ def belief_record(running: GoalFilter, belief: Belief, top: int, time: float | N
     >>> running = HierarchicalHMM(htn, ObservationModel({"a": {"x": .9}, "b": {"y": .9}})).filter()
     >>> record = belief_record(running, running.update({"x"}), 1, 12.5)
     >>> record["subgoals"], record["time"], "surprise" in record
-    ([['a', 0.999...]], 12.5, False)
+    ([['a', 1.0]], 12.5, False)
     """
     record: dict[str, Any] = running.summary(belief, top)
     surprise = getattr(belief, "surprise", None)
