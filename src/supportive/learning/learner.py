@@ -1,17 +1,26 @@
-"""Learn a CC-HTN from demonstrations: task graph, CTG (Algorithm 1), compaction (Algorithm 2) and ambiguity
-resolution (Algorithms 3–4), as one estimator that also learns one demonstration at a time."""
+"""Learn a CC-HTN from demonstrations, as one estimator that also learns one demonstration at a time.
+
+Two learners share it. ``strict`` is the thesis's pipeline as first implemented here: task graph, CTG
+(Algorithm 1), compaction (Algorithm 2) with every subtask observed in full, ambiguity resolution (Algorithms
+3–4); it admits exactly the executions it can piece together from what was seen. ``general`` (the default)
+accepts what the evidence supports — optional steps, repeated subtasks, cliques from contiguous runs seen in
+several orders, chains from consistently ordered runs, a partial order where no tree fits, slips set aside —
+see :mod:`supportive.learning.general` and docs/learning.md for the measurements behind the choice.
+"""
 
 from __future__ import annotations
 
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any, Self
+from typing import Any, Literal, Self
 
 from supportive.errors import LearningError
 from supportive.learning.ambiguity import resolve_ambiguity
 from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
+from supportive.learning.deviations import Deviation
+from supportive.learning.general import GeneralSettings, learn_general
 from supportive.learning.naming import known_names, named
 from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.spec import Demonstration, TaskSpec
@@ -20,6 +29,7 @@ from supportive.tasks.task_graph import TaskGraph
 __all__ = ["HTNLearner", "LearningStats", "learn"]
 
 DemonstrationLike = Demonstration | Sequence[str]
+Mode = Literal["general", "strict"]
 
 
 @dataclass(frozen=True)
@@ -49,14 +59,28 @@ class HTNLearner:
     """Clique/Chain HTN learner (§2.1).
 
     Args:
+        mode: ``"general"`` (default) or ``"strict"`` (see the module docstring). Demonstrations with
+            explicit states are always learned strictly.
+        deviations: ``general``: the share of demonstrations that may disagree with the rest before their
+            disagreement counts (slips set aside, :mod:`~supportive.learning.deviations`); 0 sets nothing aside.
+        evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
+            this (:func:`~supportive.learning.evidence.contiguity_chance`).
+        order_support: ``general``: demonstrations showing two steps in one order that establish the order
+            even when no step is between them (:func:`~supportive.learning.evidence.established_precedences`).
+        subtask_demonstrations: ``general``: from how many demonstrations on contiguous runs are made
+            subtasks (chains and cliques); with fewer, the steps are kept in the orders the evidence
+            establishes (a partial order, as a partial hierarchy's top level).
         alternatives: Most alternative hierarchies to look for when the result is partial (0: none).
         max_alternative_roots: Look for alternatives only when at most this many roots are left.
-        names: Leaf set -> name for subtasks whose name is known (a ground truth's names, say).
+        names: Leaf set -> name for subtasks whose name is known (a ground truth's names, say); by default
+            the names of a task spec's ``structure``.
 
     Attributes (after ``fit``):
         task_graph_: The environment-space task graph.
         ctg_: Its Conjugate Task Graph (redundant edges removed).
         htn_: The learned hierarchy with its alternatives.
+        deviations_: The slips set aside (``general``), in demonstration order.
+        labelled_: Every demonstration as the leaves the hierarchy gave its steps.
         stats_: Sizes and time.
 
     >>> learner = HTNLearner().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]])
@@ -67,17 +91,36 @@ class HTNLearner:
     def __init__(
         self,
         *,
+        mode: Mode = "general",
+        deviations: float = 0.1,
+        evidence: float = 0.05,
+        order_support: int = 5,
+        subtask_demonstrations: int = 4,
         alternatives: int = 8,
         max_alternative_roots: int = 64,
         names: dict[frozenset[Leaf], str] | None = None,
     ) -> None:
+        if mode not in ("general", "strict"):
+            raise LearningError(f"mode must be 'general' or 'strict', got {mode!r}")
         if alternatives < 0 or max_alternative_roots < 1:
             raise LearningError("alternatives must be >= 0 and max_alternative_roots >= 1")
+        if not 0.0 <= deviations < 0.5:
+            raise LearningError(f"deviations must be a share in [0, 0.5), got {deviations}")
+        if not 0.0 < evidence <= 1.0:
+            raise LearningError(f"evidence must be in (0, 1], got {evidence}")
+        if order_support < 1:
+            raise LearningError(f"order_support must be >= 1, got {order_support}")
+        if subtask_demonstrations < 1:
+            raise LearningError(f"subtask_demonstrations must be >= 1, got {subtask_demonstrations}")
+        self.mode = mode
+        self.deviations = deviations
+        self.evidence = evidence
+        self.order_support = order_support
+        self.subtask_demonstrations = subtask_demonstrations
         self.alternatives = alternatives
         self.max_alternative_roots = max_alternative_roots
         self.names = names
         self.task = ""
-        self.seconds_ = 0.0
 
     def fit(self, demonstrations: TaskSpec | Iterable[DemonstrationLike], task: str = "") -> Self:
         """Learn from scratch.
@@ -95,6 +138,7 @@ class HTNLearner:
         demos = self._demonstrations(demonstrations, task)
         if not demos:
             raise LearningError(f"task {self.task or '?'}: no demonstrations to learn from")
+        self._demos = list(demos)
         self.task_graph_ = TaskGraph()
         for i, demo in enumerate(demos):
             if isinstance(demo, Demonstration):
@@ -102,8 +146,7 @@ class HTNLearner:
             else:
                 self.task_graph_.add(demo, f"d{i + 1}")
         self.ctg_ = conjugate_task_graph(self.task_graph_)
-        self._compaction = Compaction(self.task_graph_)
-        self._compaction.run()
+        self._compaction: Compaction | None = None
         self._finish(started)
         return self
 
@@ -117,6 +160,8 @@ class HTNLearner:
             return self.fit([demonstration], self.task)
         started = time.perf_counter()
         graph = self.task_graph_
+        if not isinstance(demonstration, str):
+            self._demos.append(demonstration)
         if isinstance(demonstration, Demonstration):
             update = graph.add_demonstration(demonstration)
         elif isinstance(demonstration, str):
@@ -125,7 +170,8 @@ class HTNLearner:
             update = graph.add(demonstration, f"d{len(graph.demonstrations) + 1}")
         if update.changed:
             update_conjugate(self.ctg_, update)
-            self._compaction.update()
+            if self._compaction is not None:
+                self._compaction.update()
         self._finish(started)
         return self
 
@@ -134,9 +180,9 @@ class HTNLearner:
     ) -> list[Demonstration | Sequence[str]]:
         if isinstance(source, TaskSpec):
             self.task = source.name
-            if self.names is None:
-                self.names = known_names(source.structure)
+            self.names_ = self.names if self.names is not None else known_names(source.structure)
             return list(source.demonstrations)
+        self.names_ = self.names or {}
         self.task = task
         demos = list(source)
         for index, demo in enumerate(demos):
@@ -146,17 +192,43 @@ class HTNLearner:
                 )
         return demos
 
+    @property
+    def learns_strictly(self) -> bool:
+        """True when this fit uses the ``strict`` learner (asked for, or explicit states given)."""
+        return self.mode == "strict" or bool(self.task_graph_.explicit_states)
+
+    def _compacted(self) -> Compaction:
+        """Algorithm 2 over the task graph (run once, then kept up to date by ``partial_fit``)."""
+        if self._compaction is None:
+            self._compaction = Compaction(self.task_graph_)
+            self._compaction.run()
+        return self._compaction
+
     def _finish(self, started: float) -> None:
-        compaction = self._compaction
-        names = self.names or {}
-        roots = tuple(named(root, names) for root in compaction.roots())
+        names = self.names_
+        if self.learns_strictly:
+            compaction = self._compacted()
+            roots = tuple(named(root, names) for root in compaction.roots())
+            top = compaction.top_level()
+            self.deviations_: tuple[Deviation, ...] = ()
+            self.labelled_ = tuple(tuple(self.task_graph_.subgoals[s] for s in d) for d in self.task_graph_.demonstrations)
+        else:
+            sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
+            settings = GeneralSettings(
+                self.deviations, self.evidence, self.order_support, self.subtask_demonstrations
+            )
+            result = learn_general(sequences, settings)
+            roots = tuple(named(root, names) for root in result.roots)
+            top = result.top_level
+            self.deviations_ = result.deviations
+            self.labelled_ = result.labelled
         alternatives: tuple[HTN, ...] = ()
         if len(roots) > 1 and self.alternatives:
             found = resolve_ambiguity(
-                compaction, limit=self.alternatives, max_roots=self.max_alternative_roots
+                self._compacted(), limit=self.alternatives, max_roots=self.max_alternative_roots
             )
             alternatives = tuple(HTN(self.task, (named(root, names),)) for root, _ in found)
-        self.htn_ = HTN(self.task, roots, compaction.top_level(), alternatives)
+        self.htn_ = HTN(self.task, roots, top, alternatives)
         self.seconds_ = time.perf_counter() - started
         graph, htn = self.task_graph_, self.htn_
         self.stats_ = LearningStats(

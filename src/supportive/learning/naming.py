@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Leaf, Node
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Leaf, Node, with_children
 
 __all__ = ["known_names", "named"]
 
@@ -32,7 +32,7 @@ def named(node: Node, known: Mapping[frozenset[Leaf], str] | None = None) -> Nod
         return node
     children = tuple(named(child, known) for child in node.children)
     name = node.name or known.get(frozenset(node.leaves)) or _describe(node.kind, children)
-    return ChainNode(children, name) if isinstance(node, ChainNode) else CliqueNode(children, name)
+    return with_children(node, children, name=name)
 
 
 def _short(node: Node) -> str:

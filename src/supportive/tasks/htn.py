@@ -5,34 +5,44 @@ finished before the next starts (no interleaving). Leaves are ``ActionNode``: an
 action is performed more than once in a task, which performance it is (``occurrence``, counted from 1 in the
 order performed, §2.1.2's multiset of completed actions).
 
+Any node may be **optional** (``optional=True``): it is performed whole or skipped whole. A learned node also
+carries how often each choice was made in the demonstrations (``counts``, :class:`Counts`) and what evidence
+it rests on (``support``, :class:`Support`); neither takes part in equality.
+
 The same classes describe a ground-truth ``structure`` from a task file and a learned hierarchy.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from collections import Counter
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal, TypeAlias
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
 from supportive.seeding import Seed, rng_from
+
+if TYPE_CHECKING:
+    from supportive.tasks.executions import Executions
 
 __all__ = [
     "HTN",
     "ActionNode",
     "ChainNode",
     "CliqueNode",
+    "Counts",
     "Leaf",
     "Node",
     "TopLevel",
     "allowed_next",
     "canonical",
     "count_orderings",
+    "count_performed",
     "first_leaves",
     "internal_nodes",
     "iter_orderings",
@@ -41,13 +51,73 @@ __all__ = [
     "mean_action_depth",
     "node_count",
     "node_edges",
+    "nullable",
     "sample_ordering",
+    "shape",
     "successor_pairs",
+    "Support",
     "to_leaves",
+    "with_children",
 ]
 
 Leaf: TypeAlias = tuple[str, int]
 """A performed subgoal: (action id, occurrence)."""
+
+
+@dataclass(frozen=True)
+class Counts:
+    """How often each choice at a node was made in the demonstrations it was learned from.
+
+    Attributes:
+        performed: Demonstrations in which the node was performed (at least one of its leaves done).
+        skipped: Demonstrations in which an optional node was skipped (0 for a required node).
+        first: For a clique (and a partial hierarchy's top level): times each child came first.
+        after: For a clique: ``after[i][j]`` is how often child ``j`` directly followed child ``i``.
+    """
+
+    performed: int = 0
+    skipped: int = 0
+    first: tuple[int, ...] = ()
+    after: tuple[tuple[int, ...], ...] = ()
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form (the ``"counts"`` of the HTN JSON); empty parts are left out."""
+        data: dict[str, object] = {"performed": self.performed}
+        if self.skipped:
+            data["skipped"] = self.skipped
+        if self.first:
+            data["first"] = list(self.first)
+        if self.after:
+            data["after"] = [list(row) for row in self.after]
+        return data
+
+
+@dataclass(frozen=True)
+class Support:
+    """The evidence a learned node rests on.
+
+    Attributes:
+        demonstrations: Demonstrations that show the node (perform at least one of its leaves).
+        orders_seen: Distinct orders of its children seen in them (1 for a leaf).
+        orders: Orders of its children the node admits (``k!`` for a clique of ``k``, 1 for a chain).
+        observed: True when every order it admits was seen ("observed in full"); False when it was inferred
+            (a clique accepted from commuting pairs, say).
+    """
+
+    demonstrations: int
+    orders_seen: int
+    orders: int
+    observed: bool
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form (the ``"support"`` of the HTN JSON)."""
+        return {
+            "demonstrations": self.demonstrations,
+            "orders_seen": self.orders_seen,
+            "orders": self.orders,
+            "observed": "full" if self.observed else "inferred",
+        }
+
 
 
 @dataclass(frozen=True)
@@ -56,6 +126,9 @@ class ActionNode:
 
     action: str
     occurrence: int = 1
+    optional: bool = False
+    counts: Counts | None = field(default=None, compare=False, repr=False)
+    support: Support | None = field(default=None, compare=False, repr=False)
     kind: Literal["action"] = field(default="action", init=False, repr=False)
 
     @property
@@ -80,6 +153,9 @@ class ChainNode:
 
     children: tuple[Node, ...]
     name: str | None = field(default=None, compare=False)
+    optional: bool = False
+    counts: Counts | None = field(default=None, compare=False, repr=False)
+    support: Support | None = field(default=None, compare=False, repr=False)
     kind: Literal["chain"] = field(default="chain", init=False, repr=False)
 
     @cached_property
@@ -94,6 +170,9 @@ class CliqueNode:
 
     children: tuple[Node, ...]
     name: str | None = field(default=None, compare=False)
+    optional: bool = False
+    counts: Counts | None = field(default=None, compare=False, repr=False)
+    support: Support | None = field(default=None, compare=False, repr=False)
     kind: Literal["clique"] = field(default="clique", init=False, repr=False)
 
     @cached_property
@@ -120,12 +199,31 @@ def leaf_actions(node: Node) -> tuple[str, ...]:
     return tuple(action for action, _ in node.leaves)
 
 
+def with_children(node: ChainNode | CliqueNode, children: Iterable[Node], **changes: Any) -> ChainNode | CliqueNode:
+    """A copy of ``node`` with other children, keeping its name, optional flag, counts and support unless
+    ``changes`` sets them."""
+    return dataclasses.replace(node, children=tuple(children), **changes)
+
+
+def nullable(node: Node) -> bool:
+    """True when ``node`` may be performed as nothing: it is optional, or every child of it may be."""
+    if node.optional:
+        return True
+    return not isinstance(node, ActionNode) and all(nullable(child) for child in node.children)
+
+
 def canonical(node: Node) -> tuple[object, ...]:
     """A hashable form that is equal for equivalent hierarchies.
 
-    Names are ignored, clique children are unordered, and a chain nested directly in a chain is merged into
-    it (both mean the same order), per invariant 3 of the design.
+    Names, counts and support are ignored, clique children are unordered, and a chain nested directly in a
+    chain is merged into it (both mean the same order), per invariant 3 of the design. An optional node is
+    wrapped as ``("optional", form)`` (so an optional chain is not merged into its parent).
     """
+    form = _canonical(node)
+    return ("optional", form) if node.optional else form
+
+
+def _canonical(node: Node) -> tuple[object, ...]:
     if isinstance(node, ActionNode):
         return ("action", node.action, node.occurrence)
     if isinstance(node, ChainNode):
@@ -140,75 +238,147 @@ def canonical(node: Node) -> tuple[object, ...]:
     return ("clique", frozenset(canonical(child) for child in node.children))
 
 
-def count_orderings(node: Node) -> int:
-    """How many leaf sequences ``node`` admits (exact, without enumerating)."""
+def shape(node: Node, *, optional: bool = True) -> object:
+    """The structure of ``node`` with occurrence numbers left out (and optional flags, unless ``optional``):
+    equal for the instances of one repeated subtask (the k legs of a table)."""
     if isinstance(node, ActionNode):
-        return 1
-    inner = math.prod(count_orderings(child) for child in node.children)
-    if isinstance(node, CliqueNode):
-        return math.factorial(len(node.children)) * inner
-    return inner
+        form: object = ("action", node.action)
+    elif isinstance(node, ChainNode):
+        form = ("chain", tuple(shape(c, optional=optional) for c in node.children))
+    else:
+        form = ("clique", tuple(sorted((shape(c, optional=optional) for c in node.children), key=repr)))
+    return ("optional", form) if optional and node.optional else form
+
+
+def _counts(node: Node) -> tuple[int, bool]:
+    """``(non-empty sequences node admits, whether it may also be performed as nothing)``."""
+    if isinstance(node, ActionNode):
+        return 1, node.optional
+    parts = [_counts(child) for child in node.children]
+    if isinstance(node, ChainNode):
+        total = math.prod(n + int(e) for n, e in parts)
+        everything_skippable = all(e for _, e in parts)
+        return total - int(everything_skippable), node.optional or everything_skippable
+    # clique: choose which children are performed (the others must be skippable), then their order.
+    poly = [1]
+    for n, e in parts:
+        step = [0] * (len(poly) + 1)
+        for k, coef in enumerate(poly):
+            if e:
+                step[k] += coef
+            step[k + 1] += coef * n
+        poly = step
+    total = sum(math.factorial(k) * coef for k, coef in enumerate(poly))
+    return total - poly[0], node.optional or poly[0] > 0
+
+
+def count_orderings(node: Node) -> int:
+    """How many leaf sequences ``node`` admits (exact, without enumerating); a node that may be skipped also
+    admits the empty sequence.
+
+    >>> count_orderings(ChainNode((ActionNode("a"), ActionNode("b", optional=True))))
+    2
+    """
+    performed, skippable = _counts(node)
+    return performed + int(skippable)
+
+
+def count_performed(node: Node) -> int:
+    """How many non-empty leaf sequences ``node`` admits."""
+    return _counts(node)[0]
 
 
 def iter_orderings(node: Node) -> Iterator[tuple[Leaf, ...]]:
-    """Every leaf sequence ``node`` admits. Mind ``count_orderings`` first: the number can be huge."""
+    """Every leaf sequence ``node`` admits (the empty one too when it may be skipped). Mind
+    ``count_orderings`` first: the number can be huge."""
+    seen_empty = False
+    for sequence in _iter_performed(node):
+        seen_empty |= not sequence
+        yield sequence
+    if node.optional and not seen_empty:
+        yield ()
+
+
+def _iter_performed(node: Node) -> Iterator[tuple[Leaf, ...]]:
+    """Sequences of ``node`` when it is not skipped as an optional node (empty ones possible when every
+    child may be skipped)."""
     if isinstance(node, ActionNode):
         yield node.leaves
         return
-    orders: Iterable[Sequence[Node]] = (
-        [node.children] if isinstance(node, ChainNode) else itertools.permutations(node.children)
-    )
-    for order in orders:
-        for parts in itertools.product(*(list(iter_orderings(child)) for child in order)):
+    if isinstance(node, ChainNode):
+        options = [list(iter_orderings(child)) for child in node.children]
+        for parts in itertools.product(*options):
             yield tuple(leaf for part in parts for leaf in part)
+        return
+    required = [i for i, child in enumerate(node.children) if not nullable(child)]
+    others = [i for i in range(len(node.children)) if i not in required]
+    for size in range(len(others), -1, -1):
+        for extra in itertools.combinations(others, size):
+            present = sorted((*required, *extra))
+            for order in itertools.permutations(node.children[i] for i in present):
+                options = [[s for s in iter_orderings(child) if s] for child in order]
+                for parts in itertools.product(*options):
+                    yield tuple(leaf for part in parts for leaf in part)
 
 
 def sample_ordering(node: Node, seed: Seed = None) -> tuple[Leaf, ...]:
     """One leaf sequence drawn uniformly from those ``node`` admits."""
     rng = rng_from(seed)
-    return tuple(_sample(node, rng))
+    return tuple(_sample(node, rng, allow_empty=True))
 
 
-def _sample(node: Node, rng: np.random.Generator) -> Iterator[Leaf]:
+def _sample(node: Node, rng: np.random.Generator, *, allow_empty: bool) -> list[Leaf]:
+    """A uniform draw among the node's sequences (the non-empty ones when ``allow_empty`` is False). A node
+    that cannot be skipped draws exactly what it drew before optional nodes existed."""
+    performed, skippable = _counts(node)
+    if allow_empty and skippable and rng.random() * (performed + 1) < 1:
+        return []
     if isinstance(node, ActionNode):
-        yield node.leaf
-        return
-    children = list(node.children)
+        return [node.leaf]
     if isinstance(node, CliqueNode):
-        children = [children[i] for i in rng.permutation(len(children))]
-    for child in children:
-        yield from _sample(child, rng)
+        present = [node.children[i] for i in _sample_present(node.children, rng)]
+        order = [present[i] for i in rng.permutation(len(present))]
+        return [leaf for child in order for leaf in _sample(child, rng, allow_empty=False)]
+    while True:  # a chain whose every part may be skipped: draw again until something is performed
+        drawn = [leaf for child in node.children for leaf in _sample(child, rng, allow_empty=True)]
+        if drawn:
+            return drawn
+
+
+def _sample_present(children: Sequence[Node], rng: np.random.Generator) -> list[int]:
+    """Which children of a performed clique are performed (at least one), drawn with the weight of the
+    sequences each choice allows; every child, without drawing, when none may be skipped."""
+    parts = [_counts(child) for child in children]
+    optional = [i for i, (_, e) in enumerate(parts) if e]
+    if not optional:
+        return list(range(len(children)))
+    choices = []
+    weights = []
+    for size in range(len(optional) + 1):
+        for extra in itertools.combinations(optional, size):
+            present = sorted({i for i, (_, e) in enumerate(parts) if not e} | set(extra))
+            if not present:
+                continue
+            choices.append(present)
+            weights.append(math.factorial(len(present)) * math.prod(parts[i][0] for i in present))
+    total = sum(weights)
+    pick = int(rng.integers(total)) if total < 2**63 else int(rng.random() * total)
+    for present, weight in zip(choices, weights, strict=True):
+        if pick < weight:
+            return present
+        pick -= weight
+    return choices[-1]
 
 
 def admits(node: Node, leaves: Sequence[Leaf]) -> bool:
-    """True when ``leaves`` is one of the sequences ``node`` admits."""
-    return len(leaves) == len(node.leaves) and _admits_at(node, leaves, 0)
+    """True when ``leaves`` is one of the sequences ``node`` admits.
 
+    >>> admits(ChainNode((ActionNode("a"), ActionNode("b", optional=True), ActionNode("c"))), [("a", 1), ("c", 1)])
+    True
+    """
+    from supportive.tasks.executions import Executions
 
-def _admits_at(node: Node, leaves: Sequence[Leaf], start: int) -> bool:
-    if isinstance(node, ActionNode):
-        return leaves[start] == node.leaf
-    if isinstance(node, ChainNode):
-        pos = start
-        for child in node.children:
-            if not _block_matches(child, leaves, pos):
-                return False
-            pos += len(child.leaves)
-        return True
-    owner = {leaf: child for child in node.children for leaf in child.leaves}
-    pos, used = start, set()
-    for _ in node.children:
-        member = owner.get(leaves[pos])
-        if member is None or id(member) in used or not _block_matches(member, leaves, pos):
-            return False
-        used.add(id(member))
-        pos += len(member.leaves)
-    return True
-
-
-def _block_matches(node: Node, leaves: Sequence[Leaf], start: int) -> bool:
-    block = leaves[start : start + len(node.leaves)]
-    return sorted(block) == sorted(node.leaves) and _admits_at(node, leaves, start)
+    return Executions(HTN("", (node,))).accepts_leaves(leaves)
 
 
 def internal_nodes(node: Node) -> Iterator[ChainNode | CliqueNode]:
@@ -220,20 +390,30 @@ def internal_nodes(node: Node) -> Iterator[ChainNode | CliqueNode]:
 
 
 def first_leaves(node: Node) -> frozenset[Leaf]:
-    """Leaves that can be performed first in ``node``."""
+    """Leaves that can be performed first in ``node`` (when it is performed)."""
     if isinstance(node, ActionNode):
         return frozenset((node.leaf,))
     if isinstance(node, ChainNode):
-        return first_leaves(node.children[0])
+        out: frozenset[Leaf] = frozenset()
+        for child in node.children:
+            out |= first_leaves(child)
+            if not nullable(child):
+                break
+        return out
     return frozenset().union(*(first_leaves(c) for c in node.children))
 
 
 def last_leaves(node: Node) -> frozenset[Leaf]:
-    """Leaves that can be performed last in ``node``."""
+    """Leaves that can be performed last in ``node`` (when it is performed)."""
     if isinstance(node, ActionNode):
         return frozenset((node.leaf,))
     if isinstance(node, ChainNode):
-        return last_leaves(node.children[-1])
+        out: frozenset[Leaf] = frozenset()
+        for child in reversed(node.children):
+            out |= last_leaves(child)
+            if not nullable(child):
+                break
+        return out
     return frozenset().union(*(last_leaves(c) for c in node.children))
 
 
@@ -243,10 +423,15 @@ def successor_pairs(node: Node) -> set[tuple[Leaf, Leaf]]:
     pairs: set[tuple[Leaf, Leaf]] = set()
     for inner in internal_nodes(node):
         children = inner.children
+        links: list[tuple[Node, Node]] = []
         if isinstance(inner, ChainNode):
-            links = itertools.pairwise(children)
+            for i, a in enumerate(children):
+                for b in children[i + 1 :]:
+                    links.append((a, b))
+                    if not nullable(b):
+                        break
         else:
-            links = ((a, b) for a in children for b in children if a is not b)  # type: ignore[assignment]
+            links = [(a, b) for a in children for b in children if a is not b]
         for a, b in links:
             pairs.update((u, v) for u in last_leaves(a) for v in first_leaves(b))
     return pairs
@@ -254,7 +439,8 @@ def successor_pairs(node: Node) -> set[tuple[Leaf, Leaf]]:
 
 def allowed_next(node: Node, done: Iterable[Leaf]) -> frozenset[Leaf]:
     """Leaves that may be performed next, after the leaves in ``done`` (a valid prefix of one of ``node``'s
-    sequences): nothing when ``node`` is finished.
+    sequences): nothing when ``node`` is finished. Optional nodes are treated as required here; for the
+    executions of a structure with optional parts, use :class:`supportive.tasks.executions.Executions`.
 
     >>> task = ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))
     >>> sorted(a for a, _ in allowed_next(task, [("knife", 1)]))
@@ -307,10 +493,10 @@ def node_edges(node: Node) -> int:
 
     A chain of k children needs k − 1 (one between consecutive children; entering and leaving the chain is
     its parent's single edge, whatever the chain holds); a clique of k children needs k (one between each
-    member and the clique node: any member may start or end it); a primitive needs none. Summed over every
-    chain and clique. So a clique of k primitives costs k against the flat model's k² − k
-    (``len(successor_pairs(node))``), a chain of k primitives k − 1 against k − 1, and a transition into or
-    out of a clique one edge instead of one per member.
+    member and the clique node: any member may start or end it); a primitive needs none; an optional child
+    adds the one edge that skips it. Summed over every chain and clique. So a clique of k primitives costs k
+    against the flat model's k² − k (``len(successor_pairs(node))``), a chain of k primitives k − 1 against
+    k − 1, and a transition into or out of a clique one edge instead of one per member.
 
     >>> a, b, c, d, e = (ActionNode(x) for x in "abcde")
     >>> node = ChainNode((a, CliqueNode((b, c, d)), e))
@@ -320,7 +506,8 @@ def node_edges(node: Node) -> int:
     if isinstance(node, ActionNode):
         return 0
     own = len(node.children) - 1 if isinstance(node, ChainNode) else len(node.children)
-    return own + sum(node_edges(child) for child in node.children)
+    skips = sum(child.optional for child in node.children)
+    return own + skips + sum(node_edges(child) for child in node.children)
 
 
 def _depths(node: Node, depth: int) -> Iterator[int]:
@@ -345,6 +532,7 @@ class TopLevel:
     initial: tuple[int, ...]
     terminal: tuple[int, ...]
     edges: tuple[tuple[int, int, int], ...]
+    counts: Counts | None = field(default=None, compare=False, repr=False)
 
     def successors(self) -> dict[int, dict[int, int]]:
         """``state -> {root index -> next state}``."""
@@ -353,18 +541,18 @@ class TopLevel:
             out.setdefault(src, {})[root] = dst
         return out
 
-    def count_orderings(self) -> int:
-        """How many root orders this top level allows (exact, by dynamic programming)."""
+    def count_orderings(self, weights: Sequence[int] | None = None) -> int:
+        """How many root orders this top level allows (exact, by dynamic programming); with ``weights``, each
+        root performed on a path counts ``weights[root]`` times (its own orderings, say)."""
         out = self.successors()
         terminal = set(self.terminal)
         memo: dict[int, int] = {}
-
-        def paths(state: int) -> int:
-            if state not in memo:
-                memo[state] = int(state in terminal) + sum(paths(dst) for dst in out.get(state, {}).values())
-            return memo[state]
-
-        return sum(paths(s) for s in self.initial)
+        order = sorted(out.keys() | terminal | {d for e in out.values() for d in e.values()})
+        for state in _reverse_topological(order, out):
+            memo[state] = int(state in terminal) + sum(
+                (weights[root] if weights is not None else 1) * memo[dst] for root, dst in out.get(state, {}).items()
+            )
+        return sum(memo.get(s, int(s in terminal)) for s in self.initial)
 
 
 @dataclass(frozen=True)
@@ -392,45 +580,30 @@ class HTN:
         """Every leaf, root by root."""
         return tuple(leaf for root in self.roots for leaf in root.leaves)
 
+    @cached_property
+    def executions(self) -> Executions:
+        """The executions this HTN admits, as a state machine (see :class:`~supportive.tasks.executions.Executions`)."""
+        from supportive.tasks.executions import Executions
+
+        return Executions(self)
+
     def admits(self, actions: Sequence[str]) -> bool:
-        """True when the HTN allows performing ``actions`` (action ids) in this order."""
-        return self.admits_leaves(to_leaves(actions))
+        """True when the HTN allows performing ``actions`` (action ids) in this order.
+
+        Which performance of a repeated action a step is (which leg a ``pick_leg`` picks) is decided by
+        the hierarchy, not by counting: the step may be any leaf of that action the hierarchy allows there.
+        """
+        return self.executions.accepts(actions)
 
     def admits_leaves(self, leaves: Sequence[Leaf]) -> bool:
         """True when the HTN allows this sequence of (action, occurrence) leaves."""
-        if self.top_level is None:
-            return len(self.roots) == 1 and admits(self.roots[0], leaves)
-        owner = {leaf: i for i, root in enumerate(self.roots) for leaf in root.leaves}
-        out = self.top_level.successors()
-        terminal = set(self.top_level.terminal)
-        return any(self._walk(state, leaves, owner, out, terminal) for state in self.top_level.initial)
-
-    def _walk(
-        self,
-        state: int,
-        leaves: Sequence[Leaf],
-        owner: dict[Leaf, int],
-        out: dict[int, dict[int, int]],
-        terminal: set[int],
-    ) -> bool:
-        pos = 0
-        while pos < len(leaves):
-            index = owner.get(leaves[pos])
-            if index is None or index not in out.get(state, {}):
-                return False
-            root = self.roots[index]
-            if pos + len(root.leaves) > len(leaves) or not _block_matches(root, leaves, pos):
-                return False
-            pos += len(root.leaves)
-            state = out[state][index]
-        return state in terminal
+        return self.executions.accepts_leaves(leaves)
 
     def count_orderings(self) -> int:
         """How many leaf sequences this HTN admits (exact)."""
-        inner = math.prod(count_orderings(root) for root in self.roots)
         if self.top_level is None:
-            return inner
-        return self.top_level.count_orderings() * inner
+            return math.prod(count_orderings(root) for root in self.roots)
+        return self.top_level.count_orderings([count_performed(root) for root in self.roots])
 
     def canonical(self) -> tuple[object, ...]:
         """Hashable form, equal for equivalent hierarchies (see :func:`canonical`)."""
@@ -465,3 +638,24 @@ class HTN:
     def mean_action_depth(self) -> float:
         """Mean depth of a primitive (see :func:`mean_action_depth`)."""
         return mean_action_depth(self.roots)
+
+
+def _reverse_topological(states: Sequence[int], out: dict[int, dict[int, int]]) -> list[int]:
+    """``states`` ordered so that every state comes after all states it leads to (the graph is a DAG)."""
+    order: list[int] = []
+    seen: set[int] = set()
+    for root in states:
+        if root in seen:
+            continue
+        seen.add(root)
+        stack = [(root, iter(out.get(root, {}).values()))]
+        while stack:
+            state, children = stack[-1]
+            child = next(children, None)
+            if child is None:
+                order.append(state)
+                stack.pop()
+            elif child not in seen:
+                seen.add(child)
+                stack.append((child, iter(out.get(child, {}).values())))
+    return order

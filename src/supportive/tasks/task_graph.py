@@ -13,7 +13,7 @@ from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass
 
 from supportive.errors import TaskGraphError
-from supportive.tasks.htn import Leaf
+from supportive.tasks.htn import Leaf, to_leaves
 from supportive.tasks.spec import Demonstration
 
 __all__ = ["GraphUpdate", "TaskGraph"]
@@ -63,19 +63,29 @@ class TaskGraph:
         Raises:
             TaskGraphError: when the sequence is empty or earlier demonstrations gave explicit states.
         """
-        if not actions:
+        return self.add_leaves(to_leaves(actions), demo_id)
+
+    def add_leaves(self, leaves: Sequence[Leaf], demo_id: str = "") -> GraphUpdate:
+        """Add a demonstration given as the subgoals it performs, ``(action, occurrence)`` each, every one at
+        most once (which performance of a repeated action a step is, decided elsewhere).
+
+        Raises:
+            TaskGraphError: when the sequence is empty, repeats a subgoal or earlier demonstrations gave
+                explicit states.
+        """
+        if not leaves:
             raise TaskGraphError(f"demonstration {demo_id or '?'} has no steps")
+        if len(set(leaves)) != len(leaves):
+            raise TaskGraphError(f"demonstration {demo_id or '?'} performs a subgoal twice")
         self._check_mode(False, demo_id)
         state = self._state(0, 0, None, demo_id)
         self.initial.add(state)
         new_edges: list[tuple[int, int, int]] = []
-        counts: dict[str, int] = {}
         sequence = []
         mask = 0
         index, state_of = self._subgoal_index, self._state_of
-        for action in actions:
-            count = counts[action] = counts.get(action, 0) + 1
-            leaf = (action, count)
+        for leaf in leaves:
+            action = leaf[0]
             subgoal = index.get(leaf)
             if subgoal is None:
                 subgoal = self._subgoal(leaf)

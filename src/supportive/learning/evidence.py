@@ -1,0 +1,96 @@
+"""What the demonstrations show about order and contiguity, and when that is evidence enough.
+
+Two claims a hierarchy makes need evidence from a few demonstrations:
+
+* **x before y.** Demonstrations that perform both always do x first (never the other way round). Real people
+  keep habits, so a pair done in the same order by everyone may still commute; the claim is *established*
+  when it is seen consistently and either (a) some other step is consistently between the two (it belongs to
+  a longer consistently ordered run: ``witnessed``) or (b) at least ``order_support`` demonstrations show
+  both (two steps of free relative order come in one order every time with chance ``2^(1-m)``).
+* **S is one subtask** (its steps are never interleaved with others). Steps outside S that are seen both
+  before and after it (*free* steps) could have been performed in the middle of it; that none ever was is
+  the evidence. Were free steps placed at random among the gaps of S, a demonstration with ``s`` steps of S
+  and ``u`` free steps would keep S contiguous with chance ``(2 / (s + 1)) ** u``; the claim is accepted when
+  the product over the demonstrations is below ``evidence`` (or when no step is free: then the order alone
+  keeps S together).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["contiguity_chance", "established_precedences", "pair_counts", "supported"]
+
+BoolMatrix = npt.NDArray[np.bool_]
+IntMatrix = npt.NDArray[np.int64]
+
+
+def pair_counts(sequences: Sequence[Sequence[int]], members: Sequence[int]) -> tuple[IntMatrix, IntMatrix]:
+    """``(before, together)``: ``before[i, j]`` counts the sequences doing ``members[i]`` before
+    ``members[j]``, ``together[i, j]`` those doing both."""
+    index = {m: i for i, m in enumerate(members)}
+    size = len(members)
+    before = np.zeros((size, size), dtype=np.int64)
+    together = np.zeros((size, size), dtype=np.int64)
+    for sequence in sequences:
+        order = np.array([index[x] for x in sequence if x in index], dtype=np.int64)
+        if len(order) < 2:
+            continue
+        rank = np.full(size, -1, dtype=np.int64)
+        rank[order] = np.arange(len(order))
+        present = rank >= 0
+        both = present[:, None] & present[None, :]
+        together += both
+        before += both & (rank[:, None] < rank[None, :])
+    return before, together
+
+
+def established_precedences(before: IntMatrix, together: IntMatrix, order_support: int) -> BoolMatrix:
+    """``E[i, j]``: "i before j" is established (see the module docstring)."""
+    consistent = (before > 0) & (before.T == 0)
+    if not consistent.any():
+        return consistent
+    as_float = consistent.astype(np.float32)
+    witnessed = consistent & ((as_float @ as_float) > 0)
+    return witnessed | (consistent & (together >= order_support))
+
+
+def contiguity_chance(arrays: Sequence[npt.NDArray[np.int64]], members: frozenset[int], size: int) -> float:
+    """The chance that ``members`` would be contiguous in every sequence were the free steps placed at random
+    (1.0 when no step is free); see the module docstring.
+
+    Args:
+        arrays: The sequences, as integer arrays of node ids.
+        members: The nodes of the would-be subtask.
+        size: One more than the largest node id.
+    """
+    member = np.zeros(size, dtype=bool)
+    member[list(members)] = True
+    before = np.zeros(size, dtype=bool)
+    after = np.zeros(size, dtype=bool)
+    spans: list[tuple[npt.NDArray[np.int64], int]] = []
+    for array in arrays:
+        inside = np.flatnonzero(member[array])
+        if len(inside) == 0:
+            continue
+        before[array[: inside[0]]] = True
+        after[array[inside[-1] + 1 :]] = True
+        spans.append((array, len(inside)))
+    free = before & after & ~member
+    if not free.any():
+        return 1.0
+    log_chance = 0.0
+    for array, count in spans:
+        log_chance += int(free[array].sum()) * math.log(2.0 / (count + 1))
+    return math.exp(log_chance)
+
+
+def supported(chance: float, evidence: float) -> bool:
+    """True when a contiguity whose chance (:func:`contiguity_chance`) is ``chance`` is evidence enough of one
+    subtask: no step was free around it (the order alone keeps it together), or it would have been unlikely
+    (below ``evidence``) were it not one."""
+    return chance == 1.0 or chance < evidence

@@ -1,0 +1,101 @@
+"""The top level of a partial hierarchy as a partial order of its roots (the ``general`` learner).
+
+When no chain or clique holds the roots left by decomposition, they are kept in the orders the evidence
+establishes (:func:`~supportive.learning.evidence.established_precedences`) rather than only in the orders
+seen: any order that respects every established precedence is admitted, roots of unrelated order may come in
+any order, and an optional root may be skipped (a precedence only binds roots that are both performed). The
+result is an ordinary :class:`~supportive.tasks.htn.TopLevel` whose states are the sets of roots done.
+
+When that graph would exceed ``max_states`` states (many roots of free order) or the roots are too many to
+compare pairwise, the top level falls back to the orders seen, as the ``strict`` learner keeps them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import networkx as nx
+import numpy as np
+
+from supportive.learning.evidence import established_precedences, pair_counts
+from supportive.tasks.htn import TopLevel
+
+__all__ = ["MAX_PAIRWISE_ROOTS", "precedence_top_level", "seen_top_level"]
+
+MAX_PAIRWISE_ROOTS = 1500
+"""More roots than this are not compared pairwise (the top level keeps the orders seen)."""
+
+
+def precedence_top_level(
+    roots: Sequence[int],
+    sequences: Sequence[Sequence[int]],
+    required: frozenset[int],
+    *,
+    order_support: int,
+    max_states: int = 50_000,
+) -> TopLevel:
+    """The top level admitting every order of ``roots`` that keeps the established precedences.
+
+    Args:
+        roots: Root node ids, in the order of the hierarchy's ``roots``.
+        sequences: Every demonstration as a sequence of root ids.
+        required: Roots every demonstration performs (the others may be skipped).
+        order_support: See :func:`~supportive.learning.evidence.established_precedences`.
+        max_states: Fall back to :func:`seen_top_level` beyond this many states.
+    """
+    if len(roots) > MAX_PAIRWISE_ROOTS:
+        return seen_top_level(roots, sequences)
+    before, together = pair_counts(sequences, list(roots))
+    established = established_precedences(before, together, order_support)
+    graph = nx.DiGraph()
+    graph.add_nodes_from(range(len(roots)))
+    graph.add_edges_from((int(u), int(v)) for u, v in zip(*np.nonzero(established), strict=True))
+    for component in nx.strongly_connected_components(graph):
+        if len(component) > 1:  # orders established over different demonstrations that contradict: drop
+            graph.remove_edges_from([(u, v) for u in component for v in component if graph.has_edge(u, v)])
+    closure = nx.transitive_closure_dag(graph)
+    preds = [0] * len(roots)
+    succs = [0] * len(roots)
+    need = 0
+    for i, root in enumerate(roots):
+        if root in required:
+            need |= 1 << i
+    for u, v in closure.edges():
+        succs[u] |= 1 << v
+        if roots[u] in required:
+            preds[v] |= 1 << u
+    edges: list[tuple[int, int, int]] = []
+    number = {0: 0}
+    frontier = [0]
+    while frontier:
+        done = frontier.pop()
+        for i in range(len(roots)):
+            bit = 1 << i
+            if done & bit or done & succs[i] or (preds[i] & ~done):
+                continue
+            after = done | bit
+            if after not in number:
+                if len(number) >= max_states:
+                    return seen_top_level(roots, sequences)
+                number[after] = len(number)
+                frontier.append(after)
+            edges.append((number[done], i, number[after]))
+    terminal = tuple(sorted(n for done, n in number.items() if done & need == need))
+    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)))
+
+
+def seen_top_level(roots: Sequence[int], sequences: Sequence[Sequence[int]]) -> TopLevel:
+    """The top level admitting exactly the orders of roots seen (states: the sets of roots done)."""
+    index = {root: i for i, root in enumerate(roots)}
+    number = {frozenset(): 0}
+    edges: set[tuple[int, int, int]] = set()
+    terminal: set[int] = set()
+    for sequence in sequences:
+        done: frozenset[int] = frozenset()
+        for root in sequence:
+            after = done | {root}
+            number.setdefault(after, len(number))
+            edges.add((number[done], index[root], number[after]))
+            done = after
+        terminal.add(number[done])
+    return TopLevel(initial=(0,), terminal=tuple(sorted(terminal)), edges=tuple(sorted(edges)))

@@ -1,0 +1,261 @@
+"""The executions a Clique/Chain HTN admits, as a state machine over its leaves.
+
+A state (:class:`Progress`) is what is done (a bit mask over the hierarchy's leaves), which leaf was done last
+and, for a partial hierarchy, the top-level state in which the root now under way began. That is all that
+decides what may come next: in a chain or a clique at most one child is under way (the one holding the last
+leaf); a child that was started and left is finished for good (no interleaving, §2.1.4); an optional node not
+started may still be started or skipped; a node may end once everything it still lacks is optional.
+
+The same machine answers "is this sequence admitted", "what may come next" and "may the task end here", for
+leaf sequences (``("pick_leg", 3)``) and for action ids (``"pick_leg"``: then a step may be any leaf of that
+action that is allowed, so which leg was picked is decided by the hierarchy, not by counting). When a clique's
+children are instances of one repeated subtask (the same shape with other occurrence numbers: four legs),
+action-level runs start the lowest-numbered instance not yet started, which removes the k! equivalent
+labellings without changing which action sequences are admitted.
+
+>>> from supportive.tasks.htn import HTN, ActionNode, ChainNode
+>>> task = HTN("t", (ChainNode((ActionNode("a"), ActionNode("b", optional=True), ActionNode("c"))),))
+>>> task.executions.accepts(["a", "c"]), task.executions.accepts(["a", "c", "b"])
+(True, False)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, nullable, shape
+
+__all__ = ["Executions", "Progress"]
+
+
+@dataclass(frozen=True, slots=True)
+class Progress:
+    """Where an execution is: ``done`` leaves (bit ``i`` for ``Executions.leaves[i]``), the index of the
+    ``last`` leaf done (-1 before the first) and the ``top``-level state in which the current root began
+    (always 0 for a complete hierarchy)."""
+
+    top: int
+    done: int
+    last: int
+
+
+@dataclass(frozen=True, slots=True)
+class _Table:
+    """One internal node, flattened: its kind, children's node ids, masks and symmetry classes."""
+
+    chain: bool
+    children: tuple[int, ...]
+    classes: tuple[int, ...]
+
+
+class Executions:
+    """The state machine of an HTN's executions (see the module docstring).
+
+    Args:
+        htn: A complete hierarchy or a partial one with its ``top_level``.
+    """
+
+    def __init__(self, htn: HTN) -> None:
+        self.htn = htn
+        self.leaves: tuple[Leaf, ...] = htn.leaves
+        self.index: dict[Leaf, int] = {leaf: i for i, leaf in enumerate(self.leaves)}
+        self._mask: list[int] = []
+        self._nullable: list[bool] = []
+        self._firsts: list[tuple[int, ...]] = []
+        self._firsts_sym: list[tuple[int, ...]] = []
+        self._tables: dict[int, _Table] = {}
+        self._parent: list[tuple[int, int]] = []  # node id -> (parent id, position), (-1, r) for root r
+        self._leaf_node: list[int] = [0] * len(self.leaves)
+        self._root_node: list[int] = [self._build(root, (-1, r)) for r, root in enumerate(htn.roots)]
+        self._root_of_leaf = [0] * len(self.leaves)
+        for r, node_id in enumerate(self._root_node):
+            for leaf_index in _bits(self._mask[node_id]):
+                self._root_of_leaf[leaf_index] = r
+        if htn.top_level is None:
+            self._out: dict[int, dict[int, int]] = {0: {r: 1 for r in range(len(htn.roots))}}
+            self._terminal: frozenset[int] = frozenset({1})
+            self.initial_tops: tuple[int, ...] = (0,)
+        else:
+            self._out = htn.top_level.successors()
+            self._terminal = frozenset(htn.top_level.terminal)
+            self.initial_tops = tuple(htn.top_level.initial)
+        if htn.top_level is None and len(htn.roots) != 1:
+            self._out = {}
+        self._by_action: dict[str, tuple[int, ...]] = {}
+        for i, (action, _) in enumerate(self.leaves):
+            self._by_action[action] = (*self._by_action.get(action, ()), i)
+        self._cache: dict[tuple[Progress, bool], tuple[dict[int, Progress], bool]] = {}
+
+    # ------------------------------------------------------------------ building
+    def _build(self, node: Node, parent: tuple[int, int]) -> int:
+        node_id = len(self._mask)
+        self._mask.append(0)
+        self._nullable.append(nullable(node))
+        self._firsts.append(())
+        self._firsts_sym.append(())
+        self._parent.append(parent)
+        if isinstance(node, ActionNode):
+            leaf_index = self.index[node.leaf]
+            self._mask[node_id] = 1 << leaf_index
+            self._firsts[node_id] = self._firsts_sym[node_id] = (leaf_index,)
+            self._leaf_node[leaf_index] = node_id
+            return node_id
+        children = tuple(self._build(child, (node_id, i)) for i, child in enumerate(node.children))
+        shapes: dict[object, int] = {}
+        classes = tuple(shapes.setdefault(shape(child), len(shapes)) for child in node.children)
+        chain = isinstance(node, ChainNode)
+        self._tables[node_id] = _Table(chain, children, classes)
+        mask = 0
+        for child in children:
+            mask |= self._mask[child]
+        self._mask[node_id] = mask
+        self._firsts[node_id] = self._starts(children, classes, chain, symmetric=False)
+        self._firsts_sym[node_id] = self._starts(children, classes, chain, symmetric=True)
+        return node_id
+
+    def _starts(
+        self, children: Sequence[int], classes: Sequence[int], chain: bool, *, symmetric: bool
+    ) -> tuple[int, ...]:
+        firsts = self._firsts_sym if symmetric else self._firsts
+        out: list[int] = []
+        if chain:
+            for child in children:
+                out.extend(firsts[child])
+                if not self._nullable[child]:
+                    break
+            return tuple(out)
+        seen: set[int] = set()
+        for child, cls in zip(children, classes, strict=True):
+            if symmetric and cls in seen:
+                continue
+            seen.add(cls)
+            out.extend(firsts[child])
+        return tuple(out)
+
+    # ------------------------------------------------------------------ moves
+    def initial(self) -> tuple[Progress, ...]:
+        """The states before anything is done (one per initial top-level state)."""
+        return tuple(Progress(top, 0, -1) for top in self.initial_tops)
+
+    def moves(self, state: Progress, *, symmetric: bool = False) -> dict[int, Progress]:
+        """Leaf index -> the state after performing that leaf, for every leaf allowed next.
+
+        Args:
+            state: Where the execution is.
+            symmetric: Start only the lowest-numbered unstarted instance of a repeated subtask (for runs over
+                action ids; see the module docstring).
+        """
+        return self._step(state, symmetric)[0]
+
+    def can_finish(self, state: Progress) -> bool:
+        """True when the task may end in ``state`` (everything it still lacks is optional)."""
+        return self._step(state, False)[1]
+
+    def _step(self, state: Progress, symmetric: bool) -> tuple[dict[int, Progress], bool]:
+        key = (state, symmetric)
+        cached = self._cache.get(key)
+        if cached is None:
+            cached = self._cache[key] = self._compute(state, symmetric)
+        return cached
+
+    def _compute(self, state: Progress, symmetric: bool) -> tuple[dict[int, Progress], bool]:
+        firsts = self._firsts_sym if symmetric else self._firsts
+        moves: dict[int, Progress] = {}
+        if state.last < 0:
+            for root, _ in self._out.get(state.top, {}).items():
+                for leaf in firsts[self._root_node[root]]:
+                    moves[leaf] = Progress(state.top, 1 << leaf, leaf)
+            return moves, state.top in self._terminal
+        within: list[int] = []
+        can_end = True
+        node = self._leaf_node[state.last]
+        parent, position = self._parent[node]
+        while parent >= 0 and can_end:
+            table = self._tables[parent]
+            can_end = True
+            if table.chain:
+                for child in table.children[position + 1 :]:
+                    within.extend(firsts[child])
+                    if not self._nullable[child]:
+                        can_end = False
+                        break
+            else:
+                seen: set[int] = set()
+                for child, cls in zip(table.children, table.classes, strict=True):
+                    if state.done & self._mask[child]:
+                        continue
+                    if not (symmetric and cls in seen):
+                        within.extend(firsts[child])
+                    seen.add(cls)
+                    if not self._nullable[child]:
+                        can_end = False
+            parent, position = self._parent[parent]
+        for leaf in within:
+            moves[leaf] = Progress(state.top, state.done | 1 << leaf, leaf)
+        if not can_end:
+            return moves, False
+        root = self._root_of_leaf[state.last]
+        after = self._out.get(state.top, {}).get(root)
+        if after is None:
+            return moves, False
+        for nxt in self._out.get(after, {}):
+            if state.done & self._mask[self._root_node[nxt]]:
+                continue
+            for leaf in firsts[self._root_node[nxt]]:
+                moves[leaf] = Progress(after, state.done | 1 << leaf, leaf)
+        return moves, after in self._terminal
+
+    # ------------------------------------------------------------------ runs
+    def run_leaves(self, leaves: Iterable[Leaf]) -> tuple[Progress, ...]:
+        """The states after performing ``leaves`` in order (empty when the sequence is not a valid prefix)."""
+        states = self.initial()
+        for leaf in leaves:
+            index = self.index.get(leaf)
+            if index is None:
+                return ()
+            states = tuple(
+                dict.fromkeys(m[index] for m in (self.moves(s) for s in states) if index in m)
+            )
+            if not states:
+                return ()
+        return states
+
+    def run(self, actions: Iterable[str]) -> tuple[Progress, ...]:
+        """The states after performing ``actions`` (action ids) in order, each step any allowed leaf of its
+        action (empty when no execution starts this way)."""
+        states = self.initial()
+        for action in actions:
+            candidates = self._by_action.get(action, ())
+            following: dict[Progress, None] = {}
+            for state in states:
+                allowed = self.moves(state, symmetric=True)
+                for index in candidates:
+                    nxt = allowed.get(index)
+                    if nxt is not None:
+                        following[nxt] = None
+            states = tuple(following)
+            if not states:
+                return ()
+        return states
+
+    def accepts_leaves(self, leaves: Iterable[Leaf]) -> bool:
+        """True when ``leaves`` is a whole execution the hierarchy admits."""
+        return any(self.can_finish(s) for s in self.run_leaves(leaves))
+
+    def accepts(self, actions: Iterable[str]) -> bool:
+        """True when the action ids ``actions`` are a whole execution the hierarchy admits."""
+        return any(self.can_finish(s) for s in self.run(actions))
+
+    def allowed(self, state: Progress) -> frozenset[Leaf]:
+        """The leaves allowed next in ``state``."""
+        return frozenset(self.leaves[i] for i in self.moves(state))
+
+
+def _bits(mask: int) -> Iterable[int]:
+    index = 0
+    while mask:
+        if mask & 1:
+            yield index
+        mask >>= 1
+        index += 1
