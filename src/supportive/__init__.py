@@ -3,7 +3,7 @@
 Learn Clique/Chain HTNs from a few demonstrations (thesis §2.1) and build on them.
 
 >>> from supportive import HTNLearner
->>> HTNLearner().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_.complete
+>>> HTNLearner(mode="strict").fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_.complete
 True
 """
 

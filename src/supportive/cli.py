@@ -40,6 +40,13 @@ class LearnFormat(StrEnum):
     hddl = "hddl"
 
 
+class LearnMode(StrEnum):
+    """Which learner (see :class:`~supportive.learning.learner.HTNLearner`)."""
+
+    general = "general"
+    strict = "strict"
+
+
 class Profile(StrEnum):
     """Generator profiles."""
 
@@ -64,6 +71,14 @@ def learn(
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
     ] = None,
+    mode: Annotated[
+        LearnMode,
+        typer.Option(
+            "--mode",
+            help="general: what the evidence supports (optional steps, repeats, slips); "
+            "strict: only what was seen in full (the thesis's reading).",
+        ),
+    ] = LearnMode.general,
 ) -> None:
     """Learn the CC-HTN of a task from its demonstrations and print or write it."""
     from supportive.io.dot import htn_to_dot
@@ -75,7 +90,7 @@ def learn(
     spec = parse_task_file(file)
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
-    learner = learn_htn(spec)
+    learner = learn_htn(spec, mode=mode.value)
     if format is LearnFormat.hddl:
         from supportive.io.hddl import write_hddl
 
@@ -85,7 +100,10 @@ def learn(
         err.print(f"wrote {domain} and {problem}")
         return
     if format is LearnFormat.json:
-        text = json.dumps(htn_to_dict(learner.htn_, learner.stats_.as_dict()), indent=2) + "\n"
+        data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
+        ids = [d.id for d in spec.demonstrations]
+        data["deviations"] = [d.as_dict(ids) for d in learner.deviations_]
+        text = json.dumps(data, indent=2) + "\n"
     elif format is LearnFormat.dot:
         text = htn_to_dot(learner.htn_)
     else:

@@ -146,10 +146,11 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
         console.print("\n[bold]What the demonstrations pinned down[/] (against the file's ground truth)")
         for f in findings:
             mark = "[green]✓[/]" if f.learned else "[red]✗[/]"
+            inferred = "inferred from " if f.learned and f.orders_seen < f.orders_valid else ""
             how = (
                 "in order"
                 if f.kind == "chain"
-                else f"any order, {f.orders_seen} of {f.orders_valid} orders seen"
+                else f"any order, {inferred}{f.orders_seen} of {f.orders_valid} orders seen"
             )
             console.print(f"  {mark} {f.name} ({how})")
     if not htn.complete and htn.top_level is not None:

@@ -76,10 +76,10 @@ def test_summary_of_clique_tasks() -> None:
     # few orderings: every task is learned from all of them, which recovers the structure (invariant 3)
     assert metrics["all_orderings"] == {"limit": 5000, "qualified": 5, "recovered": 5}
     assert [r["all_orderings"]["flat_edges"] for r in results] == [t["flat_edges"] for t in truth]
-    # the learned models admit the demonstrations, so they have some transitions; a partial model's depth is
-    # at most the truth's
+    # the learned models admit the demonstrations, so they have some transitions; from four sampled paths
+    # the general learner may nest chance runs deeper than the truth, never deeper than a binary tree
     for r in results:
-        assert r["learned"]["flat_edges"] > 0 and r["learned"]["depth"] <= r["ground_truth"]["depth"]
+        assert r["learned"]["flat_edges"] > 0 and r["learned"]["depth"] < r["subgoals"]
 
 
 def test_summary_of_generated_tasks() -> None:

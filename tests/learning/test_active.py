@@ -346,7 +346,7 @@ def test_full_session_learns_incrementally(name: str) -> None:
         counts.append(session.learner.stats_.demonstrations)
     assert counts == [1, 2, 3, 4]
     demos = [d.actions for d in session.demonstrations]
-    batch = HTNLearner().fit([list(d) for d in demos])
+    batch = HTNLearner(mode="strict").fit([list(d) for d in demos])
     assert session.learner.htn_.canonical() == batch.htn_.canonical()
     assert session.learner.task_graph_.path_count() == batch.task_graph_.path_count()
     assert session.learner.ctg_.n_edges == batch.ctg_.n_edges

@@ -202,8 +202,12 @@ def test_every_recipe_admits_its_demonstrations(recipes: list[Recipe]) -> None:
 
 def test_implied_pairs_hold_in_every_demonstration(recipes: list[Recipe]) -> None:
     for recipe in recipes:
-        pairs = implied_precedences(learn(recipe.spec).htn_)
-        for demo in recipe.spec.demonstrations:
+        learner = learn(recipe.spec)
+        pairs = implied_precedences(learner.htn_)
+        deviating = {d.demonstration for d in learner.deviations_}
+        for i, demo in enumerate(recipe.spec.demonstrations):
+            if i in deviating:
+                continue
             position = {leaf: i for i, leaf in enumerate(to_leaves(demo.actions))}
             assert all(position[a] < position[b] for a, b in pairs), (recipe.name, demo.id)
 

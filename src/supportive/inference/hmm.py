@@ -138,7 +138,7 @@ class FlatHMM(_SubgoalHMM):
     """A traditional HMM over subgoals: a dense transition matrix, uniform over each subgoal's valid successors.
 
     >>> from supportive.learning import HTNLearner
-    >>> htn = HTNLearner().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_
+    >>> htn = HTNLearner(mode="strict").fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_
     >>> model = ObservationModel({"knife": {"hand-knife": .9}, "carrots": {"knife-carrot": .9}, "celery": {"knife-celery": .9}})
     >>> [a for a, _ in FlatHMM(htn, model).predict([{"hand-knife"}, {"knife-celery"}])]
     ['knife', 'celery']

@@ -90,11 +90,13 @@ def default_root() -> Path:
     raise DatasetError(f"CaptainCook4D data not found (tried {tried}); set {ENV_VAR} to its directory")
 
 
-def load_captaincook(root: Path | None = None) -> list[Recipe]:
+def load_captaincook(root: Path | None = None, *, errors: bool = False) -> list[Recipe]:
     """Every recipe of the dataset, sorted by name.
 
     Args:
         root: The dataset directory (see :func:`default_root` when None).
+        errors: Also take the recordings with errors as demonstrations (their skipped steps left out; every
+            other step, however badly performed, kept where it was performed). Their ids end in ``!``.
 
     Raises:
         DatasetError: when a file is missing or malformed (the message names it).
@@ -104,12 +106,13 @@ def load_captaincook(root: Path | None = None) -> list[Recipe]:
     by_title: dict[str, list[Mapping[str, Any]]] = defaultdict(list)
     for recording in recordings:
         by_title[recording["activity_name"]].append(recording)
-    recipes = [_recipe(root, title, recs) for title, recs in by_title.items()]
+    recipes = [_recipe(root, title, recs, errors) for title, recs in by_title.items()]
     return sorted(recipes, key=lambda r: r.name)
 
 
-def load_recipe(name: str, root: Path | None = None) -> Recipe:
-    """One recipe, by slug (``'mugcake'``) or title (``'Mug Cake'``).
+def load_recipe(name: str, root: Path | None = None, *, errors: bool = False) -> Recipe:
+    """One recipe, by slug (``'mugcake'``) or title (``'Mug Cake'``); ``errors`` as for
+    :func:`load_captaincook`.
 
     Raises:
         DatasetError: when no recording has that recipe, or a file is missing or malformed.
@@ -119,7 +122,7 @@ def load_recipe(name: str, root: Path | None = None) -> Recipe:
     recs = [r for r in _recordings(root) if recipe_slug(r["activity_name"]) == slug]
     if not recs:
         raise DatasetError(f"{root / _STEPS_FILE}: no recording of recipe {name!r}")
-    return _recipe(root, recs[0]["activity_name"], recs)
+    return _recipe(root, recs[0]["activity_name"], recs, errors)
 
 
 # ---------------------------------------------------------------------------------------------- files
@@ -165,6 +168,7 @@ def _recordings(root: Path) -> list[dict[str, Any]]:
                     "start": float(s["start_time"]),
                     "end": float(s["end_time"]),
                     "has_errors": bool(s["has_errors"]),
+                    "skipped": float(s["start_time"]) < 0,
                 }
                 for s in rec["steps"]
             ]
@@ -191,7 +195,7 @@ def _natural(text: str) -> tuple[tuple[int, int | str], ...]:
 # ---------------------------------------------------------------------------------------------- recipe
 
 
-def _recipe(root: Path, title: str, recordings: Sequence[Mapping[str, Any]]) -> Recipe:
+def _recipe(root: Path, title: str, recordings: Sequence[Mapping[str, Any]], errors: bool = False) -> Recipe:
     slug = recipe_slug(title)
     path = root / _GRAPHS_DIR / f"{slug}.json"
     texts, edges = _graph(path)
@@ -204,7 +208,9 @@ def _recipe(root: Path, title: str, recordings: Sequence[Mapping[str, Any]]) -> 
         leaf_of[node] = (ids[texts[node]], seen[texts[node]])
     expected = Counter(texts.values())
     demos = tuple(_demonstration(rec, ids, expected, path) for rec in recordings if rec["clean"])
-    actions = tuple(Action(action_id, text) for text, action_id in ids.items())
+    if errors:
+        demos += tuple(_erroneous(rec, ids) for rec in recordings if not rec["clean"])
+    actions = tuple(dict.fromkeys(Action(action_id, text) for text, action_id in ids.items()))
     spec = TaskSpec(name=slug, actions=actions, demonstrations=demos)
     published = frozenset(
         (leaf_of[a], leaf_of[b]) for a, after in _closure(order, edges).items() for b in after
@@ -279,6 +285,20 @@ def _demonstration(
         )
     steps = tuple(Step(ids[s["description"]], start=s["start"], end=s["end"]) for s in rec["steps"])
     return Demonstration(steps=steps, id=rec["recording_id"], agent=f"person_{rec['person_id']}")
+
+
+def _erroneous(rec: Mapping[str, Any], ids: dict[str, str]) -> Demonstration:
+    """A recording with errors as it was performed: skipped steps left out, the rest in the order listed; a
+    step whose text is not in the graph gets an id of its own (``off_graph_…``, added to ``ids``)."""
+    steps = []
+    for s in rec["steps"]:
+        if s["skipped"]:
+            continue
+        text = s["description"]
+        if text not in ids:
+            ids[text] = "off_graph_" + "_".join(_words(text)[:_SLUG_WORDS])
+        steps.append(Step(ids[text], start=s["start"], end=s["end"]))
+    return Demonstration(steps=tuple(steps), id=f"{rec['recording_id']}!", agent=f"person_{rec['person_id']}")
 
 
 def _action_ids(texts: Iterable[str]) -> dict[str, str]:

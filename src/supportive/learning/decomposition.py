@@ -27,6 +27,7 @@ counts and support.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -41,10 +42,12 @@ __all__ = ["Decomposition", "Group", "decompose"]
 
 @dataclass(frozen=True)
 class Group:
-    """One learned internal node: its children (node ids) in order, and whether it is a chain."""
+    """One learned internal node: its children (node ids) in order, whether it is a chain, and (a clique)
+    whether every order of its children was seen."""
 
     children: tuple[int, ...]
     chain: bool
+    seen_in_full: bool = False
 
 
 @dataclass
@@ -118,7 +121,9 @@ def decompose(
             whole = len(group.children) == len(level)
             if not group.chain:
                 chance[node] = 1.0 if whole else contiguity_chance(arrays, frozenset(group.children), next_id)
-            weak = {m for m in group.children if not group.chain and not supported(chance.get(m, 1.0), evidence)}
+            weak = set()
+            if not group.chain and not group.seen_in_full:
+                weak = {m for m in group.children if not supported(chance.get(m, 1.0), evidence)}
             result.groups[node] = _spliced(group, result.groups, presence, weak)
             rank[node] = min(rank[m] for m in group.children)
             presence[node] = set().union(*(presence[m] for m in group.children))
@@ -234,7 +239,8 @@ def _classify(orders: Sequence[Sequence[int]], rank: dict[int, int], order_suppo
         return Group(tuple(listed[i] for i in order), True)
     if established_precedences(before, together, order_support).any():
         return None
-    return Group(tuple(listed), False)
+    complete = {tuple(order) for order in orders if len(order) == len(listed)}
+    return Group(tuple(listed), False, len(complete) == math.factorial(len(listed)))
 
 
 def _mean_positions(orders: Sequence[Sequence[int]], members: Sequence[int]) -> list[float]:
@@ -265,7 +271,7 @@ def _spliced(group: Group, groups: dict[int, Group], presence: dict[int, set[int
             children.extend(inner.children)
         else:
             children.append(member)
-    return Group(tuple(children), group.chain)
+    return Group(tuple(children), group.chain, group.seen_in_full and not weak)
 
 
 def _rewrite(sequence: Sequence[int], replace: dict[int, int]) -> list[int]:
@@ -276,4 +282,5 @@ def _rewrite(sequence: Sequence[int], replace: dict[int, int]) -> list[int]:
             continue
         out.append(new)
     return out
+
 

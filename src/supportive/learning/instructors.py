@@ -453,7 +453,8 @@ def pooled_learner(learners: Sequence[HTNLearner], **options: Any) -> HTNLearner
 
     Args:
         learners: Fitted learners.
-        **options: Passed to :class:`HTNLearner` (default hyper-parameters otherwise).
+        **options: Passed to :class:`HTNLearner` (otherwise the first learner's ``mode`` and default
+            hyper-parameters).
 
     Raises:
         LearningError: when there is no learner, one is not fitted, or one's graph has explicit states.
@@ -465,4 +466,5 @@ def pooled_learner(learners: Sequence[HTNLearner], **options: Any) -> HTNLearner
         demos.extend(_action_sequences(learner.task_graph_, f"learner {i + 1}"))
     if not demos:
         raise LearningError("no demonstrations to pool: give at least one fitted learner")
+    options.setdefault("mode", learners[0].mode)
     return HTNLearner(**options).fit(demos, learners[0].task)

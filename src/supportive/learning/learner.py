@@ -66,7 +66,8 @@ class HTNLearner:
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
             this (:func:`~supportive.learning.evidence.contiguity_chance`).
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
-            even when no step is between them (:func:`~supportive.learning.evidence.established_precedences`).
+            even when no step is between them (:func:`~supportive.learning.evidence.established_precedences`);
+            by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).
         subtask_demonstrations: ``general``: from how many demonstrations on contiguous runs are made
             subtasks (chains and cliques); with fewer, the steps are kept in the orders the evidence
             establishes (a partial order, as a partial hierarchy's top level).
@@ -83,9 +84,14 @@ class HTNLearner:
         labelled_: Every demonstration as the leaves the hierarchy gave its steps.
         stats_: Sizes and time.
 
-    >>> learner = HTNLearner().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]])
+    >>> two = [["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]
+    >>> learner = HTNLearner(mode="strict").fit(two)
     >>> learner.htn_.complete, learner.htn_.roots[0].kind
     (True, 'chain')
+    >>> HTNLearner().fit(two).htn_.complete  # two demonstrations: only orders, no subtasks yet
+    False
+    >>> HTNLearner().fit(two * 2).htn_.roots[0].kind  # four: knife, then carrots and celery in any order
+    'chain'
     """
 
     def __init__(
@@ -94,7 +100,7 @@ class HTNLearner:
         mode: Mode = "general",
         deviations: float = 0.1,
         evidence: float = 0.05,
-        order_support: int = 5,
+        order_support: int | None = None,
         subtask_demonstrations: int = 4,
         alternatives: int = 8,
         max_alternative_roots: int = 64,
@@ -108,7 +114,7 @@ class HTNLearner:
             raise LearningError(f"deviations must be a share in [0, 0.5), got {deviations}")
         if not 0.0 < evidence <= 1.0:
             raise LearningError(f"evidence must be in (0, 1], got {evidence}")
-        if order_support < 1:
+        if order_support is not None and order_support < 1:
             raise LearningError(f"order_support must be >= 1, got {order_support}")
         if subtask_demonstrations < 1:
             raise LearningError(f"subtask_demonstrations must be >= 1, got {subtask_demonstrations}")

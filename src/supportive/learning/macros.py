@@ -67,7 +67,7 @@ def macro_actions(htn: HTN, *, min_size: int = 2) -> list[MacroAction]:
     """Every chain and clique of ``htn`` performing at least ``min_size`` actions, outermost first.
 
     >>> from supportive.learning import HTNLearner
-    >>> htn = HTNLearner().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_
+    >>> htn = HTNLearner(mode="strict").fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_
     >>> [(m.name, m.actions) for m in macro_actions(htn)]
     [('knife → {carrots, celery}', ('knife', 'carrots', 'celery')), ('{carrots, celery}', ('carrots', 'celery'))]
     """

@@ -24,15 +24,48 @@ def known_names(structure: Node | None) -> dict[frozenset[Leaf], str]:
 def named(node: Node, known: Mapping[frozenset[Leaf], str] | None = None) -> Node:
     """A copy of ``node`` in which every chain and clique has a name.
 
+    A run of a chain's children whose leaves are a known subtask becomes that subtask, a chain of its own
+    (a chain in a chain means the same order, so learning merges them; the name brings it back).
+
     >>> named(ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))).name
     'knife → {carrots, celery}'
     """
     known = known or {}
     if isinstance(node, ActionNode):
         return node
+    if isinstance(node, ChainNode) and known:
+        node = _nest_known_runs(node, known)
     children = tuple(named(child, known) for child in node.children)
     name = node.name or known.get(frozenset(node.leaves)) or _describe(node.kind, children)
     return with_children(node, children, name=name)
+
+
+def _nest_known_runs(chain: ChainNode, known: Mapping[frozenset[Leaf], str]) -> ChainNode:
+    """``chain`` with each run of two or more (not all) children that holds exactly a known subtask's leaves
+    made a named sub-chain, longest runs first."""
+    sizes = sorted({len(leaves) for leaves in known}, reverse=True)
+    children = list(chain.children)
+    out: list[Node] = []
+    i = 0
+    while i < len(children):
+        found = None
+        for size in sizes:
+            total, j, leaves = 0, i, set()
+            while j < len(children) and total < size:
+                leaves.update(children[j].leaves)
+                total += len(children[j].leaves)
+                j += 1
+            if total == size and j - i >= 2 and j - i < len(children) and frozenset(leaves) in known:
+                found = (j, known[frozenset(leaves)])
+                break
+        if found is None:
+            out.append(children[i])
+            i += 1
+            continue
+        j, name = found
+        out.append(ChainNode(tuple(children[i:j]), name))
+        i = j
+    return with_children(chain, out) if len(out) != len(children) else chain
 
 
 def _short(node: Node) -> str:

@@ -60,7 +60,9 @@ class RecipeReport:
         complete: True when the learned hierarchy has a single root.
         roots: Number of roots of the learned hierarchy.
         score: Implied precedences of the learned hierarchy against the published ones.
-        admits_demonstrations: True when the learned hierarchy admits every demonstration (invariant 1).
+        admits_demonstrations: True when the learned hierarchy admits every demonstration it did not set
+            aside as a deviation (invariant 1).
+        deviations: Demonstrations with a step set aside as a slip.
     """
 
     recipe: str
@@ -71,6 +73,7 @@ class RecipeReport:
     roots: int
     score: PrecedenceScore
     admits_demonstrations: bool
+    deviations: int = 0
 
     def as_dict(self) -> dict[str, object]:
         """Plain-data form (one row of ``supportive captaincook --json``)."""
@@ -82,6 +85,7 @@ class RecipeReport:
             "complete": self.complete,
             "roots": self.roots,
             "admits_demonstrations": self.admits_demonstrations,
+            "deviations": self.deviations,
             "precision": self.score.precision,
             "recall": self.score.recall,
             "f1": self.score.f1,
@@ -117,24 +121,27 @@ def _tree_pairs(node: Node) -> Iterator[Pair]:
 
 
 def _root_precedences(top: TopLevel, n_roots: int) -> Iterator[tuple[int, int]]:
-    """Root pairs ``(a, b)`` such that no initial-to-terminal path performs ``b`` before ``a``.
+    """Root pairs ``(a, b)`` such that no initial-to-terminal path performs ``b`` and later ``a`` (a root a
+    path skips binds nothing: an optional root keeps its orders).
 
-    ``a`` fails to precede ``b`` exactly when some ``b`` edge on a complete path leaves a state reachable
-    from an initial state without an ``a`` edge. So one reachability pass per root (avoiding its edges) plus
-    one backward pass (states that can still reach a terminal) decide every pair, in O(roots x edges),
-    without listing paths.
+    ``a`` fails to precede ``b`` exactly when some ``b`` edge leaves a state reachable from an initial state
+    and enters one from which an ``a`` edge can still be taken on the way to a terminal state. So one forward
+    pass, one backward pass and, per root, one backward pass from its edges decide every pair, in
+    O(roots x edges), without listing paths.
     """
     into: dict[int, list[int]] = defaultdict(list)
+    out: dict[int, list[int]] = defaultdict(list)
     for src, _, dst in top.edges:
         into[dst].append(src)
+        out[src].append(dst)
     alive = reachable(top.terminal, into)
+    started = reachable(top.initial, out)
     for first in range(n_roots):
-        out: dict[int, list[int]] = defaultdict(list)
-        for src, root, dst in top.edges:
-            if root != first:
-                out[src].append(dst)
-        before_first = reachable(top.initial, out)
-        unordered = {root for src, root, dst in top.edges if src in before_first and dst in alive}
+        sources = {src for src, root, dst in top.edges if root == first and dst in alive}
+        still_possible = reachable(sources, into)
+        unordered = {
+            root for src, root, dst in top.edges if src in started and dst in still_possible and root != first
+        }
         yield from ((first, second) for second in range(n_roots) if second not in unordered | {first})
 
 
@@ -167,16 +174,18 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
     """
     learner = learn(recipe.spec, **dict(learner_options or {}))
     htn = learner.htn_
-    demos = recipe.spec.demonstrations
+    deviating = {d.demonstration for d in learner.deviations_}
+    demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
     return RecipeReport(
         recipe=recipe.name,
-        demonstrations=len(demos),
+        demonstrations=len(recipe.spec.demonstrations),
         actions=len(recipe.spec.actions),
         known_paths=learner.task_graph_.path_count(),
         complete=htn.complete,
         roots=len(htn.roots),
         score=precedence_scores(implied_precedences(htn), recipe.published),
         admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
+        deviations=len(deviating),
     )
 
 

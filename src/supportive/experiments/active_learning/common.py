@@ -99,7 +99,7 @@ def teach(
         strategy,
         schedule,
         seed=session_rng(instructor_seed, task, strategy_index),
-        learner=HTNLearner(alternatives=0),
+        learner=HTNLearner(mode="strict", alternatives=0),
     )
     paths: list[int] = []
     for _ in range(demonstrations):

@@ -109,7 +109,7 @@ def run_recipe(recipe: Recipe, rng: np.random.Generator) -> dict[str, Any]:
     base = int(rng.integers(k))
     session_seeds = [int(s) for s in rng.integers(0, 2**32, size=len(STRATEGIES))]
 
-    passive = HTNLearner()
+    passive = HTNLearner(mode="strict")
     points = []
     for i in order:
         passive.partial_fit(demos[i])
@@ -123,7 +123,7 @@ def run_recipe(recipe: Recipe, rng: np.random.Generator) -> dict[str, Any]:
     valid = True
     for strategy, session_seed in zip(STRATEGIES, session_seeds, strict=True):
         instructor = SimulatedInstructor(task, base_path, perturbation=0.0, horizon=HORIZON)
-        session = TeachingSession(actions, strategy, SCHEDULE, seed=session_seed, learner=HTNLearner())
+        session = TeachingSession(actions, strategy, SCHEDULE, seed=session_seed, learner=HTNLearner(mode="strict"))
         points = []
         for _ in range(k):
             run_session(session, instructor, 1)

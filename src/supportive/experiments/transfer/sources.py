@@ -78,7 +78,7 @@ def learned_htn(name: str) -> HTN:
     spec = load_transfer(name)
     assert spec.structure is not None
     orderings = [[a for a, _ in leaves] for leaves in iter_orderings(spec.structure)]
-    return HTNLearner().fit(orderings).htn_
+    return HTNLearner(mode="strict").fit(orderings).htn_
 
 
 @cache

@@ -80,7 +80,7 @@ class TeachingSession:
         self.strategy = strategy_named(strategy) if isinstance(strategy, str) else strategy
         self.schedule = schedule if schedule is not None else QuerySchedule()
         self.rng = rng_from(seed)
-        self.learner = learner if learner is not None else HTNLearner()
+        self.learner = learner if learner is not None else HTNLearner(mode="strict")
         self.anti_edges = AntiEdges()
         self.demonstrations: list[Demonstration] = []
         self._queries: list[QueryRecord] = []
