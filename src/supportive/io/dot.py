@@ -16,20 +16,23 @@ def _quote(text: str) -> str:
 
 def htn_to_dot(htn: HTN) -> str:
     """DOT text: boxes for chains (children linked left to right by dashed "then" edges), hexagons for
-    cliques, ovals for actions; a partial hierarchy hangs its roots under one task node."""
+    cliques, ovals for actions, optional nodes drawn dashed; a partial hierarchy hangs its roots under one
+    task node."""
     lines = ["digraph htn {", "  rankdir=TB;", '  node [fontname="Helvetica"];']
     counter = iter(range(1 << 30))
 
     def emit(node: Node) -> str:
         name = f"n{next(counter)}"
+        style = ", style=dashed" if node.optional else ""
         if isinstance(node, ActionNode):
-            lines.append(f"  {name} [label={_quote(node.label)}, shape=ellipse];")
+            label = node.label + (" (optional)" if node.optional else "")
+            lines.append(f"  {name} [label={_quote(label)}, shape=ellipse{style}];")
             return name
         shape = "box" if isinstance(node, ChainNode) else "hexagon"
         title = ("in order" if isinstance(node, ChainNode) else "any order") + (
             f"\n{node.name}" if node.name else ""
-        )
-        lines.append(f"  {name} [label={_quote(title)}, shape={shape}];")
+        ) + ("\n(optional)" if node.optional else "")
+        lines.append(f"  {name} [label={_quote(title)}, shape={shape}{style}];")
         children = [emit(child) for child in node.children]
         for child in children:
             lines.append(f"  {name} -> {child};")

@@ -5,8 +5,10 @@ The encoding is totally ordered, so no planner can interleave the children of a 
 * every leaf ``(action, occurrence)`` is a primitive action of its own (``stir``, ``stir_2``, …) that needs
   ``(not (done_<leaf>))``, and the leaf's previous occurrence done, and adds ``(done_<leaf>)``;
 * a chain is a compound task with one method whose ordered subtasks are its children;
-* a clique ``Q`` has, per child, a method "child not started yet → [child, Q]" and a method "all children
-  done → []" that ends the recursion;
+* a clique ``Q`` has, per child, a method "child not started yet → [child, Q]" and a method "every required
+  child done → []" that ends the recursion (a child has started when one of the leaves it can begin with is
+  done);
+* an optional node ``X`` is a compound task of its own with two methods: ``[X]`` and ``[]`` (skip it);
 * a partial hierarchy's top level is a state machine: one task per state, one method per edge
   ``(s, root, s')`` with ordered subtasks ``[root, s']`` and an empty method for each terminal state.
 
@@ -22,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from supportive.errors import ExportError
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, first_leaves, nullable
 
 __all__ = ["hddl_strings", "htn_to_problem", "read_hddl", "solve_hddl", "write_hddl"]
 
@@ -87,11 +89,12 @@ class _Builder:
             fluent = up.Fluent(self.namer(f"done_{name}"), up.BoolType())
             self.problem.add_fluent(fluent, default_initial_value=False)
             self.done[leaf] = fluent()
+        skippable = {leaf for root in htn.roots for leaf in _skippable(root, False)}
         for leaf, name in self.leaf_names.items():
             action = up.InstantaneousAction(name)
             action.add_precondition(up.Not(self.done[leaf]))
             previous = (leaf[0], leaf[1] - 1)
-            if previous in self.done:  # occurrences are numbered in the order performed
+            if previous in self.done and previous not in skippable:  # occurrences are numbered in order
                 action.add_precondition(self.done[previous])
             action.add_effect(self.done[leaf], True)
             self.problem.add_action(action)
@@ -100,20 +103,35 @@ class _Builder:
         setattr(self.problem, _LEAVES, {name: leaf for leaf, name in self.leaf_names.items()})
 
     def _node(self, node: Node) -> Any:
-        """The action or compound task that performs ``node``."""
+        """The action or compound task that performs ``node`` (a task that may skip it, when optional)."""
+        performed = self._performed(node)
+        if not node.optional:
+            return performed
+        name = node.label if isinstance(node, ActionNode) else (node.name or node.kind)
+        task = self.problem.add_task(self.namer(f"optional_{name}"))
+        self._method(task, "do", [performed])
+        self._method(task, "skip", [])
+        return task
+
+    def _performed(self, node: Node) -> Any:
         if isinstance(node, ActionNode):
             return self.actions[node.leaf]
         task = self.problem.add_task(self.namer(node.name or node.kind))
-        children = [self._node(child) for child in node.children]
         if isinstance(node, ChainNode):
-            self._method(task, "in_order", children)
+            self._method(task, "in_order", [self._node(child) for child in node.children])
             return task
+        # a clique may end without its optional children, so each child's method performs it outright
+        children = [self._performed(child) for child in node.children]
         up = self.up
         for child, target in zip(node.children, children, strict=True):
-            # Children run as blocks, so one leaf tells whether a child has started.
-            self._method(task, f"{target.name}_next", [target, task], up.Not(self.done[child.leaves[0]]))
-        self._method(task, "all_done", [], up.And(*(self.done[child.leaves[0]] for child in node.children)))
+            # Children run as blocks, so the leaves it can begin with tell whether a child has started.
+            self._method(task, f"{target.name}_next", [target, task], up.Not(self._started(child)))
+        required = [self._started(child) for child in node.children if not nullable(child)]
+        self._method(task, "all_done", [], up.And(*required) if required else None)
         return task
+
+    def _started(self, node: Node) -> Any:
+        return self.up.Or(*(self.done[leaf] for leaf in sorted(first_leaves(node))))
 
     def _top(self, htn: HTN) -> Any:
         """The task the initial task network performs."""
@@ -150,6 +168,14 @@ class _Builder:
         steps = [method.add_subtask(subtask, ident=f"s{i}") for i, subtask in enumerate(subtasks, 1)]
         method.set_ordered(*steps)
         self.problem.add_method(method)
+
+
+def _skippable(node: Node, inside_optional: bool) -> list[Leaf]:
+    """The leaves under ``node`` that an execution may skip (one of their ancestors, or they, optional)."""
+    skipped = inside_optional or node.optional
+    if isinstance(node, ActionNode):
+        return [node.leaf] if skipped else []
+    return [leaf for child in node.children for leaf in _skippable(child, skipped)]
 
 
 def htn_to_problem(htn: HTN) -> Any:

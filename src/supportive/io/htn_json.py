@@ -5,20 +5,56 @@ from __future__ import annotations
 from typing import Any
 
 from supportive.errors import TaskFileError
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Node, TopLevel
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, Support, TopLevel
 
 __all__ = ["htn_from_dict", "htn_to_dict", "node_from_dict", "node_to_dict"]
 
 
 def node_to_dict(node: Node) -> dict[str, Any]:
     """``{"kind": "action", "action": id}`` (plus ``occurrence`` for a repeated action) or
-    ``{"kind": "chain"|"clique", "name": …, "children": […]}``."""
+    ``{"kind": "chain"|"clique", "name": …, "children": […]}``; any node may add ``"optional": true``,
+    ``"counts"`` (:meth:`Counts.as_dict`) and ``"support"`` (:meth:`Support.as_dict`)."""
     if isinstance(node, ActionNode):
         data: dict[str, Any] = {"kind": "action", "action": node.action}
         if node.occurrence != 1:
             data["occurrence"] = node.occurrence
-        return data
-    return {"kind": node.kind, "name": node.name, "children": [node_to_dict(c) for c in node.children]}
+    else:
+        data = {"kind": node.kind, "name": node.name, "children": [node_to_dict(c) for c in node.children]}
+    if node.optional:
+        data["optional"] = True
+    if node.counts is not None:
+        data["counts"] = node.counts.as_dict()
+    if node.support is not None:
+        data["support"] = node.support.as_dict()
+    return data
+
+
+def _counts_from(data: Any, place: str) -> Counts | None:
+    if data is None:
+        return None
+    try:
+        return Counts(
+            performed=int(data.get("performed", 0)),
+            skipped=int(data.get("skipped", 0)),
+            first=tuple(int(x) for x in data.get("first", ())),
+            after=tuple(tuple(int(x) for x in row) for row in data.get("after", ())),
+        )
+    except (AttributeError, TypeError, ValueError):
+        raise TaskFileError("counts need integer 'performed', 'skipped', 'first' and 'after'", place=place) from None
+
+
+def _support_from(data: Any, place: str) -> Support | None:
+    if data is None:
+        return None
+    try:
+        return Support(
+            int(data["demonstrations"]), int(data["orders_seen"]), int(data["orders"]), data["observed"] == "full"
+        )
+    except (KeyError, TypeError, ValueError):
+        raise TaskFileError(
+            "support needs 'demonstrations', 'orders_seen', 'orders' and 'observed' (full or inferred)",
+            place=place,
+        ) from None
 
 
 def node_from_dict(data: Any, place: str = "node") -> Node:
@@ -29,17 +65,21 @@ def node_from_dict(data: Any, place: str = "node") -> Node:
     """
     if not isinstance(data, dict) or data.get("kind") not in ("action", "chain", "clique"):
         raise TaskFileError("expected a node with kind 'action', 'chain' or 'clique'", place=place)
+    optional = data.get("optional", False)
+    if not isinstance(optional, bool):
+        raise TaskFileError("'optional' must be true or false", place=place)
+    counts = _counts_from(data.get("counts"), f"{place}.counts")
+    support = _support_from(data.get("support"), f"{place}.support")
     if data["kind"] == "action":
         if not isinstance(data.get("action"), str):
             raise TaskFileError("an action node needs an 'action' id", place=place)
-        return ActionNode(data["action"], int(data.get("occurrence", 1)))
+        return ActionNode(data["action"], int(data.get("occurrence", 1)), optional, counts, support)
     children = data.get("children")
     if not isinstance(children, list) or not children:
         raise TaskFileError("a chain or clique needs a non-empty 'children' list", place=place)
     nodes = tuple(node_from_dict(c, f"{place}.children[{i}]") for i, c in enumerate(children))
-    return (
-        ChainNode(nodes, data.get("name")) if data["kind"] == "chain" else CliqueNode(nodes, data.get("name"))
-    )
+    kind = ChainNode if data["kind"] == "chain" else CliqueNode
+    return kind(nodes, data.get("name"), optional, counts, support)
 
 
 def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]:
@@ -57,6 +97,8 @@ def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]
             "terminal": list(top.terminal),
             "edges": [list(e) for e in top.edges],
         }
+        if top.counts is not None:
+            data["top_level"]["counts"] = top.counts.as_dict()
     data["alternatives"] = [{"roots": [node_to_dict(r) for r in alt.roots]} for alt in htn.alternatives]
     if stats is not None:
         data["stats"] = stats
@@ -73,7 +115,12 @@ def htn_from_dict(data: Any) -> HTN:
     if top is not None:
         try:
             edges = tuple((int(src), int(root), int(dst)) for src, root, dst in top["edges"])
-            top_level = TopLevel(tuple(map(int, top["initial"])), tuple(map(int, top["terminal"])), edges)
+            top_level = TopLevel(
+                tuple(map(int, top["initial"])),
+                tuple(map(int, top["terminal"])),
+                edges,
+                _counts_from(top.get("counts"), "top_level.counts"),
+            )
         except (KeyError, TypeError, ValueError):
             raise TaskFileError(
                 "top_level needs 'initial', 'terminal' and 'edges' of [from, root, to]", place="top_level"

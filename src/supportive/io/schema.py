@@ -1,7 +1,8 @@
 """The task-file schema (pydantic), shared by the YAML and JSON readers.
 
 Shorthands: an action may be written as its id alone, a step as its action id alone, a structure leaf as an
-action id, a keyframe as its ``[x, y]`` pair. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an optional ``name``.
+action id, a keyframe as its ``[x, y]`` pair. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an optional ``name``,
+or ``{optional: node}`` for a node that may be skipped.
 """
 
 from __future__ import annotations
@@ -112,18 +113,22 @@ class DemonstrationIn(_Strict):
 
 
 class NodeIn(_Strict):
-    """A structure node: exactly one of ``action``, ``chain``, ``clique``; an optional ``name``."""
+    """A structure node: exactly one of ``action``, ``chain``, ``clique`` or ``optional`` (a node that may be
+    skipped whole: ``{optional: add_sugar}``); an optional ``name``."""
 
     action: Name | None = None
     chain: list[Annotated[NodeIn, _wrap("action")]] | None = None
     clique: list[Annotated[NodeIn, _wrap("action")]] | None = None
+    optional: Annotated[NodeIn, _wrap("action")] | None = None
     name: str | None = None
 
     @model_validator(mode="after")
     def _one_kind(self) -> NodeIn:
-        kinds = [k for k in ("action", "chain", "clique") if getattr(self, k) is not None]
+        kinds = [k for k in ("action", "chain", "clique", "optional") if getattr(self, k) is not None]
         if len(kinds) != 1:
-            raise ValueError("a structure node needs exactly one of 'chain', 'clique' or an action id")
+            raise ValueError(
+                "a structure node needs exactly one of 'chain', 'clique', 'optional' or an action id"
+            )
         children = self.chain if self.chain is not None else self.clique
         if children is not None and not children:
             raise ValueError(f"'{kinds[0]}' needs at least one child")

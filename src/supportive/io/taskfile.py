@@ -6,6 +6,8 @@ field (``demonstrations[1].steps[3]``) and what was wrong.
 
 from __future__ import annotations
 
+import dataclasses
+
 import csv
 import io
 import json
@@ -251,6 +253,11 @@ def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, se
             raise fail(f"action {model.action!r} is not declared in 'actions'", loc)
         seen[model.action] += 1
         return ActionNode(model.action, seen[model.action])
+    if model.optional is not None:
+        inner = _node(model.optional, [*loc, "optional"], declared, fail, seen)
+        if model.name and not isinstance(inner, ActionNode):
+            inner = dataclasses.replace(inner, name=model.name)
+        return dataclasses.replace(inner, optional=True)
     key = "chain" if model.chain is not None else "clique"
     items = model.chain if model.chain is not None else (model.clique or [])
     children = tuple(_node(child, [*loc, key, i], declared, fail, seen) for i, child in enumerate(items))
@@ -320,6 +327,8 @@ def _float(value: str, column: str, path: str | Path | None, line: int) -> float
 
 # ---------------------------------------------------------------------------------------------- writing
 def _node_to_data(node: Node) -> object:
+    if node.optional:
+        return {"optional": _node_to_data(dataclasses.replace(node, optional=False))}
     if isinstance(node, ActionNode):
         return node.action
     data: dict[str, object] = {node.kind: [_node_to_data(child) for child in node.children]}

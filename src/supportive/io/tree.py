@@ -15,17 +15,25 @@ _KIND = {"chain": "[bold cyan]in order[/]", "clique": "[bold magenta]any order[/
 
 
 def _add(parent: Tree, node: Node, texts: Mapping[str, str]) -> None:
+    optional = "[yellow]optional[/] " if node.optional else ""
     if isinstance(node, ActionNode):
         text = texts.get(node.action)
-        parent.add(f"{node.label}" + (f" [dim]— {text}[/]" if text and text != node.action else ""))
+        parent.add(f"{optional}{node.label}" + (f" [dim]— {text}[/]" if text and text != node.action else ""))
         return
-    branch = parent.add(f"{_KIND[node.kind]} {node.name or ''}".rstrip())
+    support = node.support
+    inferred = (
+        f" [dim](inferred: {support.orders_seen} of {support.orders} orders seen)[/]"
+        if support is not None and not support.observed and node.kind == "clique"
+        else ""
+    )
+    branch = parent.add(f"{optional}{_KIND[node.kind]} {node.name or ''}".rstrip() + inferred)
     for child in node.children:
         _add(branch, child, texts)
 
 
 def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
-    """A rich Tree: chains read "in order", cliques "any order"; leaves show their action text."""
+    """A rich Tree: chains read "in order", cliques "any order" (with how many of their orders were seen,
+    when the clique was inferred); optional parts say so; leaves show their action text."""
     texts = texts or {}
     if htn.complete:
         label = f"[bold]{htn.task or 'task'}[/]"

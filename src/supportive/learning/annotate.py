@@ -14,7 +14,8 @@ from collections.abc import Mapping, Sequence
 
 from supportive.learning.decomposition import Decomposition
 import dataclasses
-from collections import defaultdict
+import math
+from collections import Counter, defaultdict
 
 from supportive.tasks.htn import (
     ActionNode,
@@ -122,14 +123,17 @@ class Annotated:
         else:
             children = _instances_alike(tuple(self._node(child, performed) for child in group.children))
             orders = self._orders.get(node, [])
-            seen = len({tuple(o) for o in orders})
+            kinds = _instance_classes(children)  # interchangeable instances make one order
+            seen = len({tuple(kinds[i] for i in o) for o in orders})
             if group.chain:
                 counts = Counts(performed=len(performed), skipped=skipped)
-                shape: Node = ChainNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
+                level: Node = ChainNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
             else:
                 counts = _choice_counts(orders, len(children), len(performed), skipped)
-                shape = CliqueNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
-            admitted = count_orderings(shape) - int(all(c.optional for c in children))
+                level = CliqueNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
+            admitted = count_orderings(level) - int(all(c.optional for c in children))
+            if not group.chain:
+                admitted //= math.prod(math.factorial(n) for n in Counter(kinds).values())
             support = Support(len(performed), seen, admitted, seen >= admitted)
             kind = ChainNode if group.chain else CliqueNode
             out = kind(children, optional=optional, counts=counts, support=support)
@@ -142,6 +146,12 @@ def annotate(
 ) -> Annotated:
     """Build the HTN nodes of ``decomposition`` (see :class:`Annotated`)."""
     return Annotated(decomposition, excused, demonstrations)
+
+
+def _instance_classes(children: Sequence[Node]) -> list[int]:
+    """For each child, the index of the first child of its shape (instances of one subtask share it)."""
+    first: dict[object, int] = {}
+    return [first.setdefault(shape(child, optional=False), i) for i, child in enumerate(children)]
 
 
 def _instances_alike(children: tuple[Node, ...]) -> tuple[Node, ...]:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Leaf, Node, with_children
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Leaf, Node, shape, with_children
 
 __all__ = ["known_names", "named"]
 
@@ -76,6 +76,8 @@ def _short(node: Node) -> str:
 
 
 def _describe(kind: str, children: tuple[Node, ...]) -> str:
+    if kind == "clique" and len({shape(child, optional=False) for child in children}) == 1:
+        return f"{len(children)} × {_short(children[0])}"  # instances of one repeated subtask
     parts = [_short(child) for child in children]
     if kind == "chain":
         return " → ".join(parts) if len(parts) <= 3 else f"{parts[0]} → … → {parts[-1]}"

@@ -163,10 +163,7 @@ class Executions:
         firsts = self._firsts_sym if symmetric else self._firsts
         moves: dict[int, Progress] = {}
         if state.last < 0:
-            for root, _ in self._out.get(state.top, {}).items():
-                for leaf in firsts[self._root_node[root]]:
-                    moves[leaf] = Progress(state.top, 1 << leaf, leaf)
-            return moves, state.top in self._terminal
+            return self._starts_from(state.top, 0, firsts, moves)
         within: list[int] = []
         can_end = True
         node = self._leaf_node[state.last]
@@ -199,12 +196,33 @@ class Executions:
         after = self._out.get(state.top, {}).get(root)
         if after is None:
             return moves, False
-        for nxt in self._out.get(after, {}):
-            if state.done & self._mask[self._root_node[nxt]]:
-                continue
-            for leaf in firsts[self._root_node[nxt]]:
-                moves[leaf] = Progress(after, state.done | 1 << leaf, leaf)
-        return moves, after in self._terminal
+        return self._starts_from(after, state.done, firsts, moves)
+
+    def _starts_from(
+        self, top: int, done: int, firsts: list[tuple[int, ...]], moves: dict[int, Progress]
+    ) -> tuple[dict[int, Progress], bool]:
+        """Add to ``moves`` the leaves that begin a root from top-level state ``top`` (or from a state that
+        skipping roots that may be performed as nothing leads to); and say whether the task may end there."""
+        can_end = False
+        for state in self._skip_closure(top):
+            can_end |= state in self._terminal
+            for nxt in self._out.get(state, {}):
+                if done & self._mask[self._root_node[nxt]]:
+                    continue
+                for leaf in firsts[self._root_node[nxt]]:
+                    moves.setdefault(leaf, Progress(state, done | 1 << leaf, leaf))  # fewest skips first
+        return moves, can_end
+
+    def _skip_closure(self, top: int) -> list[int]:
+        """``top`` and the top-level states reached from it by skipping roots that may be performed as
+        nothing."""
+        seen, stack = [top], [top]
+        while stack:
+            for root, dst in self._out.get(stack.pop(), {}).items():
+                if self._nullable[self._root_node[root]] and dst not in seen:
+                    seen.append(dst)
+                    stack.append(dst)
+        return seen
 
     # ------------------------------------------------------------------ runs
     def run_leaves(self, leaves: Iterable[Leaf]) -> tuple[Progress, ...]:

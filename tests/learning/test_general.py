@@ -1,0 +1,206 @@
+"""The general learner on what real people do: optional steps, repeated subtasks, unseen orders, slips."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from supportive import examples
+from supportive.io.htn_json import htn_from_dict, htn_to_dict
+from supportive.learning import HTNLearner
+from supportive.learning.evidence import contiguity_chance, established_precedences, pair_counts
+from supportive.learning.labelling import label_performances
+from supportive.learning.top_order import precedence_top_level, seen_top_level
+from supportive.tasks.htn import (
+    HTN,
+    ActionNode,
+    ChainNode,
+    CliqueNode,
+    Node,
+    count_orderings,
+    internal_nodes,
+    iter_orderings,
+    sample_ordering,
+    shape,
+)
+
+LEG = ["pick_up_leg", "align_leg", "spin_leg"]
+
+
+def _bench(skips: dict[int, set[int]]) -> list[str]:
+    """A bench: the seat, then four legs (pick up, align, spin), legs in ``skips`` without their align."""
+    steps = ["place_seat"]
+    for leg in range(4):
+        steps += [a for a in LEG if not (a == "align_leg" and leg in skips.get(0, set()))]
+    return [*steps, "flip_bench"]
+
+
+def test_four_legs_come_out_as_one_repeated_subtask() -> None:
+    demos = [_bench({}), _bench({0: {1}}), _bench({0: {0, 3}}), _bench({}), _bench({0: {2}})]
+    htn = HTNLearner().fit(demos).htn_
+    assert htn.complete and all(htn.admits(d) for d in demos)
+    legs = [n for n in internal_nodes(htn.roots[0]) if isinstance(n, CliqueNode)]
+    assert len(legs) == 1, legs
+    (clique,) = legs
+    assert len(clique.children) == 4
+    assert len({shape(child) for child in clique.children}) == 1, "every leg is an instance of one subtask"
+    for child in clique.children:
+        assert isinstance(child, ChainNode)
+        assert [c.action for c in child.children] == LEG  # type: ignore[union-attr]
+        assert [c.optional for c in child.children] == [False, True, False]
+    assert htn.admits(_bench({0: {0, 1, 2, 3}}))  # nobody skipped every align; each leg may
+    assert not htn.admits(_bench({})[:-2] + ["flip_bench"])  # but a leg is spun
+
+
+def test_labels_follow_context_not_counts() -> None:
+    full = ["seat", *LEG * 2]
+    skipped = ["seat", "pick_up_leg", "spin_leg", *LEG]
+    labelled = label_performances([full, full, skipped])
+    assert labelled[2] == (
+        ("seat", 1),
+        ("pick_up_leg", 1),
+        ("spin_leg", 1),
+        ("pick_up_leg", 2),
+        ("align_leg", 2),
+        ("spin_leg", 2),
+    )
+    assert label_performances([full]) == [tuple((a, 1 + full[:i].count(a)) for i, a in enumerate(full))]
+
+
+def test_an_optional_step_may_be_skipped_and_is_counted() -> None:
+    with_sugar = ["boil", "cup", "sugar", "pour", "stir"]
+    without = ["boil", "cup", "pour", "stir"]
+    demos = [with_sugar, without, with_sugar, without, without]
+    learner = HTNLearner().fit(demos)
+    htn = learner.htn_
+    assert htn.complete and htn.admits(with_sugar) and htn.admits(without)
+    sugar = next(leaf for leaf in _leaves(htn.roots[0]) if leaf.action == "sugar")
+    assert sugar.optional and sugar.counts is not None
+    assert (sugar.counts.performed, sugar.counts.skipped) == (2, 3)
+    assert not htn.admits(["boil", "cup", "sugar", "sugar", "pour", "stir"])
+
+
+def _leaves(node: Node) -> list[ActionNode]:
+    if isinstance(node, ActionNode):
+        return [node]
+    return [leaf for child in node.children for leaf in _leaves(child)]
+
+
+def test_clique_counts_say_which_child_comes_first() -> None:
+    demos = [list("xabcy"), list("xbacy"), list("xacby"), list("xabcy"), list("xcbay")]
+    htn = HTNLearner().fit(demos).htn_
+    (clique,) = [n for n in internal_nodes(htn.roots[0]) if isinstance(n, CliqueNode)]
+    assert clique.counts is not None and clique.support is not None
+    firsts = dict(zip((c.leaves[0][0] for c in clique.children), clique.counts.first, strict=True))
+    assert firsts == {"a": 3, "b": 1, "c": 1}
+    assert sum(map(sum, clique.counts.after)) == 2 * len(demos)
+    assert (clique.support.orders_seen, clique.support.orders, clique.support.observed) == (4, 6, False)
+    chain = htn.roots[0]
+    assert chain.support is not None and chain.support.observed
+
+
+def test_unseen_orders_of_a_clique_are_admitted() -> None:
+    structure = CliqueNode(tuple(ActionNode(a) for a in "abcde"))
+    rng = np.random.default_rng(4)
+    demos = [[a for a, _ in sample_ordering(structure, rng)] for _ in range(4)]
+    general = HTNLearner().fit(demos).htn_
+    strict = HTNLearner(mode="strict").fit(demos).htn_
+    orders = [[a for a, _ in o] for o in iter_orderings(structure)]
+    assert sum(general.admits(o) for o in orders) > sum(strict.admits(o) for o in orders)
+    assert general.count_orderings() <= count_orderings(structure)
+
+
+def test_a_slip_is_set_aside_and_reported() -> None:
+    clean = [list("abcdef")] * 6 + [list("abdcef")] * 5
+    slipped = [*clean, list("acbdef")]  # one demonstration swaps b and c, which everyone else orders
+    learner = HTNLearner().fit(slipped)
+    assert [(d.demonstration, d.kind, d.leaf[0]) for d in learner.deviations_] in (
+        [(11, "out of order", "b")],
+        [(11, "out of order", "c")],
+    )
+    assert learner.htn_.canonical() == HTNLearner().fit(clean).htn_.canonical()
+    kept = HTNLearner(deviations=0).fit(slipped)
+    assert kept.deviations_ == () and all(kept.htn_.admits(d) for d in slipped)
+
+
+def test_rare_steps_and_missing_steps_are_slips_when_rare_enough() -> None:
+    clean = [list("abcd")] * 10
+    mislabel = list("abxcd")  # a one-off step nobody else performs
+    missing = list("abd")
+    learner = HTNLearner().fit([*clean, mislabel, missing])
+    kinds = {(d.demonstration, d.kind) for d in learner.deviations_}
+    assert (10, "rare") in kinds and (11, "missing") in kinds
+    c = next(leaf for leaf in _leaves(learner.htn_.roots[0]) if leaf.action == "c")
+    assert not c.optional, "a step one slip left out stays required"
+
+
+def test_few_demonstrations_keep_only_established_orders() -> None:
+    two = [list("abcd"), list("acbd")]
+    htn = HTNLearner().fit(two).htn_
+    assert not htn.complete and htn.top_level is not None
+    # a before d has a step consistently between them; nothing else is established by two demonstrations
+    assert htn.admits(list("bacd")) and not htn.admits(list("dabc"))
+    assert HTNLearner().fit([list("abcd")]).htn_.roots[0].kind == "chain"  # one demonstration: one chain
+
+
+def test_glasses_learn_the_partial_order_they_show() -> None:
+    spec = examples.load("two-glasses")
+    htn = HTNLearner().fit(spec).htn_
+    assert not htn.complete
+    valid = [list(o) for o in {tuple(d) for d in spec.action_sequences()}]
+    assert all(htn.admits(o) for o in valid) and htn.count_orderings() == len(valid) == 6
+    assert not htn.admits(["fill_glass_1", "place_glass_1", "place_glass_2", "fill_glass_2"])
+    assert htn.alternatives  # the thesis's readings are still offered
+
+
+@given(st.lists(st.permutations(list("abcde")), min_size=1, max_size=7), st.sets(st.sampled_from("abcde")))
+def test_top_level_admits_exactly_the_linear_extensions(orders: list[list[str]], optional: set[str]) -> None:
+    sequences = [[ord(x) - 97 for x in o if not (x in optional and i % 2)] for i, o in enumerate(orders)]
+    roots = list(range(5))
+    present = {x for s in sequences for x in s}
+    roots = [r for r in roots if r in present]
+    required = frozenset(r for r in roots if all(r in s for s in sequences))
+    top = precedence_top_level(roots, sequences, required, order_support=3)
+    before, together = pair_counts(sequences, roots)
+    order = established_precedences(before, together, 3)
+    for size in range(len(roots) + 1):
+        for subset in itertools.permutations(roots, size):
+            rank = {r: i for i, r in enumerate(subset)}
+            ok = required <= set(subset) and all(
+                rank[roots[j]] > rank[roots[i]]
+                for i, j in zip(*np.nonzero(order), strict=True)
+                if roots[i] in rank and roots[j] in rank
+            )
+            htn = HTN("t", tuple(ActionNode(str(r), optional=r not in required) for r in roots), top)
+            assert htn.admits_leaves([(str(r), 1) for r in subset]) == ok, subset
+    for s in sequences:  # every demonstration is admitted (invariant 1)
+        assert HTN("t", tuple(ActionNode(str(r)) for r in roots), top).admits([str(r) for r in s])
+
+
+def test_evidence_for_orders_and_subtasks() -> None:
+    before, together = pair_counts([[0, 1, 2], [0, 1, 2]], [0, 1, 2])
+    established = established_precedences(before, together, order_support=5)
+    assert established[0, 2] and not established[0, 1] and not established[1, 2]  # witnessed only
+    assert established_precedences(before, together, order_support=2)[0, 1]
+    arrays = [np.array(s) for s in ([0, 1, 2, 3], [2, 3, 0, 1], [0, 1, 3, 2])]
+    assert contiguity_chance(arrays, frozenset({0, 1}), 4) == pytest.approx((2 / 3) ** 6)
+    assert contiguity_chance(arrays[:1], frozenset({0, 1}), 4) == 1.0
+
+
+def test_seen_top_level_admits_only_what_was_seen() -> None:
+    top = seen_top_level([0, 1, 2], [[0, 1, 2], [1, 0, 2]])
+    htn = HTN("t", tuple(ActionNode(str(i)) for i in range(3)), top)
+    assert htn.count_orderings() == 2 and not htn.admits(["0", "2", "1"])
+
+
+def test_json_round_trip_keeps_optional_counts_and_support() -> None:
+    demos = [["boil", "cup", "sugar", "pour"], ["boil", "cup", "pour"]] * 2
+    htn = HTNLearner().fit(demos).htn_
+    back = htn_from_dict(htn_to_dict(htn))
+    assert back == htn
+    assert [n.counts for n in _leaves(back.roots[0])] == [n.counts for n in _leaves(htn.roots[0])]
+    assert htn_to_dict(htn)["roots"][0]["children"][2]["optional"] is True
