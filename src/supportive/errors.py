@@ -19,6 +19,7 @@ __all__ = [
     "LearningError",
     "MapFileError",
     "MissingExtraError",
+    "NotFittedError",
     "ObservationFileError",
     "PlanningError",
     "ScenarioFileError",
@@ -99,6 +100,10 @@ class TaskGraphError(SupportiveError, ValueError):
 
 class LearningError(SupportiveError, ValueError):
     """A learning algorithm was given input it cannot work with."""
+
+
+class NotFittedError(LearningError, AttributeError):
+    """An estimator was used before ``fit``."""
 
 
 class ExportError(SupportiveError):

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, nullable, shape
 
-__all__ = ["Executions", "Progress"]
+__all__ = ["Executions", "Progress", "Table"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -41,7 +41,7 @@ class Progress:
 
 
 @dataclass(frozen=True, slots=True)
-class _Table:
+class Table:
     """One internal node, flattened: its kind, children's node ids, masks and symmetry classes."""
 
     chain: bool
@@ -52,6 +52,14 @@ class _Table:
 class Executions:
     """The state machine of an HTN's executions (see the module docstring).
 
+    Besides the runs, the flattened hierarchy is public for models that walk it (the progress model of
+    :mod:`supportive.inference.progress`): nodes are numbered depth first; ``parents[n]`` is ``(parent,
+    position)`` (``(-1, r)`` for root ``r``), ``tables[n]`` a chain or clique's children and symmetry classes,
+    ``masks[n]`` its leaves as bits, ``nullables[n]`` whether it may be performed as nothing, ``leaf_nodes[i]``
+    the node of leaf ``i``, ``root_nodes[r]`` and ``root_of_leaf[i]`` the roots, ``top_out`` the top-level
+    graph (``state -> {root -> state}``; for a complete hierarchy ``0 -> {0: 1}``), ``top_terminal`` its
+    terminal states.
+
     Args:
         htn: A complete hierarchy or a partial one with its ``top_level``.
     """
@@ -60,28 +68,28 @@ class Executions:
         self.htn = htn
         self.leaves: tuple[Leaf, ...] = htn.leaves
         self.index: dict[Leaf, int] = {leaf: i for i, leaf in enumerate(self.leaves)}
-        self._mask: list[int] = []
-        self._nullable: list[bool] = []
-        self._firsts: list[tuple[int, ...]] = []
-        self._firsts_sym: list[tuple[int, ...]] = []
-        self._tables: dict[int, _Table] = {}
-        self._parent: list[tuple[int, int]] = []  # node id -> (parent id, position), (-1, r) for root r
-        self._leaf_node: list[int] = [0] * len(self.leaves)
-        self._root_node: list[int] = [self._build(root, (-1, r)) for r, root in enumerate(htn.roots)]
-        self._root_of_leaf = [0] * len(self.leaves)
-        for r, node_id in enumerate(self._root_node):
-            for leaf_index in _bits(self._mask[node_id]):
-                self._root_of_leaf[leaf_index] = r
+        self.masks: list[int] = []
+        self.nullables: list[bool] = []
+        self.firsts: list[tuple[int, ...]] = []
+        self.firsts_symmetric: list[tuple[int, ...]] = []
+        self.tables: dict[int, Table] = {}
+        self.parents: list[tuple[int, int]] = []  # node id -> (parent id, position), (-1, r) for root r
+        self.leaf_nodes: list[int] = [0] * len(self.leaves)
+        self.root_nodes: list[int] = [self._build(root, (-1, r)) for r, root in enumerate(htn.roots)]
+        self.root_of_leaf = [0] * len(self.leaves)
+        for r, node_id in enumerate(self.root_nodes):
+            for leaf_index in _bits(self.masks[node_id]):
+                self.root_of_leaf[leaf_index] = r
         if htn.top_level is None:
-            self._out: dict[int, dict[int, int]] = {0: {r: 1 for r in range(len(htn.roots))}}
-            self._terminal: frozenset[int] = frozenset({1})
+            self.top_out: dict[int, dict[int, int]] = {0: {r: 1 for r in range(len(htn.roots))}}
+            self.top_terminal: frozenset[int] = frozenset({1})
             self.initial_tops: tuple[int, ...] = (0,)
         else:
-            self._out = htn.top_level.successors()
-            self._terminal = frozenset(htn.top_level.terminal)
+            self.top_out = htn.top_level.successors()
+            self.top_terminal = frozenset(htn.top_level.terminal)
             self.initial_tops = tuple(htn.top_level.initial)
         if htn.top_level is None and len(htn.roots) != 1:
-            self._out = {}
+            self.top_out = {}
         self._by_action: dict[str, tuple[int, ...]] = {}
         for i, (action, _) in enumerate(self.leaves):
             self._by_action[action] = (*self._by_action.get(action, ()), i)
@@ -89,40 +97,40 @@ class Executions:
 
     # ------------------------------------------------------------------ building
     def _build(self, node: Node, parent: tuple[int, int]) -> int:
-        node_id = len(self._mask)
-        self._mask.append(0)
-        self._nullable.append(nullable(node))
-        self._firsts.append(())
-        self._firsts_sym.append(())
-        self._parent.append(parent)
+        node_id = len(self.masks)
+        self.masks.append(0)
+        self.nullables.append(nullable(node))
+        self.firsts.append(())
+        self.firsts_symmetric.append(())
+        self.parents.append(parent)
         if isinstance(node, ActionNode):
             leaf_index = self.index[node.leaf]
-            self._mask[node_id] = 1 << leaf_index
-            self._firsts[node_id] = self._firsts_sym[node_id] = (leaf_index,)
-            self._leaf_node[leaf_index] = node_id
+            self.masks[node_id] = 1 << leaf_index
+            self.firsts[node_id] = self.firsts_symmetric[node_id] = (leaf_index,)
+            self.leaf_nodes[leaf_index] = node_id
             return node_id
         children = tuple(self._build(child, (node_id, i)) for i, child in enumerate(node.children))
         shapes: dict[object, int] = {}
         classes = tuple(shapes.setdefault(shape(child), len(shapes)) for child in node.children)
         chain = isinstance(node, ChainNode)
-        self._tables[node_id] = _Table(chain, children, classes)
+        self.tables[node_id] = Table(chain, children, classes)
         mask = 0
         for child in children:
-            mask |= self._mask[child]
-        self._mask[node_id] = mask
-        self._firsts[node_id] = self._starts(children, classes, chain, symmetric=False)
-        self._firsts_sym[node_id] = self._starts(children, classes, chain, symmetric=True)
+            mask |= self.masks[child]
+        self.masks[node_id] = mask
+        self.firsts[node_id] = self._starts(children, classes, chain, symmetric=False)
+        self.firsts_symmetric[node_id] = self._starts(children, classes, chain, symmetric=True)
         return node_id
 
     def _starts(
         self, children: Sequence[int], classes: Sequence[int], chain: bool, *, symmetric: bool
     ) -> tuple[int, ...]:
-        firsts = self._firsts_sym if symmetric else self._firsts
+        firsts = self.firsts_symmetric if symmetric else self.firsts
         out: list[int] = []
         if chain:
             for child in children:
                 out.extend(firsts[child])
-                if not self._nullable[child]:
+                if not self.nullables[child]:
                     break
             return tuple(out)
         seen: set[int] = set()
@@ -160,40 +168,40 @@ class Executions:
         return cached
 
     def _compute(self, state: Progress, symmetric: bool) -> tuple[dict[int, Progress], bool]:
-        firsts = self._firsts_sym if symmetric else self._firsts
+        firsts = self.firsts_symmetric if symmetric else self.firsts
         moves: dict[int, Progress] = {}
         if state.last < 0:
             return self._starts_from(state.top, 0, firsts, moves)
         within: list[int] = []
         can_end = True
-        node = self._leaf_node[state.last]
-        parent, position = self._parent[node]
+        node = self.leaf_nodes[state.last]
+        parent, position = self.parents[node]
         while parent >= 0 and can_end:
-            table = self._tables[parent]
+            table = self.tables[parent]
             can_end = True
             if table.chain:
                 for child in table.children[position + 1 :]:
                     within.extend(firsts[child])
-                    if not self._nullable[child]:
+                    if not self.nullables[child]:
                         can_end = False
                         break
             else:
                 seen: set[int] = set()
                 for child, cls in zip(table.children, table.classes, strict=True):
-                    if state.done & self._mask[child]:
+                    if state.done & self.masks[child]:
                         continue
                     if not (symmetric and cls in seen):
                         within.extend(firsts[child])
                     seen.add(cls)
-                    if not self._nullable[child]:
+                    if not self.nullables[child]:
                         can_end = False
-            parent, position = self._parent[parent]
+            parent, position = self.parents[parent]
         for leaf in within:
             moves[leaf] = Progress(state.top, state.done | 1 << leaf, leaf)
         if not can_end:
             return moves, False
-        root = self._root_of_leaf[state.last]
-        after = self._out.get(state.top, {}).get(root)
+        root = self.root_of_leaf[state.last]
+        after = self.top_out.get(state.top, {}).get(root)
         if after is None:
             return moves, False
         return self._starts_from(after, state.done, firsts, moves)
@@ -204,22 +212,22 @@ class Executions:
         """Add to ``moves`` the leaves that begin a root from top-level state ``top`` (or from a state that
         skipping roots that may be performed as nothing leads to); and say whether the task may end there."""
         can_end = False
-        for state in self._skip_closure(top):
-            can_end |= state in self._terminal
-            for nxt in self._out.get(state, {}):
-                if done & self._mask[self._root_node[nxt]]:
+        for state in self.skip_closure(top):
+            can_end |= state in self.top_terminal
+            for nxt in self.top_out.get(state, {}):
+                if done & self.masks[self.root_nodes[nxt]]:
                     continue
-                for leaf in firsts[self._root_node[nxt]]:
+                for leaf in firsts[self.root_nodes[nxt]]:
                     moves.setdefault(leaf, Progress(state, done | 1 << leaf, leaf))  # fewest skips first
         return moves, can_end
 
-    def _skip_closure(self, top: int) -> list[int]:
+    def skip_closure(self, top: int) -> list[int]:
         """``top`` and the top-level states reached from it by skipping roots that may be performed as
         nothing."""
         seen, stack = [top], [top]
         while stack:
-            for root, dst in self._out.get(stack.pop(), {}).items():
-                if self._nullable[self._root_node[root]] and dst not in seen:
+            for root, dst in self.top_out.get(stack.pop(), {}).items():
+                if self.nullables[self.root_nodes[root]] and dst not in seen:
                     seen.append(dst)
                     stack.append(dst)
         return seen
