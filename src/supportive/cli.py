@@ -10,7 +10,7 @@ import json
 import sys
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
@@ -114,6 +114,7 @@ def learn(
 class InferenceModel(StrEnum):
     """Goal-inference models."""
 
+    progress = "progress"
     hierarchical = "hierarchical"
     flat = "flat"
 
@@ -125,9 +126,14 @@ def infer(
         Path | None,
         typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml."),
     ] = None,
+    actions: Annotated[
+        Path | None,
+        typer.Option("--actions", "-A", help="Known actions instead, one action id per line (progress model)."),
+    ] = None,
     model: Annotated[
-        InferenceModel, typer.Option("--model", help="Which HMM.")
-    ] = InferenceModel.hierarchical,
+        InferenceModel,
+        typer.Option("--model", help="progress: knows what is done (default); or the thesis's HMMs."),
+    ] = InferenceModel.progress,
     top: Annotated[int, typer.Option("--top", min=1, help="How many entries of each belief to print.")] = 3,
     mean_duration: Annotated[
         float, typer.Option("--mean-duration", min=1.0, help="Mean observations per subgoal.")
@@ -149,27 +155,34 @@ def infer(
         ),
     ] = None,
 ) -> None:
-    """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
-    each: top subgoals, enclosing subtasks and next subgoals, with probabilities)."""
+    """Learn the task's CC-HTN, then print what the teammate is doing after each observation or known action
+    (one JSON line each: top subgoals, enclosing subtasks and next steps, with probabilities)."""
     from supportive.bag_inference import belief_record, infer_bag
-    from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
+    from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM
+    from supportive.io.action_file import parse_action_file
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.observation_file import parse_observation_file
     from supportive.io.taskfile import parse_task_file
     from supportive.learning.learner import learn as learn_htn
 
-    if (observations is None) == (bag is None):
-        raise SupportiveError("give the observations: --observations FILE or --bag BAG (not both)")
+    if sum(source is not None for source in (observations, bag, actions)) != 1:
+        raise SupportiveError("give one source: --observations FILE, --actions FILE or --bag BAG")
     if write_bag is not None and bag is None:
         raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
+    if actions is not None and model is not InferenceModel.progress:
+        raise SupportiveError("--actions needs --model progress (the HMMs read contact events)")
     spec = parse_task_file(file)
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
+    steps = parse_action_file(actions) if actions is not None else []
     stream = parse_observation_file(observations) if observations is not None else []
-    events = ObservationModel.from_spec(spec)
-    kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
     learner = learn_htn(spec)
-    running = kind(learner.htn_, events, mean_duration=mean_duration).filter()
+    if model is InferenceModel.progress:
+        events = ObservationModel.from_spec(spec) if actions is None else None
+        running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).filter()
+    else:
+        kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
+        running = kind(learner.htn_, ObservationModel.from_spec(spec), mean_duration=mean_duration).filter()
 
     def emit(record: dict[str, object]) -> None:
         sys.stdout.write(json.dumps(record) + "\n")
@@ -188,6 +201,8 @@ def infer(
         )
     for moment, time in stream:
         emit(belief_record(running, running.update(moment), top, time))
+    for action in steps:
+        emit(belief_record(running, running.observe(action), top, None))
 
 
 @app.command()

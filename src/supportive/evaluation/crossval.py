@@ -54,7 +54,7 @@ class StepScores:
         self.top1 += ranked[:1] == [truth]
         self.top3 += truth in ranked[:3]
         self.zero += p <= 0.0
-        self.log2 += math.log2(p) if p > 0 else -math.inf
+        self.log2 += math.log2(p) if p > 0 else 0.0
         self.done_top1 += bool(ranked) and ranked[0] in already_done
 
     def merge(self, other: StepScores) -> None:
@@ -67,15 +67,17 @@ class StepScores:
         self.done_top1 += other.done_top1
 
     def as_dict(self) -> dict[str, float | int | None]:
-        """Rates: ``top1``, ``top3``, ``zero`` (share of steps given probability 0), ``log2`` (mean per step;
-        None when some step had probability 0), ``done_top1`` (share whose top-1 was already done)."""
+        """Rates: ``top1``, ``top3``, ``zero`` (share of steps given probability 0), ``log2`` (mean over the
+        steps given a probability above 0, so models that zero some steps can still be compared),
+        ``done_top1`` (share whose top-1 was already done)."""
         n = max(self.steps, 1)
+        scored = max(self.steps - self.zero, 1)
         return {
             "steps": self.steps,
             "top1": round(self.top1 / n, 4),
             "top3": round(self.top3 / n, 4),
             "zero": round(self.zero / n, 4),
-            "log2": round(self.log2 / n, 4) if math.isfinite(self.log2) else None,
+            "log2": round(self.log2 / scored, 4),
             "done_top1": round(self.done_top1 / n, 4),
         }
 

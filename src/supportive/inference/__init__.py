@@ -1,6 +1,21 @@
-"""Goal inference: observation models and flat / hierarchical HMM filters built from an HTN (§2.1.7.1)."""
+"""Goal inference: observation models, the thesis's flat and hierarchical HMM filters built from an HTN
+(§2.1.7.1), the progress-aware tracker that knows what is done, and the next-step predictor."""
 
 from supportive.inference.hmm import Belief, FlatHMM, GoalFilter, HierarchicalHMM
 from supportive.inference.observations import Observation, ObservationModel
+from supportive.inference.predictor import StepPredictor
+from supportive.inference.tracker import END_LABEL, ProgressBelief, ProgressFilter, ProgressHMM
 
-__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM", "Observation", "ObservationModel"]
+__all__ = [
+    "END_LABEL",
+    "Belief",
+    "FlatHMM",
+    "GoalFilter",
+    "HierarchicalHMM",
+    "Observation",
+    "ObservationModel",
+    "ProgressBelief",
+    "ProgressFilter",
+    "ProgressHMM",
+    "StepPredictor",
+]

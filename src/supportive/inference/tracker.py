@@ -33,6 +33,7 @@ from supportive.errors import LearningError
 from supportive.inference.hmm import Belief
 from supportive.inference.observations import ObservationModel
 from supportive.inference.progress import END, ProgressModel
+from supportive.inference.progress_matrices import ProgressMatrices
 from supportive.inference.transitions import TaskLayout
 from supportive.learning.naming import named
 from supportive.tasks.executions import Progress
@@ -152,6 +153,7 @@ class ProgressFilter:
         self.subtask_labels = tuple(node.name or node.kind for node in self.layout.nodes)
         self.enclosing_labels = ("(top level)", *self.subtask_labels)
         self.actions = tuple(dict.fromkeys(a for a, _ in self.leaves))
+        self._action_code = {a: i for i, a in enumerate(self.actions)}
         self._by_action: dict[str, list[int]] = defaultdict(list)
         for i, (action, _) in enumerate(self.leaves):
             self._by_action[action].append(i)
@@ -161,6 +163,8 @@ class ProgressFilter:
                 if state.last >= 0:
                     self._done_at[state.last].append(state)
         self.stay = 1.0 - 1.0 / hmm.mean_duration
+        self._matrices: ProgressMatrices | None = None  # built when contact events first arrive
+        self._vector: np.ndarray | None = None
         if hmm.observations is not None:
             missing = sorted(set(self.actions) - set(hmm.observations.actions))
             if missing:
@@ -172,9 +176,11 @@ class ProgressFilter:
         """Forget everything observed: the task has not started."""
         start = self.model.executions.initial()
         self.belief: dict[Progress | None, float] = {s: 1.0 / len(start) for s in start}
+        self._vector: np.ndarray | None = None
         self.step = 0
         self.log_likelihood = 0.0
         self._seen: Counter[str] = Counter()
+        self._state_likelihood: np.ndarray | None = None
         self._last = self._summarise(0.0, 0.0)
 
     # ------------------------------------------------------------------ evidence: actions
@@ -183,6 +189,7 @@ class ProgressFilter:
         self._seen[action] += 1
         slip = self.hmm.slip
         uniform = slip / (len(self.actions) + 1)
+        self._as_states()
         on: dict[Progress | None, float] = defaultdict(float)
         off: dict[Progress | None, float] = defaultdict(float)
         leaves = set(self._by_action.get(action, ()))
@@ -192,6 +199,27 @@ class ProgressFilter:
                     on[nxt] += mass * (1.0 - slip) * p
             off[self._resync(state, action)] += mass * uniform
         return self._posterior(on, off)
+
+    def _as_states(self) -> None:
+        """Move the belief from the exact vector (contact events) to a map of states (known actions)."""
+        if self._vector is not None and self._matrices is not None:
+            states = (*self._matrices.states, _FINISHED)
+            self.belief = {states[i]: float(p) for i in np.flatnonzero(self._vector) for p in (self._vector[i],)}
+            self._vector = None
+
+    def _as_vector(self) -> bool:
+        """Move the belief to the exact vector when the states are enumerated; False in beam mode."""
+        if self._vector is not None:
+            return True
+        if self.hmm.states_ is None:
+            return False
+        if self._matrices is None:
+            self._matrices = ProgressMatrices(self.model, self.hmm.states_, self.actions, restart=self.hmm.restart)
+        vector = np.zeros(self._matrices.size)
+        for state, mass in self.belief.items():
+            vector[self._matrices.finished if state is _FINISHED else self._matrices.index[state]] += mass
+        self._vector = vector
+        return True
 
     def _outcomes(self, state: Progress | None) -> Mapping[int, tuple[float, Progress | None]]:
         if state is _FINISHED:
@@ -237,6 +265,9 @@ class ProgressFilter:
         likelihood = np.exp(scores - peak)
         idle = float(likelihood.mean())
         slip = self.hmm.slip
+        if self._as_vector():
+            self.log_likelihood += peak
+            return self._update_vector(likelihood, idle, slip)
         on: dict[Progress | None, float] = defaultdict(float)
         off: dict[Progress | None, float] = defaultdict(float)
         started = self.step > 0
@@ -265,6 +296,43 @@ class ProgressFilter:
                 off[target] += slip_mass / len(candidates) * likelihood[target.last]
         self.log_likelihood += peak
         return self._posterior(on, off)
+
+    def _update_vector(self, likelihood: np.ndarray, idle: float, slip: float) -> ProgressBelief:
+        matrices, vector = self._matrices, self._vector
+        assert matrices is not None and vector is not None
+        if self._state_likelihood is None:
+            self._state_likelihood = np.empty(matrices.size)
+        state_likelihood = self._state_likelihood
+        performing = matrices.performing
+        np.copyto(state_likelihood, idle)
+        state_likelihood[performing] = likelihood[matrices.last[performing]]
+        if self.step:
+            staying = vector * performing * self.stay
+            leaving = vector - staying
+        else:
+            staying = np.zeros_like(vector)
+            leaving = vector
+        if not self.hmm.restart:  # finished stays finished, whatever is observed
+            staying[matrices.finished] += leaving[matrices.finished]
+            leaving = leaving.copy()
+            leaving[matrices.finished] = 0.0
+        on = (staying + matrices.advance(leaving) * (1.0 - slip)) * state_likelihood
+        off = np.zeros_like(vector)
+        moving = float(leaving.sum() - leaving[matrices.finished])
+        if moving > 0:
+            off[performing] = slip * moving / int(performing.sum()) * state_likelihood[performing]
+        return self._posterior_vector(on, off)
+
+    def _posterior_vector(self, on: np.ndarray, off: np.ndarray) -> ProgressBelief:
+        posterior = on + off
+        total = float(posterior.sum())
+        if not total > 0:
+            raise LearningError(f"step {self.step + 1}: the evidence is impossible under the model")
+        self._vector = posterior / total
+        self.step += 1
+        self.log_likelihood += math.log(total)
+        self._last = self._summarise(float(off.sum()) / total, -math.log2(total))
+        return self._last
 
     def _slip_targets(self) -> list[Progress]:
         """Where an off-script moment may land: every known state with a subgoal under way (in beam mode, the
@@ -304,7 +372,17 @@ class ProgressFilter:
         next_actions: dict[str, float] = defaultdict(float)
         finished = 0.0
         slip = self.hmm.slip
-        for state, mass in self.belief.items():
+        if self._vector is not None:
+            matrices, vector = self._matrices, self._vector
+            assert matrices is not None
+            performing = matrices.performing
+            current = np.bincount(matrices.last[performing], weights=vector[performing], minlength=n)
+            done = matrices.done.T @ vector
+            arriving = matrices.to_leaf.T @ vector
+            by_action = matrices.to_action.T @ vector
+            next_actions = defaultdict(float, zip((*self.actions, END_LABEL), by_action.tolist(), strict=True))
+            finished = float(vector[matrices.finished])
+        for state, mass in (self.belief.items() if self._vector is None else ()):
             if state is _FINISHED:
                 finished += mass
             else:
@@ -350,6 +428,26 @@ class ProgressFilter:
         """The ``k`` most probable entries of a belief vector, with their labels."""
         order = np.argsort(-values, kind="stable")[:k]
         return [(labels[i], float(values[i])) for i in order]
+
+    def summary(self, belief: Belief, k: int = 3) -> dict[str, object]:
+        """A belief as plain data, as :meth:`GoalFilter.summary <supportive.inference.hmm.GoalFilter.summary>`
+        gives it (``next`` by action id, ``<end>`` included), plus ``finished`` and ``off_script``
+        probabilities and the step's ``surprise`` in bits."""
+
+        def pairs(values: np.ndarray, labels: tuple[str, ...]) -> list[list[object]]:
+            return [[label, round(p, 6)] for label, p in self.top(values, labels, k)]
+
+        assert isinstance(belief, ProgressBelief)  # a ProgressFilter makes only these
+        ranked = sorted(belief.next_actions.items(), key=lambda kv: (-kv[1], kv[0]))[:k]
+        return {
+            "step": belief.step,
+            "subgoals": pairs(belief.subgoals, self.subgoal_labels),
+            "subtasks": pairs(belief.enclosing, self.enclosing_labels),
+            "next": [[action, round(p, 6)] for action, p in ranked],
+            "finished": round(belief.finished, 6),
+            "off_script": round(belief.off_script, 6),
+            "log_likelihood": round(belief.log_likelihood, 6),
+        }
 
 
 def _bits(mask: int) -> list[int]:
