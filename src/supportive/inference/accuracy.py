@@ -19,6 +19,7 @@ import numpy as np
 
 from supportive.inference.hmm import FlatHMM, HierarchicalHMM
 from supportive.inference.observations import Observation, ObservationModel
+from supportive.inference.tracker import ProgressHMM
 from supportive.tasks.htn import HTN, Leaf
 
 __all__ = ["TIE_TOLERANCE", "InferenceAccuracy", "filter_accuracy", "first_share", "inference_accuracy"]
@@ -62,14 +63,14 @@ def first_share(values: np.ndarray, truth: int, tolerance: float = TIE_TOLERANCE
 
 
 def filter_accuracy(
-    model: FlatHMM | HierarchicalHMM,
+    model: FlatHMM | HierarchicalHMM | ProgressHMM,
     observations: Sequence[Observation],
     truth: Sequence[Leaf],
     *,
     timed: bool = False,
 ) -> InferenceAccuracy:
     """Run a fresh online filter of ``model`` over a labelled stream and score every step (ties shared); with
-    ``timed``, also time each ``GoalFilter.update`` alone with :func:`time.perf_counter`.
+    ``timed``, also time each filter update alone with :func:`time.perf_counter`.
 
     Raises:
         ValueError: when the stream is empty or its observations and truth differ in length.

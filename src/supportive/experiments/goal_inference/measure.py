@@ -30,7 +30,7 @@ from supportive.experiments.goal_inference.design import (
 from supportive.experiments.goal_inference.timing import cpu_name, describe_times, one_thread
 from supportive.experiments.trials import Trial
 from supportive.generate import ikea_task_set
-from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
+from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM
 from supportive.inference.accuracy import filter_accuracy
 from supportive.inference.synthetic import SyntheticStream, synthetic_model, synthetic_stream
 from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions
@@ -117,6 +117,10 @@ def measure_setting(
         accuracy[name] = {"subgoal": round(scored.subgoal, 6), "subtask": round(scored.subtask, 6)}
         if clock:
             timing[name] = {**describe_times(scored.seconds), "build_ms": round(built * 1e3, 3)}
+    # the progress-aware tracker (issue 14); the streams chain several executions, so it may start again
+    progress = ProgressHMM(htn, model, mean_duration=MEAN_DURATION, restart=True)
+    scored = filter_accuracy(progress, stream.observations, stream.truth)
+    accuracy["progress"] = {"subgoal": round(scored.subgoal, 6), "subtask": round(scored.subtask, 6)}
     return accuracy, timing
 
 

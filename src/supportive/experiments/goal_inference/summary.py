@@ -20,10 +20,12 @@ from supportive.experiments.goal_inference.design import (
 from supportive.experiments.goal_inference.timing import MODELS
 from supportive.experiments.statistics import mean_ci
 
-__all__ = ["LEVELS", "summarize", "summarize_setting", "summarize_sizes"]
+__all__ = ["ACCURACY_MODELS", "LEVELS", "summarize", "summarize_setting", "summarize_sizes"]
 
 LEVELS = ("subgoal", "subtask")
 """What is ranked: the current subgoal, and the subtask enclosing it (the subgoal's parent)."""
+ACCURACY_MODELS = (*MODELS, "progress")
+"""Models whose accuracy is measured: the thesis's two HMMs and the progress-aware tracker."""
 
 
 def summarize_setting(results: Sequence[Mapping[str, Any]], key: str) -> dict[str, Any]:
@@ -33,7 +35,10 @@ def summarize_setting(results: Sequence[Mapping[str, Any]], key: str) -> dict[st
     scores = [r["accuracy"][key] for r in results]
     summary: dict[str, Any] = {
         model: {level: mean_ci([s[model][level] for s in scores], bounds=(0.0, 1.0)) for level in LEVELS}
-        for model in MODELS
+        for model in ACCURACY_MODELS
+    }
+    summary["progress_difference"] = {
+        level: mean_ci([s["progress"][level] - s["hierarchical"][level] for s in scores]) for level in LEVELS
     }
     summary["difference"] = {
         level: mean_ci([s["hierarchical"][level] - s["flat"][level] for s in scores]) for level in LEVELS
@@ -75,8 +80,18 @@ def summarize_sizes(results: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]
                             level: _mean([m["accuracy"][s.key][model][level] for m in members])
                             for level in LEVELS
                         }
-                        for model in MODELS
+                        for model in ACCURACY_MODELS
                     }
+                    for s in SETTINGS
+                },
+                "progress_difference": {
+                    s.key: mean_ci(
+                        [
+                            m["accuracy"][s.key]["progress"]["subgoal"]
+                            - m["accuracy"][s.key]["hierarchical"]["subgoal"]
+                            for m in members
+                        ]
+                    )
                     for s in SETTINGS
                 },
             }

@@ -1,0 +1,167 @@
+"""The progress-aware tracker: hand-computed posteriors, a brute-force forward pass over enumerated
+executions, slips, the end of the task, and the next-step predictor's contract."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from supportive.errors import NotFittedError
+from supportive.inference import END_LABEL, ObservationModel, ProgressHMM, StepPredictor
+from supportive.inference.progress import END, ProgressModel
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, iter_orderings
+
+A, B, C = (ActionNode(x) for x in "abc")
+
+
+def _next(htn: HTN, prefix: list[str], **settings: object) -> dict[str, float]:
+    tracker = ProgressHMM(htn, **settings).filter()  # type: ignore[arg-type]
+    for action in prefix:
+        tracker.observe(action)
+    return tracker.last.next_actions
+
+
+def test_hand_computed_clique_of_three() -> None:
+    # uniform (no counts): the first of three, then one of the two left, then the last, then the end
+    htn = HTN("t", (CliqueNode((A, B, C)),))
+    slip = 0.04
+    floor = slip / 4  # three actions and <end> share the slip mass
+    first = _next(htn, [], slip=slip)
+    assert first["a"] == pytest.approx((1 - slip) / 3 + floor) and first[END_LABEL] == pytest.approx(floor)
+    after_b = _next(htn, ["b"], slip=slip)
+    assert after_b["a"] == pytest.approx((1 - slip) / 2 + floor) and after_b["b"] == pytest.approx(floor)
+    done = _next(htn, ["b", "a", "c"], slip=slip)
+    assert done[END_LABEL] == pytest.approx(1 - slip + floor)
+
+
+def test_hand_computed_counts_weight_the_choices() -> None:
+    counts = Counts(performed=4, first=(3, 1, 0), after=((0, 2, 1), (1, 0, 0), (0, 0, 0)))
+    htn = HTN("t", (CliqueNode((A, B, C), counts=counts),))
+    model = ProgressModel(htn, smoothing=1.0)
+    start = model.outcomes(model.executions.initial()[0])
+    assert {model.leaves[i][0]: p for i, (p, _) in start.items()} == pytest.approx(
+        {"a": 4 / 7, "b": 2 / 7, "c": 1 / 7}  # first = (3, 1, 0), +1 each
+    )
+    (state,) = model.executions.run(["a"])
+    after_a = {model.leaves[i][0]: p for i, (p, _) in model.outcomes(state).items()}
+    assert after_a == pytest.approx({"b": 3 / 5, "c": 2 / 5})  # after[a] = (_, 2, 1), +1 each
+
+
+def test_hand_computed_chain_with_an_optional_step() -> None:
+    sugar = ActionNode("sugar", optional=True, counts=Counts(performed=1, skipped=3))
+    htn = HTN("t", (ChainNode((ActionNode("boil"), sugar, ActionNode("pour"))),))
+    model = ProgressModel(htn, smoothing=1.0)
+    (state,) = model.executions.run(["boil"])
+    after_boil = {model.leaves[i][0]: p for i, (p, _) in model.outcomes(state).items()}
+    take = (1 + 0.5) / (4 + 1)
+    assert after_boil == pytest.approx({"sugar": take, "pour": 1 - take})
+    (state,) = model.executions.run(["boil", "pour"])
+    assert set(model.outcomes(state)) == {END}
+
+
+shapes = st.recursive(
+    st.sampled_from(["leaf", "optional"]),
+    lambda inner: st.tuples(st.sampled_from(["chain", "clique"]), st.lists(inner, min_size=2, max_size=3)),
+    max_leaves=4,
+)
+
+
+def _build(shape: object, names: itertools.count) -> Node:  # type: ignore[type-arg]
+    if isinstance(shape, str):
+        return ActionNode(f"x{next(names)}", optional=shape == "optional")
+    kind, parts = shape  # type: ignore[misc]
+    children = tuple(_build(p, names) for p in parts)
+    return (ChainNode if kind == "chain" else CliqueNode)(children)
+
+
+@given(shapes, st.integers(0, 2**16))
+def test_forward_pass_agrees_with_brute_force_over_executions(shape: object, seed: int) -> None:
+    structure = _build(shape, itertools.count())
+    htn = HTN("t", (structure,))
+    model = ProgressModel(htn, smoothing=1.0)
+    # brute force: the probability of every whole execution, step by step from the model's choices
+    def probability(sequence: tuple[tuple[str, int], ...]) -> float:
+        (state,) = model.executions.initial()
+        p = 1.0
+        for leaf in sequence:
+            outcome = model.outcomes(state).get(model.executions.index[leaf])
+            if outcome is None:
+                return 0.0
+            p *= outcome[0]
+            state = outcome[1]  # type: ignore[assignment]
+        return p * model.outcomes(state).get(END, (0.0, None))[0]
+
+    executions = list(iter_orderings(structure))
+    masses = {s: probability(s) for s in executions}
+    assert sum(masses.values()) == pytest.approx(1.0)  # the model is a distribution over executions
+    rng = np.random.default_rng(seed)
+    truth = executions[int(rng.integers(len(executions)))]
+    slip = 1e-9
+    tracker = ProgressHMM(htn, slip=slip).filter()
+    for k in range(len(truth) + 1):
+        prefix = truth[:k]
+        consistent = {s: m for s, m in masses.items() if s[:k] == prefix}
+        mass = sum(consistent.values())
+        expected: dict[str, float] = {}
+        for s, m in consistent.items():
+            nxt = s[k][0] if len(s) > k else END_LABEL
+            expected[nxt] = expected.get(nxt, 0.0) + m / mass
+        predicted = tracker.last.next_actions
+        for action, p in expected.items():
+            assert predicted[action] == pytest.approx(p, abs=1e-6)
+        if k < len(truth):
+            tracker.observe(truth[k][0])
+
+
+def test_a_slip_does_not_zero_the_belief_and_is_flagged() -> None:
+    htn = HTN("t", (ChainNode((A, B, C)),))
+    tracker = ProgressHMM(htn, slip=0.01).filter()
+    tracker.observe("a")
+    belief = tracker.observe("c")  # b skipped: off-script
+    assert belief.off_script > 0.99 and belief.surprise > 5
+    # re-synchronised to the nearest execution in which c was just done: the task may end
+    assert belief.next_actions[END_LABEL] > 0.9 and belief.next_actions["c"] < 0.01
+    unknown = tracker.observe("juggle")
+    assert unknown.off_script == pytest.approx(1.0) and math.isfinite(unknown.surprise)
+    assert sum(unknown.next_actions.values()) == pytest.approx(1.0)
+
+
+def test_contact_events_drive_the_same_tracker() -> None:
+    htn = HTN("t", (ChainNode((A, B)),))
+    events = ObservationModel({"a": {"hand-a": 0.9}, "b": {"hand-b": 0.9}})
+    tracker = ProgressHMM(htn, events, mean_duration=2.0).filter()
+    for moment in [{"hand-a"}, {"hand-a"}, {"hand-b"}]:
+        belief = tracker.update(moment)
+    assert belief.subgoals.argmax() == 1 and belief.done[0] > 0.99
+    assert belief.next_actions[END_LABEL] > 0.9
+    mixed = tracker.observe("b")  # known actions and events, one tracker
+    assert mixed.next_actions[END_LABEL] > 0.9
+
+
+def test_beam_agrees_with_exact_when_wide_enough() -> None:
+    structure = CliqueNode(tuple(ActionNode(x) for x in "abcdef"))
+    exact = ProgressHMM(HTN("t", (structure,))).filter()
+    beam = ProgressHMM(HTN("t", (structure,)), max_states=5, beam=10_000).filter()
+    assert beam.hmm.states_ is None and exact.hmm.states_ is not None
+    for action in "cabz":
+        a, b = exact.observe(action), beam.observe(action)
+        assert a.next_actions == pytest.approx(b.next_actions)
+
+
+def test_predictor_contract() -> None:
+    demos = [list("abcd"), list("acbd"), list("abcd"), list("acbd")]
+    predictor = StepPredictor(slip=0.01).fit(demos)
+    for prefix in ([], ["a"], ["a", "b"], ["a", "b", "c", "d"], ["zz"]):
+        next_step = predictor.next_step(prefix)
+        assert set(next_step) == {"a", "b", "c", "d", END_LABEL}
+        assert sum(next_step.values()) == pytest.approx(1.0)
+    assert max(predictor.next_step(list("abcd")).items(), key=lambda kv: kv[1])[0] == END_LABEL
+    with pytest.raises(NotFittedError):
+        StepPredictor().next_step([])
+    with pytest.raises(TypeError, match="unknown setting"):
+        StepPredictor(colour="red")
