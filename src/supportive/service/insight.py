@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass, field
 from functools import cached_property
+from numbers import Real
 from typing import Any
 
 from supportive.errors import SupportiveError
@@ -68,8 +69,9 @@ class Insight:
             self.filter = self.model.filter()
         belief = self.filter.update(set(events))
         summary = self.filter.summary(belief)
-        if "surprise" not in summary and getattr(belief, "surprise", None) is not None:
-            summary["surprise"] = belief.surprise
+        surprise = getattr(belief, "surprise", None)  # reported by filters that model off-script steps
+        if "surprise" not in summary and surprise is not None:
+            summary["surprise"] = surprise
         self.latest = summary
         goal = self.goal()
         if goal is not None and goal["current"]:
@@ -123,9 +125,11 @@ class Insight:
             return out
 
         surprise = latest.get("surprise")
+        if isinstance(surprise, Real) and not isinstance(surprise, bool):
+            surprise = float(surprise)  # plain JSON, whatever number type the filter gives
         flagged = latest.get("off_script")
-        if flagged is None and isinstance(surprise, int | float) and not isinstance(surprise, bool):
-            flagged = float(surprise) >= OFF_SCRIPT
+        if flagged is None and isinstance(surprise, float):
+            flagged = surprise >= OFF_SCRIPT
         return {
             "step": latest.get("step"),
             "subtasks": [{"name": str(n), "probability": float(p)} for n, p in latest.get("subtasks", [])],

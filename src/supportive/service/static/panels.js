@@ -133,9 +133,6 @@ export function renderGoal(target, data) {
     flag.dataset.testid = "off-script";
     parts.push(flag);
   }
-  parts.push(...bars("Likely subtask", goal.subtasks, "goal-subtask", 2));
-  parts.push(...bars("Doing now", goal.current, "goal-current", 3));
-  parts.push(...bars("Next", goal.next, "goal-next", 3));
   if (goal.recent && goal.recent.some((step) => step.off_script)) {
     const list = el("ol", "recent");
     list.dataset.testid = "goal-recent";
@@ -143,8 +140,11 @@ export function renderGoal(target, data) {
       const li = el("li", step.off_script ? "flagged" : "", `${step.off_script ? "⚠ " : ""}${step.text}`);
       list.append(li);
     }
-    parts.push(el("h3", "", "Latest steps (⚠ off script)"), list);
+    parts.push(list);
   }
+  parts.push(...bars("Likely subtask", goal.subtasks, "goal-subtask", 2));
+  parts.push(...bars("Doing now", goal.current, "goal-current", 3));
+  parts.push(...bars("Next", goal.next, "goal-next", 3));
   target.replaceChildren(...parts);
 }
 
