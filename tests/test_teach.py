@@ -3,6 +3,7 @@ from __future__ import annotations
 import shutil
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 from supportive import examples
@@ -90,3 +91,79 @@ def test_teach_command_reads_stdin(tmp_path: Path) -> None:
     assert bad.returncode == 2 and bad.stderr.strip().startswith(
         "supportive: error: --strategy: unknown strategy 'psychic'"
     )
+
+
+TOWER = ["red", "yellow", "green", "white", "orange", "purple", "black", "blue"]
+
+
+def _tower(tmp_path: Path) -> Path:
+    path = tmp_path / "tower.yaml"
+    shutil.copy(examples.path("blocks-tower"), path)
+    return path
+
+
+def test_a_repeated_action_is_refused_and_the_demonstration_is_whole(tmp_path: Path) -> None:
+    """Issue 16.1: a repeat used to be recorded, and the demonstration then ended one action short."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+    _console(path, ["red", "red", *TOWER[1:]], shown).run(demonstrations=1)
+    assert parse_task_file(path).demonstrations[-1].actions == tuple(TOWER)  # blue placed, red once
+    assert "  red is already done (once) in this demonstration; type another action" in shown
+
+
+def test_done_before_every_action_says_what_is_left(tmp_path: Path) -> None:
+    """Issue 16.1: `done` after one step used to save a one-step demonstration."""
+    path = _tower(tmp_path)
+    before = parse_task_file(path).demonstrations
+    shown: list[str] = []
+    _console(path, ["blue", "done", "quit"], shown).run()
+    assert parse_task_file(path).demonstrations == before
+    assert any(
+        line.startswith("  not finished: still to do red, yellow, green, white, orange, purple, black")
+        for line in shown
+    )
+
+
+def test_yes_performs_what_the_robot_asked_and_no_declines(tmp_path: Path) -> None:
+    """Issue 16.1: the robot asks yes/no questions; "no" used to be read as an unknown action."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+
+    def asked() -> str:
+        question = [line for line in shown if "robot: Can you" in line][-1]
+        return next(a for a in TOWER if f"place the {a} block" in question)
+
+    def script() -> Iterator[str]:
+        yield "no"
+        yield "red"
+        second = asked()  # the question after the first step
+        yield "yes"
+        yield from (a for a in TOWER if a not in ("red", second))
+
+    feed = script()
+    console = TeachingConsole(path, lambda: next(feed), shown.append, "distance", QuerySchedule(after_steps=(0, 1)))
+    console.run(demonstrations=1)
+    assert "  all right: type the action you do instead" in shown
+    assert not any("unknown action" in line for line in shown)
+    steps = parse_task_file(path).demonstrations[-1].actions
+    assert steps[0] == "red" and sorted(steps) == sorted(TOWER)
+    assert f"place the {steps[1]} block" in [line for line in shown if "robot: Can you" in line][-1]
+
+
+def test_typos_get_a_did_you_mean_and_case_does_not_matter(tmp_path: Path) -> None:
+    """Issue 16.1: names were case-sensitive and a typo got no suggestion."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+    lines = ["RED", "gren", "Place the Yellow Block", "3", *TOWER[3:]]
+    _console(path, lines, shown).run(demonstrations=1)
+    assert "  unknown action 'gren'; did you mean 'green'? ('help' lists them)" in shown
+    assert parse_task_file(path).demonstrations[-1].actions == tuple(TOWER)
+
+
+def test_an_action_the_task_repeats_may_be_repeated(tmp_path: Path) -> None:
+    path = tmp_path / "soup.yaml"
+    path.write_text("name: soup\nactions: [pour, stir, taste]\ndemonstrations:\n  - {id: d1, steps: [pour, stir, taste, stir]}\n")
+    shown: list[str] = []
+    _console(path, ["pour", "stir", "stir", "stir", "taste"], shown).run(demonstrations=1)
+    assert parse_task_file(path).demonstrations[-1].actions == ("pour", "stir", "stir", "taste")
+    assert "  stir is already done (2 times) in this demonstration; type another action" in shown
