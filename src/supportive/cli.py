@@ -10,7 +10,7 @@ import json
 import sys
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
@@ -25,8 +25,8 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
-out = Console(highlight=False, soft_wrap=True)
-err = Console(stderr=True, highlight=False, soft_wrap=True)
+out = Console(highlight=False)  # wraps at words to the terminal's width (COLUMNS when set)
+err = Console(stderr=True, highlight=False)
 
 
 class LearnFormat(StrEnum):
@@ -57,20 +57,23 @@ def _write_text(text: str, output: Path | None) -> None:
 
 @app.command()
 def learn(
-    file: Annotated[Path, typer.Argument(help="Task file: .yaml, .yml, .json or .csv.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
+    ],
     format: Annotated[LearnFormat, typer.Option("--format", "-f", help="What to print.")] = LearnFormat.tree,
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
     ] = None,
 ) -> None:
     """Learn the CC-HTN of a task from its demonstrations and print or write it."""
+    from supportive.examples import task_path
     from supportive.io.dot import htn_to_dot
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.taskfile import parse_task_file
     from supportive.io.tree import render_tree
     from supportive.learning.learner import learn as learn_htn
 
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     learner = learn_htn(spec)
@@ -87,7 +90,7 @@ def learn(
     elif format is LearnFormat.dot:
         text = htn_to_dot(learner.htn_)
     else:
-        text = render_tree(learner.htn_, spec.texts(), width=120)
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
     _write_text(text, output)
 
 
@@ -100,7 +103,10 @@ class InferenceModel(StrEnum):
 
 @app.command()
 def infer(
-    file: Annotated[Path, typer.Argument(help="Task file whose actions declare their 'observations'.")],
+    file: Annotated[
+        Path,
+        typer.Argument(help="Task file whose actions declare their 'observations', or a bundled example's name."),
+    ],
     observations: Annotated[
         Path, typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml.")
     ],
@@ -114,12 +120,13 @@ def infer(
 ) -> None:
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
     each: top subgoals, enclosing subtasks and next subgoals, with probabilities)."""
+    from supportive.examples import task_path
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
     from supportive.io.observation_file import parse_observation_file
     from supportive.io.taskfile import parse_task_file
     from supportive.learning.learner import learn as learn_htn
 
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     stream = parse_observation_file(observations)
@@ -204,7 +211,17 @@ def captaincook(
 
 @app.command()
 def teach(
-    file: Annotated[Path, typer.Argument(help="Task file (.yaml or .json); demonstrations are saved to it.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml or .json) or a bundled example's name; it is not changed.")
+    ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy your demonstrations are saved to (default: NAME.edited.yaml beside FILE, or here for "
+            "a bundled example); when it exists, teaching carries on in it.",
+        ),
+    ] = None,
     strategy: Annotated[
         str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
     ] = "distance",
@@ -219,6 +236,8 @@ def teach(
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.learning.active import QuerySchedule, strategy_names
     from supportive.teach import TeachingConsole
 
@@ -235,15 +254,26 @@ def teach(
     def read() -> str:
         return input("> ")
 
-    console = TeachingConsole(file, read, out.print, strategy, schedule, seed)
+    copy = working_copy(task_path(file), save)
+    out.print(copy.describe(), markup=False)
+    console = TeachingConsole(copy.path, read, out.print, strategy, schedule, seed)
     console.run(demonstrations)
 
 
 @app.command()
 def chat(
     file: Annotated[
-        Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")
+        Path,
+        typer.Argument(help="Task file with a structure, or a bundled example's name; it is not changed."),
     ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy changed behaviors are saved to (default: NAME.edited.yaml beside FILE, or here for a "
+            "bundled example); when it exists, the conversation carries on in it.",
+        ),
+    ] = None,
     matcher: Annotated[
         str,
         typer.Option(
@@ -254,6 +284,8 @@ def chat(
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
     from supportive.chat import ChatConsole
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.language.understand import MATCHERS
 
     if matcher not in MATCHERS:
@@ -262,7 +294,9 @@ def chat(
     def read() -> str:
         return input("> ")
 
-    ChatConsole(file, read, lambda line: out.print(line, markup=False), matcher).run()
+    copy = working_copy(task_path(file), save)
+    out.print(copy.describe(), markup=False)
+    ChatConsole(copy.path, read, lambda line: out.print(line, markup=False), matcher).run()
 
 
 @app.command()
@@ -433,7 +467,9 @@ def serve(
     task: Annotated[
         Path | None,
         typer.Option(
-            "--task", help="Task file whose structure (or learned HTN) is the board (default: the chair)."
+            "--task",
+            help="Task file (or a bundled example's name) whose structure or learned HTN is the board "
+            "(default: the chair).",
         ),
     ] = None,
     db: Annotated[
@@ -458,12 +494,12 @@ def serve(
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
     subtasks through."""
-    from supportive.examples import path as example_path
+    from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
 
     launch = prepare(
-        task or example_path("ikea-chair"),
+        task_path(task or "ikea-chair"),
         db,
         host=host,
         port=port,
@@ -553,12 +589,55 @@ def reproduce(
         out.print(table)
 
 
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", is_eager=True, help="Print the version and exit."),
+    ] = False,
+) -> None:
+    if version:
+        from importlib.metadata import version as installed
+
+        out.print(f"supportive {installed('supportive')}", markup=False)
+        raise typer.Exit
+
+
+def _plain_placeholders(command: Any) -> None:
+    """Help without typer's ``<bool>``/``<str>`` placeholders: a flag shows none, a value its kind in capitals
+    (``TEXT``, ``INTEGER``, ``NUMBER``, ``PATH``), a choice its choices, an argument its name (``FILE``)."""
+    kinds = {"str": "TEXT", "int": "INTEGER", "float": "NUMBER", "path": "PATH", "file": "PATH"}
+    for param in command.params:
+        if param.metavar is not None or not hasattr(param, "display_type"):  # set, or a typer without them
+            continue
+        if param.param_type_name == "argument":
+            param.metavar = str(param.name).upper()
+        elif getattr(param, "is_flag", False):
+            param.metavar = ""
+        else:
+            label = str(param.display_type(None)).strip("<>").removesuffix(" range")
+            param.metavar = kinds.get(label, label)
+    for sub in getattr(command, "commands", {}).values():
+        _plain_placeholders(sub)
+
+
 def main() -> None:
-    """Entry point: run the app, turning library errors into one line and exit status 2."""
+    """Entry point: run the app, turning library errors into one line and exit status 2 (a missing optional
+    dependency too: the line names the extra that installs it)."""
+    from supportive.extras import missing_extra
+
+    command = typer.main.get_command(app)
+    _plain_placeholders(command)
     try:
-        app()
+        command()
     except SupportiveError as exc:
         err.print(f"supportive: error: {exc}", markup=False)
+        sys.exit(2)
+    except ModuleNotFoundError as exc:
+        problem = missing_extra(exc, " ".join(sys.argv[1:2]) or "this command")
+        if problem is None:
+            raise
+        err.print(f"supportive: error: {problem}", markup=False)
         sys.exit(2)
 
 
