@@ -211,9 +211,8 @@ def captaincook(
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph."""
-    from rich.table import Table
-
     from supportive.io.captaincook import load_captaincook
+    from supportive.io.tables import fitted_table
     from supportive.learning.precedence import captaincook_report
 
     reports = captaincook_report(load_captaincook(data))
@@ -221,13 +220,9 @@ def captaincook(
         rows = [r.as_dict() for r in reports]
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
-    table = Table(title="CaptainCook4D: implied precedences vs the published task graphs")
-    for column in ("recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"):
-        table.add_column(
-            column, justify="left" if column == "recipe" else "right", no_wrap=column == "recipe"
-        )
-    for r in reports:
-        table.add_row(
+    headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
+    rows = [
+        [
             r.recipe,
             str(r.demonstrations),
             str(r.actions),
@@ -236,8 +231,11 @@ def captaincook(
             f"{r.score.precision:.3f}",
             f"{r.score.recall:.3f}",
             f"{r.score.f1:.3f}",
-        )
-    out.print(table)
+        ]
+        for r in reports
+    ]
+    title = "CaptainCook4D: implied precedences vs the published task graphs"
+    out.print(fitted_table(out, title, headers, rows, numeric=range(1, len(headers))))
     mean = {
         k: sum(getattr(r.score, k) for r in reports) / len(reports) for k in ("precision", "recall", "f1")
     }
@@ -608,9 +606,8 @@ def reproduce(
 ) -> None:
     """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
     this run's."""
-    from rich.table import Table
-
     from supportive.experiments import reproduce as run_reproduce
+    from supportive.io.tables import fitted_table
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
@@ -620,12 +617,9 @@ def reproduce(
         out.print(
             f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}"
         )
-        table = Table(title=f"{result.experiment}: this run beside the thesis")
-        for column in ("quantity", "this run", "thesis"):
-            table.add_column(column, justify="left")
-        for row in result.headline:
-            table.add_row(*row)
-        out.print(table)
+        rows = [list(row) for row in result.headline]
+        title = f"{result.experiment}: this run beside the thesis"
+        out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
 
 
 @app.callback()
@@ -643,14 +637,18 @@ def _options(
 
 
 def _plain_placeholders(command: Any) -> None:
-    """Help without typer's ``<bool>``/``<str>`` placeholders: a flag shows none, a value its kind in capitals
-    (``TEXT``, ``INTEGER``, ``NUMBER``, ``PATH``), a choice its choices, an argument its name (``FILE``)."""
+    """Help without typer's ``<bool>``/``<str>``/``<path>`` placeholders (typer ≥ 0.2x shows every parameter's
+    Python type): a flag shows none, a value its kind in capitals (``TEXT``, ``INTEGER``, ``NUMBER``,
+    ``PATH``), a choice its choices, an argument its name (``FILE``) and no type. A typer without them has no
+    ``display_type`` and is left alone."""
     kinds = {"str": "TEXT", "int": "INTEGER", "float": "NUMBER", "path": "PATH", "file": "PATH"}
-    for param in command.params:
-        if param.metavar is not None or not hasattr(param, "display_type"):  # set, or a typer without them
+    helper = command.get_help_option(command.context_class(command))
+    for param in [*command.params, *([helper] if helper is not None else [])]:
+        if param.metavar is not None or not hasattr(param, "display_type"):
             continue
         if param.param_type_name == "argument":
             param.metavar = str(param.name).upper()
+            param.display_type_rich = lambda ctx: None  # the name says it; no type column
         elif getattr(param, "is_flag", False):
             param.metavar = ""
         else:
