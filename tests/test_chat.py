@@ -186,3 +186,23 @@ def test_a_request_with_no_verb_of_help_is_not_made_up_as_a_behavior(tmp_path: P
     assert any(line.startswith("I don't know how to juggle. I can help by doing what I already do (give you screws") for line in shown)
     _console(path, ["When I am screwing the seat, I want you to fetch the glue"], shown).run()  # a verb of help
     assert any(b.text == "fetch the glue" for b in parse_task_file(path).behaviors)
+
+
+def test_chat_on_a_bundled_example_saves_into_a_copy_not_the_package(tmp_path: Path) -> None:
+    """Issue 16.2: the README's chat line used to rewrite the package's own chair (comments gone)."""
+    bundled = examples.path("ikea-chair")
+    before = bundled.read_bytes()
+    script = Path(sys.executable).parent / "supportive"
+    result = subprocess.run(
+        [str(script), "chat", "ikea-chair"],
+        cwd=tmp_path,
+        input="When I am tightening the bolts, I want you to shine a light on the bolt\nyes\nquit\n",
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("Saving to ikea-chair.edited.yaml, a new copy of ")
+    assert bundled.read_bytes() == before
+    copy = tmp_path / "ikea-chair.edited.yaml"
+    assert any(b.text == "shine a light on the bolt" for b in parse_task_file(copy).behaviors)

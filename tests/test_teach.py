@@ -84,7 +84,10 @@ def test_teach_command_reads_stdin(tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr
     assert "robot: Can you place the" in result.stdout
     assert "unknown action 'nonsense'" in result.stdout
-    assert parse_task_file(path).demonstrations[-1].actions == tuple(order)
+    copy = tmp_path / "towers.edited.yaml"  # the file given is read, never changed
+    assert result.stdout.startswith(f"Saving to {copy}, a new copy of {path} (which is not changed).")
+    assert parse_task_file(copy).demonstrations[-1].actions == tuple(order)
+    assert path.read_bytes() == examples.path("blocks-towers").read_bytes()
     bad = subprocess.run(
         [script, "teach", str(path), "--strategy", "psychic"], capture_output=True, text=True, check=False
     )
@@ -167,3 +170,38 @@ def test_an_action_the_task_repeats_may_be_repeated(tmp_path: Path) -> None:
     _console(path, ["pour", "stir", "stir", "stir", "taste"], shown).run(demonstrations=1)
     assert parse_task_file(path).demonstrations[-1].actions == ("pour", "stir", "stir", "taste")
     assert "  stir is already done (2 times) in this demonstration; type another action" in shown
+
+
+def _teach(args: list[str], cwd: Path, lines: list[str]) -> subprocess.CompletedProcess[str]:
+    script = Path(sys.executable).parent / "supportive"
+    return subprocess.run(
+        [str(script), "teach", *args], cwd=cwd, input="\n".join(lines) + "\n", capture_output=True, text=True, check=False
+    )
+
+
+def test_teaching_a_bundled_example_never_writes_into_the_package(tmp_path: Path) -> None:
+    """Issue 16.2: the README's teach line used to rewrite the package's own example."""
+    bundled = examples.path("blocks-tower")
+    before = bundled.read_bytes()
+    result = _teach(["blocks-tower"], tmp_path, [*TOWER, "quit"])  # by name: the bundled file
+    assert result.returncode == 0, result.stderr
+    copy = tmp_path / "blocks-tower.edited.yaml"
+    assert bundled.read_bytes() == before
+    assert len(parse_task_file(copy).demonstrations) == len(parse_task_file(bundled).demonstrations) + 1
+    again = _teach(["blocks-tower"], tmp_path, [*reversed(TOWER[1:-1]), "quit"])
+    assert again.stdout.startswith(f"Carrying on in {copy.name}")  # a second session adds to the first
+    into = _teach(["blocks-tower", "--save", str(bundled)], tmp_path, ["quit"])
+    assert into.returncode == 2 and "inside the installed supportive package" in into.stderr
+    assert bundled.read_bytes() == before
+
+
+def test_save_names_the_copy_and_refuses_another_tasks_file(tmp_path: Path) -> None:
+    mine = tmp_path / "mine.yaml"
+    result = _teach(["blocks-tower", "--save", str(mine)], tmp_path, [*TOWER, "quit"])
+    assert result.returncode == 0 and parse_task_file(mine).demonstrations[-1].actions == tuple(TOWER)
+    other = _teach(["knife-carrots-celery", "--save", str(mine)], tmp_path, ["quit"])
+    assert other.returncode == 2
+    assert other.stderr.strip() == (
+        f"supportive: error: {mine}: it holds task 'blocks-tower', not 'knife-carrots-celery': choose another "
+        "file with --save PATH"
+    )

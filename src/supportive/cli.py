@@ -28,7 +28,7 @@ app = typer.Typer(
 )
 app.add_typer(bag_app, name="bag")
 out = Console(highlight=False)  # wraps at words to the terminal's width (COLUMNS when set)
-err = Console(stderr=True, highlight=False)
+err = Console(stderr=True, highlight=False, soft_wrap=True)  # an error is one line, whatever its length
 
 
 class LearnFormat(StrEnum):
@@ -221,7 +221,7 @@ def captaincook(
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
     headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
-    rows = [
+    cells = [
         [
             r.recipe,
             str(r.demonstrations),
@@ -235,7 +235,7 @@ def captaincook(
         for r in reports
     ]
     title = "CaptainCook4D: implied precedences vs the published task graphs"
-    out.print(fitted_table(out, title, headers, rows, numeric=range(1, len(headers))))
+    out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
     mean = {
         k: sum(getattr(r.score, k) for r in reports) / len(reports) for k in ("precision", "recall", "f1")
     }
@@ -292,8 +292,8 @@ def teach(
         return input("> ")
 
     copy = working_copy(task_path(file), save)
-    out.print(copy.describe(), markup=False)
-    console = TeachingConsole(copy.path, read, out.print, strategy, schedule, seed)
+    console = TeachingConsole(copy.start(), read, out.print, strategy, schedule, seed)
+    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
     console.run(demonstrations)
 
 
@@ -332,8 +332,10 @@ def chat(
         return input("> ")
 
     copy = working_copy(task_path(file), save)
-    out.print(copy.describe(), markup=False)
-    ChatConsole(copy.path, read, lambda line: out.print(line, markup=False), matcher).run()
+    console = ChatConsole(copy.reads(), read, lambda line: out.print(line, markup=False), matcher)
+    console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+    console.run()
 
 
 @app.command()

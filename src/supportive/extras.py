@@ -2,7 +2,7 @@
 ``[project.optional-dependencies]`` of pyproject.toml), so the answer never drifts from what pip installs.
 
 The command line turns a ``ModuleNotFoundError`` for one of them into one line naming the extra
-(``supportive serve needs sqlalchemy, which is not installed: pip install 'supportive[server]'``) wherever
+(``serve needs sqlalchemy, which is not installed: pip install 'supportive[server]'``) wherever
 the import happens; a module no extra provides is a real bug and keeps its traceback.
 """
 
@@ -61,4 +61,4 @@ def missing_extra(error: ModuleNotFoundError, command: str) -> str | None:
     if extra is None:
         return None
     top = module.split(".")[0]
-    return f"supportive {command} needs {top}, which is not installed: pip install 'supportive[{extra}]'"
+    return f"{command} needs {top}, which is not installed: pip install 'supportive[{extra}]'"

@@ -2,9 +2,10 @@
 and never the installed package's own data.
 
 :func:`working_copy` picks the copy (``--save PATH``; by default ``NAME.edited.yaml`` beside the user's file,
-or in the current directory for a bundled example), makes it from the task file byte for byte (comments and
-layout kept) when it does not exist yet, and otherwise carries on in it, so a second session adds to the
-first. A file whose name already ends in ``.edited`` is its own working copy.
+or in the current directory for a bundled example); :meth:`WorkingCopy.start` makes it from the task file
+byte for byte (comments and layout kept) when it does not exist yet, and otherwise the session carries on in
+it, so a second session adds to the first. A file whose name already ends in ``.edited`` is its own working
+copy.
 """
 
 from __future__ import annotations
@@ -22,19 +23,54 @@ EDITED = ".edited"
 """What the default working copy's name adds before the suffix (``chair.yaml`` → ``chair.edited.yaml``)."""
 
 
-@dataclass(frozen=True)
+@dataclass
 class WorkingCopy:
     """The file a session works on.
 
     Attributes:
-        path: The working copy (read at the start, saved to after every change).
-        source: The task file it was made from.
-        made: True when it was made now; False when it existed and the session carries on in it.
+        path: The working copy (saved to after every change).
+        source: The task file it is made from.
+        made: True once :meth:`start` made it now; False while it is not made yet, or when it existed and the
+            session carries on in it.
     """
 
     path: Path
     source: Path
-    made: bool
+    made: bool = False
+
+    @property
+    def exists(self) -> bool:
+        """Whether the copy is there already (made earlier, or by :meth:`start`)."""
+        return self.path.exists()
+
+    def reads(self) -> Path:
+        """The file the session's task comes from: the copy when it exists, else the source (nothing is written
+        yet, so a command that fails before :meth:`start` leaves no file behind)."""
+        return self.path if self.exists else self.source
+
+    def start(self) -> Path:
+        """Make the copy (the source's text, byte for byte; converted when the suffixes name different formats)
+        unless it exists; its path.
+
+        Raises:
+            TaskFileError: when it cannot be written.
+        """
+        if self.exists:
+            return self.path
+        same_format = format_of(self.source) == format_of(self.path)
+        text = (
+            self.source.read_text(encoding="utf-8")
+            if same_format
+            else dump_task(parse_task_file(self.source), format_of(self.path))
+        )
+        try:
+            descriptor = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+            with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
+                handle.write(text)
+        except OSError as exc:
+            raise TaskFileError(f"cannot make the working copy: {exc.strerror}", path=self.path) from None
+        self.made = True
+        return self.path
 
     def describe(self) -> str:
         """One line for the person: where their work is saved, and what stays untouched."""
@@ -51,7 +87,7 @@ def package_folder() -> Path:
 
 
 def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingCopy:
-    """The working copy of the task file ``source``, made now when it does not exist.
+    """The working copy of the task file ``source`` (not made yet: :meth:`WorkingCopy.start` makes it).
 
     Args:
         source: The task file the session starts from.
@@ -69,8 +105,8 @@ def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingC
         if source.stem.endswith(EDITED) and not inside:
             target = source
         else:
-            folder = Path.cwd() if inside else source.parent
-            target = folder / f"{source.stem}{EDITED}{source.suffix}"
+            name = f"{source.stem}{EDITED}{source.suffix}"
+            target = Path(name) if inside else source.parent / name  # a bundled one: in the current folder
     else:
         target = Path(save)
     if _inside_package(target):
@@ -85,18 +121,9 @@ def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingC
             raise TaskFileError(
                 f"it holds task {kept.name!r}, not {spec.name!r}: choose another file with --save PATH", path=target
             )
-        return WorkingCopy(target, source, made=False)
-    if not target.parent.is_dir():
+    elif not target.parent.is_dir():
         raise TaskFileError(f"folder {target.parent} does not exist", path=target)
-    same_format = format_of(source) == format_of(target)
-    text = source.read_text(encoding="utf-8") if same_format else dump_task(spec, format_of(target))
-    try:
-        descriptor = os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
-            handle.write(text)
-    except OSError as exc:
-        raise TaskFileError(f"cannot make the working copy: {exc.strerror}", path=target) from None
-    return WorkingCopy(target, source, made=True)
+    return WorkingCopy(target, source)
 
 
 def _inside_package(path: Path) -> bool:
