@@ -624,18 +624,22 @@ def reproduce(
         out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
 
 
+def _print_version(wanted: bool) -> None:
+    if wanted:
+        from importlib.metadata import version
+
+        out.print(f"supportive {version('supportive')}", markup=False)
+        raise typer.Exit
+
+
 @app.callback()
 def _options(
     version: Annotated[
         bool,
-        typer.Option("--version", is_eager=True, help="Print the version and exit."),
+        typer.Option("--version", is_eager=True, callback=_print_version, help="Print the version and exit."),
     ] = False,
 ) -> None:
-    if version:
-        from importlib.metadata import version as installed
-
-        out.print(f"supportive {installed('supportive')}", markup=False)
-        raise typer.Exit
+    """Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more."""
 
 
 def _plain_placeholders(command: Any) -> None:
