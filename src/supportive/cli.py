@@ -27,8 +27,8 @@ app = typer.Typer(
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
 app.add_typer(bag_app, name="bag")
-out = Console(highlight=False, soft_wrap=True)
-err = Console(stderr=True, highlight=False, soft_wrap=True)
+out = Console(highlight=False)  # wraps at words to the terminal's width (COLUMNS when set)
+err = Console(stderr=True, highlight=False, soft_wrap=True)  # an error is one line, whatever its length
 
 
 class LearnFormat(StrEnum):
@@ -66,7 +66,9 @@ def _write_text(text: str, output: Path | None) -> None:
 
 @app.command()
 def learn(
-    file: Annotated[Path, typer.Argument(help="Task file: .yaml, .yml, .json or .csv.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
+    ],
     format: Annotated[LearnFormat, typer.Option("--format", "-f", help="What to print.")] = LearnFormat.tree,
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
@@ -81,13 +83,14 @@ def learn(
     ] = LearnMode.general,
 ) -> None:
     """Learn the CC-HTN of a task from its demonstrations and print or write it."""
+    from supportive.examples import task_path
     from supportive.io.dot import htn_to_dot
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.taskfile import parse_task_file
     from supportive.io.tree import render_tree
     from supportive.learning.learner import learn as learn_htn
 
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     learner = learn_htn(spec, mode=mode.value)
@@ -107,7 +110,7 @@ def learn(
     elif format is LearnFormat.dot:
         text = htn_to_dot(learner.htn_)
     else:
-        text = render_tree(learner.htn_, spec.texts(), width=120)
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
     _write_text(text, output)
 
 
@@ -121,7 +124,10 @@ class InferenceModel(StrEnum):
 
 @app.command()
 def infer(
-    file: Annotated[Path, typer.Argument(help="Task file whose actions declare their 'observations'.")],
+    file: Annotated[
+        Path,
+        typer.Argument(help="Task file whose actions declare their 'observations', or a bundled example's name."),
+    ],
     observations: Annotated[
         Path | None,
         typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml."),
@@ -158,6 +164,7 @@ def infer(
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation or known action
     (one JSON line each: top subgoals, enclosing subtasks and next steps, with probabilities)."""
     from supportive.bag_inference import belief_record, infer_bag
+    from supportive.examples import task_path
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM
     from supportive.io.action_file import parse_action_file
     from supportive.io.htn_json import htn_to_dict
@@ -171,7 +178,7 @@ def infer(
         raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
     if actions is not None and model is not InferenceModel.progress:
         raise SupportiveError("--actions needs --model progress (the HMMs read contact events)")
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     steps = parse_action_file(actions) if actions is not None else []
@@ -237,9 +244,8 @@ def captaincook(
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph."""
-    from rich.table import Table
-
     from supportive.io.captaincook import load_captaincook
+    from supportive.io.tables import fitted_table
     from supportive.learning.precedence import captaincook_report
 
     reports = captaincook_report(load_captaincook(data))
@@ -247,13 +253,9 @@ def captaincook(
         rows = [r.as_dict() for r in reports]
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
-    table = Table(title="CaptainCook4D: implied precedences vs the published task graphs")
-    for column in ("recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"):
-        table.add_column(
-            column, justify="left" if column == "recipe" else "right", no_wrap=column == "recipe"
-        )
-    for r in reports:
-        table.add_row(
+    headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
+    cells = [
+        [
             r.recipe,
             str(r.demonstrations),
             str(r.actions),
@@ -262,8 +264,11 @@ def captaincook(
             f"{r.score.precision:.3f}",
             f"{r.score.recall:.3f}",
             f"{r.score.f1:.3f}",
-        )
-    out.print(table)
+        ]
+        for r in reports
+    ]
+    title = "CaptainCook4D: implied precedences vs the published task graphs"
+    out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
     mean = {
         k: sum(getattr(r.score, k) for r in reports) / len(reports) for k in ("precision", "recall", "f1")
     }
@@ -276,7 +281,17 @@ def captaincook(
 
 @app.command()
 def teach(
-    file: Annotated[Path, typer.Argument(help="Task file (.yaml or .json); demonstrations are saved to it.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml or .json) or a bundled example's name; it is not changed.")
+    ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy your demonstrations are saved to (default: NAME.edited.yaml beside FILE, or here for "
+            "a bundled example); when it exists, teaching carries on in it.",
+        ),
+    ] = None,
     strategy: Annotated[
         str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
     ] = "distance",
@@ -291,6 +306,8 @@ def teach(
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.learning.active import QuerySchedule, strategy_names
     from supportive.teach import TeachingConsole
 
@@ -307,15 +324,26 @@ def teach(
     def read() -> str:
         return input("> ")
 
-    console = TeachingConsole(file, read, out.print, strategy, schedule, seed)
+    copy = working_copy(task_path(file), save)
+    console = TeachingConsole(copy.start(), read, out.print, strategy, schedule, seed)
+    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
     console.run(demonstrations)
 
 
 @app.command()
 def chat(
     file: Annotated[
-        Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")
+        Path,
+        typer.Argument(help="Task file with a structure, or a bundled example's name; it is not changed."),
     ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy changed behaviors are saved to (default: NAME.edited.yaml beside FILE, or here for a "
+            "bundled example); when it exists, the conversation carries on in it.",
+        ),
+    ] = None,
     matcher: Annotated[
         str,
         typer.Option(
@@ -326,6 +354,8 @@ def chat(
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
     from supportive.chat import ChatConsole
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.language.understand import MATCHERS
 
     if matcher not in MATCHERS:
@@ -334,7 +364,11 @@ def chat(
     def read() -> str:
         return input("> ")
 
-    ChatConsole(file, read, lambda line: out.print(line, markup=False), matcher).run()
+    copy = working_copy(task_path(file), save)
+    console = ChatConsole(copy.reads(), read, lambda line: out.print(line, markup=False), matcher)
+    console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+    console.run()
 
 
 @app.command()
@@ -505,7 +539,9 @@ def serve(
     task: Annotated[
         Path | None,
         typer.Option(
-            "--task", help="Task file whose structure (or learned HTN) is the board (default: the chair)."
+            "--task",
+            help="Task file (or a bundled example's name) whose structure or learned HTN is the board "
+            "(default: the chair).",
         ),
     ] = None,
     db: Annotated[
@@ -530,12 +566,12 @@ def serve(
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
     subtasks through."""
-    from supportive.examples import path as example_path
+    from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
 
     launch = prepare(
-        task or example_path("ikea-chair"),
+        task_path(task or "ikea-chair"),
         db,
         host=host,
         port=port,
@@ -605,9 +641,8 @@ def reproduce(
 ) -> None:
     """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
     this run's."""
-    from rich.table import Table
-
     from supportive.experiments import reproduce as run_reproduce
+    from supportive.io.tables import fitted_table
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
@@ -617,20 +652,68 @@ def reproduce(
         out.print(
             f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}"
         )
-        table = Table(title=f"{result.experiment}: this run beside the thesis")
-        for column in ("quantity", "this run", "thesis"):
-            table.add_column(column, justify="left")
-        for row in result.headline:
-            table.add_row(*row)
-        out.print(table)
+        rows = [list(row) for row in result.headline]
+        title = f"{result.experiment}: this run beside the thesis"
+        out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
+
+
+def _print_version(wanted: bool) -> None:
+    if wanted:
+        from importlib.metadata import version
+
+        out.print(f"supportive {version('supportive')}", markup=False)
+        raise typer.Exit
+
+
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", is_eager=True, callback=_print_version, help="Print the version and exit."),
+    ] = False,
+) -> None:
+    """Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more."""
+
+
+def _plain_placeholders(command: Any) -> None:
+    """Help without typer's ``<bool>``/``<str>``/``<path>`` placeholders (typer ≥ 0.2x shows every parameter's
+    Python type): a flag shows none, a value its kind in capitals (``TEXT``, ``INTEGER``, ``NUMBER``,
+    ``PATH``), a choice its choices, an argument its name (``FILE``) and no type. A typer without them has no
+    ``display_type`` and is left alone."""
+    kinds = {"str": "TEXT", "int": "INTEGER", "float": "NUMBER", "path": "PATH", "file": "PATH"}
+    helper = command.get_help_option(command.context_class(command))
+    for param in [*command.params, *([helper] if helper is not None else [])]:
+        if param.metavar is not None or not hasattr(param, "display_type"):
+            continue
+        if param.param_type_name == "argument":
+            param.metavar = str(param.name).upper()
+            param.display_type_rich = lambda ctx: None  # the name says it; no type column
+        elif getattr(param, "is_flag", False):
+            param.metavar = ""
+        else:
+            label = str(param.display_type(None)).strip("<>").removesuffix(" range")
+            param.metavar = kinds.get(label, label)
+    for sub in getattr(command, "commands", {}).values():
+        _plain_placeholders(sub)
 
 
 def main() -> None:
-    """Entry point: run the app, turning library errors into one line and exit status 2."""
+    """Entry point: run the app, turning library errors into one line and exit status 2 (a missing optional
+    dependency too: the line names the extra that installs it)."""
+    from supportive.extras import missing_extra
+
+    command = typer.main.get_command(app)
+    _plain_placeholders(command)
     try:
-        app()
+        command()
     except SupportiveError as exc:
         err.print(f"supportive: error: {exc}", markup=False)
+        sys.exit(2)
+    except ModuleNotFoundError as exc:
+        problem = missing_extra(exc, " ".join(sys.argv[1:2]) or "this command")
+        if problem is None:
+            raise
+        err.print(f"supportive: error: {problem}", markup=False)
         sys.exit(2)
 
 
