@@ -235,6 +235,59 @@ def generate(
 
 
 @app.command()
+def evaluate(
+    file: Annotated[Path, typer.Argument(help="Task file with at least two demonstrations.")],
+    folds: Annotated[
+        str, typer.Option("--folds", help="loo (leave one out) or a number of folds K.")
+    ] = "loo",
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the folds (K folds only).")] = 0,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
+) -> None:
+    """Cross-validate your demonstrations: does the hierarchy learned from the others admit the one held out
+    (with a ground-truth structure: recall and precision of its orderings), and how well the progress-aware
+    next-step predictor and three simple baselines predict each step."""
+    from supportive.evaluation import evaluate_task
+    from supportive.examples import task_path
+    from supportive.experiments.progress import progress_bar
+    from supportive.io.tables import fitted_table
+    from supportive.io.taskfile import parse_task_file
+
+    if folds != "loo" and not (folds.isdigit() and int(folds) >= 2):
+        raise SupportiveError(f"--folds: expected loo or a number of folds of at least 2, got {folds!r}")
+    spec = parse_task_file(task_path(file))
+    if len(spec.demonstrations) < 2:
+        raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")
+    k = None if folds == "loo" else int(folds)
+    with progress_bar(f"evaluate {spec.name}", len(spec.demonstrations)) as advance:
+        result = evaluate_task(spec, k=k, seed=seed, progress=advance)
+    data = result.as_dict()
+    if as_json:
+        out.print_json(json.dumps(data))
+        return
+    learning = [
+        f"{data['admitted']} of {data['held_out']} held-out demonstrations admitted ({data['admission']:.1%})",
+    ]
+    if data["recall"] is not None:
+        learning.append(f"orderings of the structure: recall {data['recall']:.3f}, precision {data['precision']:.3f}")
+    out.print(f"[bold]{spec.name}[/]: {'leave one out' if k is None else f'{k} folds'}, {result.folds} folds")
+    for line in learning:
+        out.print("  " + line)
+    rows = [
+        [
+            name,
+            f"{m['top1']:.3f}",
+            f"{m['top3']:.3f}",
+            f"{m['zero']:.3f}",
+            f"{m['log2']:.3f}",
+            f"{m['done_top1']:.3f}",
+        ]
+        for name, m in data["prediction"].items()
+    ]
+    headers = ["next-step predictor", "top-1", "top-3", "P = 0", "log2 P / step", "top-1 done"]
+    out.print(fitted_table(out, f"{result.prediction['progress-aware'].steps} steps", headers, rows, numeric=range(1, 6)))
+
+
+@app.command()
 def captaincook(
     data: Annotated[
         Path | None,

@@ -60,6 +60,7 @@ _BUILTINS = (
     "supportive.experiments.goal_inference",
     "supportive.experiments.active_learning",
     "supportive.experiments.captaincook",
+    "supportive.experiments.captaincook_prediction",
     "supportive.experiments.transfer",
     "supportive.experiments.caregiver",
     "supportive.experiments.support_tamp",
