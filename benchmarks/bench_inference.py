@@ -2,7 +2,10 @@
 
 For generated IKEA-like tasks of 10, 100 and 1,000 subgoals and a 10,000-step synthetic contact-event stream:
 
-* our online update (one observation in, a belief out) for the flat and the hierarchical HMM;
+* our online update (one observation in, a belief out) for the flat and the hierarchical HMM and the
+  progress-aware tracker (issue #14: goals 50 us at 100 subgoals, 1 ms at 1,000; exact, over its enumerated
+  states, when it has at most ``max_states``; the beam's agreement with exact is measured on a task whose
+  states are enumerable);
 * the peer, hmmlearn's CategoricalHMM on the same flat model (its observations are the distinct event sets of
   the stream, each a symbol). hmmlearn has no online filter, so a user who wants a belief at every step
   re-scores the prefix: we time that at several prefix lengths, and its full-sequence ``score`` and
@@ -21,16 +24,18 @@ import numpy as np
 from hmmlearn.hmm import CategoricalHMM
 
 from supportive.generate import generate_task
-from supportive.inference import FlatHMM, HierarchicalHMM
+from supportive.inference import FlatHMM, HierarchicalHMM, ProgressHMM
 from supportive.inference.synthetic import synthetic_model, synthetic_stream
 from supportive.tasks.htn import HTN
 
 GOALS_SECONDS = {100: 50e-6, 1000: 1e-3}
+PROGRESS_GOALS = {100: 50e-6, 1000: 1e-3}
 STEPS = 10_000
 
 
-def per_update(model: FlatHMM | HierarchicalHMM, observations: list[frozenset[str]]) -> float:
+def per_update(model: FlatHMM | HierarchicalHMM | ProgressHMM, observations: list[frozenset[str]]) -> float:
     running = model.filter()
+    running.update(observations[0])  # build what the first update builds (the tracker's matrices)
     started = time.perf_counter()
     for observation in observations:
         running.update(observation)
@@ -63,6 +68,28 @@ def peer(model: FlatHMM, observations: list[frozenset[str]], prefixes: list[int]
     return out
 
 
+def beam_agreement(seed: int, size: int = 30, steps: int = 2000) -> dict[str, object]:
+    """Mean total-variation distance between the beam's and the exact tracker's current-subgoal beliefs
+    and next-step predictions, per beam width, on one stream."""
+    spec = generate_task(size, seed)
+    assert spec.structure is not None
+    htn = HTN(spec.name, (spec.structure,))
+    model = synthetic_model([a.id for a in spec.actions], overlap=0.5, spurious=1.0, seed=seed)
+    stream = synthetic_stream(spec.structure, model, executions=steps // (5 * size) + 1, seed=seed)
+    observations = list(stream.observations[:steps])
+    exact = ProgressHMM(htn, model, restart=True)
+    reference = [b.subgoals.copy() for b in map(exact.filter().update, observations)]
+    widths: dict[str, object] = {"states": len(exact.states_ or ()), "steps": len(observations)}
+    for beam in (8, 32, 128):
+        approximate = ProgressHMM(htn, model, restart=True, max_states=1, beam=beam).filter()
+        distances = [
+            0.5 * float(np.abs(approximate.update(o).subgoals - r).sum()) for o, r in zip(observations, reference, strict=True)
+        ]
+        widths[f"beam_{beam}_mean_tv"] = float(np.mean(distances))
+        widths[f"beam_{beam}_max_tv"] = float(np.max(distances))
+    return widths
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--output", type=Path, default=Path(__file__).parent / "results" / "inference.json")
@@ -78,7 +105,12 @@ def main() -> None:
         stream = synthetic_stream(spec.structure, model, executions=executions, seed=args.seed)
         observations = list(stream.observations[:STEPS])
         flat, hierarchical = FlatHMM(htn, model), HierarchicalHMM(htn, model)
-        ours = {"flat": per_update(flat, observations), "hierarchical": per_update(hierarchical, observations)}
+        progress = ProgressHMM(htn, model, restart=True)  # the stream chains executions
+        ours = {
+            "flat": per_update(flat, observations),
+            "hierarchical": per_update(hierarchical, observations),
+            "progress": per_update(progress, observations),
+        }
         started = time.perf_counter()
         hierarchical.predict_proba(observations)
         ours_full = time.perf_counter() - started
@@ -91,6 +123,10 @@ def main() -> None:
             "update_seconds": ours,
             "goal_update_seconds": goal,
             "meets_goal": None if goal is None else ours["hierarchical"] <= goal,
+            "progress_goal_update_seconds": PROGRESS_GOALS.get(size),
+            "progress_meets_goal": None if size not in PROGRESS_GOALS else ours["progress"] <= PROGRESS_GOALS[size],
+            "progress_states": None if progress.states_ is None else len(progress.states_),
+            "progress_over_hierarchical": ours["progress"] / ours["hierarchical"],
             "hierarchical_speedup_over_flat": ours["flat"] / ours["hierarchical"],
             "transition_nonzeros": {
                 "flat": int(flat.transitions_.nonzeros),
@@ -107,10 +143,13 @@ def main() -> None:
             },
         }
         print(
-            f"{size:5d} subgoals: update flat {ours['flat'] * 1e6:8.1f} us, hierarchical "
+            f"{size:5d} subgoals: progress {ours['progress'] * 1e6:8.1f} us "
+            f"({cases[f'ikea-{size}-subgoals']['progress_states']} states), "
+            f"update flat {ours['flat'] * 1e6:8.1f} us, hierarchical "
             f"{ours['hierarchical'] * 1e6:8.1f} us (goal {goal}); hmmlearn re-score of the prefix "
             f"{theirs[f'rescore_prefix_{max(p for p in (100, 1000, 10_000) if p <= len(peer_steps))}_seconds'] * 1e3:8.2f} ms"
         )
+    cases["beam-vs-exact"] = beam_agreement(args.seed)
     result = {
         "benchmark": "inference",
         "machine": {"python": platform.python_version(), "processor": platform.machine()},

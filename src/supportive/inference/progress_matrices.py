@@ -40,6 +40,8 @@ class ProgressMatrices:
         action_index = {a: i for i, a in enumerate(actions)}
         self.last = np.array([s.last for s in self.states] + [-1], dtype=np.intp)
         self.performing = self.last >= 0
+        self.last_or_zero = np.maximum(self.last, 0)
+        self.last_plus_one = self.last + 1
         rows, cols, values = [], [], []
         leaf_rows, leaf_cols, leaf_values = [], [], []
         act_rows, act_cols, act_values = [], [], []
@@ -91,6 +93,9 @@ class ProgressMatrices:
             (np.ones(len(done_rows)), (done_rows, done_cols)), shape=(n, len(leaves))
         )
         self.step_t = self.step.T.tocsr()  # column products as row products: vector @ step
+        self.done_t = self.done.T.tocsr()
+        self.to_leaf_t = self.to_leaf.T.tocsr()
+        self.to_action_t = self.to_action.T.tocsr()
         self.initial = np.zeros(n)
         self.initial[initial] = 1.0 / len(initial)
 

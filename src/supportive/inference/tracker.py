@@ -24,7 +24,8 @@ from __future__ import annotations
 
 import math
 from collections import Counter, defaultdict
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -47,8 +48,19 @@ END_LABEL = "<end>"
 _FINISHED = None
 
 
+@dataclass(frozen=True)
+class _Details:
+    """What a belief works out only when asked: where the next step goes, what is done, finished."""
+
+    arriving: np.ndarray
+    finished: float
+    done: np.ndarray
+    next_actions: dict[str, float]
+
+
 class ProgressBelief(Belief):
-    """A :class:`~supportive.inference.hmm.Belief` that also knows what is done.
+    """A :class:`~supportive.inference.hmm.Belief` that also knows what is done (worked out when first
+    asked for, so that an update costs only the move of the probabilities).
 
     Attributes (besides the HMM belief's):
         finished: Probability that the task is finished.
@@ -62,28 +74,43 @@ class ProgressBelief(Belief):
         self,
         step: int,
         subgoals: np.ndarray,
-        arriving: np.ndarray,
         layout: TaskLayout,
         ll: float,
         *,
-        finished: float,
-        done: np.ndarray,
-        next_actions: dict[str, float],
         off_script: float,
         surprise: float,
+        details: Callable[[], _Details],
     ) -> None:
-        super().__init__(step, subgoals, arriving, layout, ll)
-        self.finished = finished
-        self.done = done
-        self.next_actions = next_actions
+        super().__init__(step, subgoals, subgoals, layout, ll)
         self.off_script = off_script
         self.surprise = surprise
+        self._work_out = details
+
+    @cached_property
+    def _details(self) -> _Details:
+        return self._work_out()
+
+    @property
+    def finished(self) -> float:
+        """Probability that the task is finished."""
+        return self._details.finished
+
+    @property
+    def done(self) -> np.ndarray:
+        """Probability that each subgoal is done."""
+        return self._details.done
+
+    @property
+    def next_actions(self) -> dict[str, float]:
+        """Probability of each action id being done next, plus :data:`END_LABEL`."""
+        return self._details.next_actions
 
     @cached_property
     def next_subgoals(self) -> np.ndarray:
         """Probability of each subgoal being the next one started (the task's end left out)."""
-        total = self._arriving.sum()
-        return self._arriving / total if total > 0 else self._arriving
+        arriving = self._details.arriving
+        total = arriving.sum()
+        return arriving / total if total > 0 else arriving
 
 
 class ProgressHMM:
@@ -180,7 +207,8 @@ class ProgressFilter:
         self.step = 0
         self.log_likelihood = 0.0
         self._seen: Counter[str] = Counter()
-        self._state_likelihood: np.ndarray | None = None
+        self._stay_vector: np.ndarray | None = None
+        self._slip_share: np.ndarray | None = None
         self._last = self._summarise(0.0, 0.0)
 
     # ------------------------------------------------------------------ evidence: actions
@@ -300,27 +328,20 @@ class ProgressFilter:
     def _update_vector(self, likelihood: np.ndarray, idle: float, slip: float) -> ProgressBelief:
         matrices, vector = self._matrices, self._vector
         assert matrices is not None and vector is not None
-        if self._state_likelihood is None:
-            self._state_likelihood = np.empty(matrices.size)
-        state_likelihood = self._state_likelihood
-        performing = matrices.performing
-        np.copyto(state_likelihood, idle)
-        state_likelihood[performing] = likelihood[matrices.last[performing]]
-        if self.step:
-            staying = vector * performing * self.stay
-            leaving = vector - staying
-        else:
-            staying = np.zeros_like(vector)
-            leaving = vector
-        if not self.hmm.restart:  # finished stays finished, whatever is observed
-            staying[matrices.finished] += leaving[matrices.finished]
-            leaving = leaving.copy()
-            leaving[matrices.finished] = 0.0
-        on = (staying + matrices.advance(leaving) * (1.0 - slip)) * state_likelihood
-        off = np.zeros_like(vector)
+        if self._stay_vector is None:  # what stays put: a subgoal under way goes on; finished stays finished
+            self._stay_vector = matrices.performing * self.stay
+            if not self.hmm.restart:
+                self._stay_vector[matrices.finished] = 1.0
+            self._slip_share = matrices.performing / max(int(matrices.performing.sum()), 1)
+        state_likelihood = likelihood.take(matrices.last_or_zero)
+        state_likelihood[~matrices.performing] = idle
+        staying = vector * self._stay_vector if self.step else np.zeros_like(vector)
+        if not self.step and not self.hmm.restart:
+            staying[matrices.finished] = vector[matrices.finished]
+        leaving = vector - staying
         moving = float(leaving.sum() - leaving[matrices.finished])
-        if moving > 0:
-            off[performing] = slip * moving / int(performing.sum()) * state_likelihood[performing]
+        on = (staying + matrices.advance(leaving) * (1.0 - slip)) * state_likelihood
+        off = (slip * moving) * self._slip_share * state_likelihood
         return self._posterior_vector(on, off)
 
     def _posterior_vector(self, on: np.ndarray, off: np.ndarray) -> ProgressBelief:
@@ -366,38 +387,57 @@ class ProgressFilter:
 
     def _summarise(self, off_script: float, surprise: float) -> ProgressBelief:
         n = len(self.leaves)
-        current = np.zeros(n)
+        matrices, vector = self._matrices, self._vector
+        if vector is not None:
+            assert matrices is not None
+            current = np.bincount(matrices.last_plus_one, weights=vector, minlength=n + 1)[1:]
+        else:
+            current = np.zeros(n)
+            for state, mass in self.belief.items():
+                if state is not _FINISHED and state.last >= 0:
+                    current[state.last] += mass
+        belief, seen = self.belief, dict(self._seen)
+
+        def details() -> _Details:
+            return self._details(vector, belief, seen)
+
+        return ProgressBelief(
+            self.step, current, self.layout, self.log_likelihood, off_script=off_script, surprise=surprise, details=details
+        )
+
+    def _details(
+        self, vector: np.ndarray | None, belief: Mapping[Progress | None, float], seen: Mapping[str, int]
+    ) -> _Details:
+        n = len(self.leaves)
         done = np.zeros(n)
         arriving = np.zeros(n)
         next_actions: dict[str, float] = defaultdict(float)
         finished = 0.0
-        slip = self.hmm.slip
-        if self._vector is not None:
-            matrices, vector = self._matrices, self._vector
+        if vector is not None:
+            matrices = self._matrices
             assert matrices is not None
-            performing = matrices.performing
-            current = np.bincount(matrices.last[performing], weights=vector[performing], minlength=n)
-            done = matrices.done.T @ vector
-            arriving = matrices.to_leaf.T @ vector
-            by_action = matrices.to_action.T @ vector
-            next_actions = defaultdict(float, zip((*self.actions, END_LABEL), by_action.tolist(), strict=True))
+            done = matrices.done_t @ vector
+            arriving = matrices.to_leaf_t @ vector
+            next_actions = defaultdict(
+                float, zip((*self.actions, END_LABEL), (matrices.to_action_t @ vector).tolist(), strict=True)
+            )
             finished = float(vector[matrices.finished])
-        for state, mass in (self.belief.items() if self._vector is None else ()):
-            if state is _FINISHED:
-                finished += mass
-            else:
-                if state.last >= 0:
-                    current[state.last] += mass
-                done[_bits(state.done)] += mass
-            for leaf, (p, _) in self._outcomes(state).items():
-                if leaf == END:
-                    next_actions[END_LABEL] += mass * p
+        else:
+            for state, mass in belief.items():
+                if state is _FINISHED:
+                    finished += mass
                 else:
-                    arriving[leaf] += mass * p
-                    next_actions[self.leaves[leaf][0]] += mass * p
-        for action, count in self._seen.items():  # done as often as the task has it: not again, whatever
-            if count >= len(self._by_action.get(action, ())):  # the belief says after a slip
+                    done[_bits(state.done)] += mass
+                for leaf, (p, _) in self._outcomes(state).items():
+                    if leaf == END:
+                        next_actions[END_LABEL] += mass * p
+                    else:
+                        arriving[leaf] += mass * p
+                        next_actions[self.leaves[leaf][0]] += mass * p
+        for action, count in seen.items():  # done as often as the task has it: not again, whatever the
+            if count >= len(self._by_action.get(action, ())):  # belief says after a slip
                 next_actions.pop(action, None)
+        slip = self.hmm.slip
         on_script = sum(next_actions.values())
         uniform = slip / (len(self.actions) + 1)
         predicted = {
@@ -405,19 +445,7 @@ class ProgressFilter:
             for a in (*self.actions, END_LABEL)
         }
         total = sum(predicted.values())
-        predicted = {a: p / total for a, p in predicted.items()}
-        return ProgressBelief(
-            self.step,
-            current,
-            arriving,
-            self.layout,
-            self.log_likelihood,
-            finished=finished,
-            done=done,
-            next_actions=predicted,
-            off_script=off_script,
-            surprise=surprise,
-        )
+        return _Details(arriving, finished, done, {a: p / total for a, p in predicted.items()})
 
     @property
     def last(self) -> ProgressBelief:

@@ -1,0 +1,70 @@
+"""Cross-validation and the baselines: folds, the scores' arithmetic, and the CLI."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from supportive import examples
+from supportive.evaluation import Bigram, MaskedBigram, MostFrequentNotDone, StepScores, evaluate_task, folds
+
+DEMOS = [list("abcd"), list("acbd"), list("abcd"), list("acbd"), list("abcd")]
+
+
+def test_folds_cover_every_demonstration_once() -> None:
+    for k in (None, 2, 3, 10):
+        parts = folds(7, k, seed=3)
+        assert sorted(i for part in parts for i in part) == list(range(7))
+    assert folds(7, 3, seed=3) == folds(7, 3, seed=3)  # same seed, same folds
+
+
+def test_bigram_is_add_one_smoothed() -> None:
+    model = Bigram().fit(DEMOS)
+    after_a = model.next_step(["a"])
+    assert after_a["b"] == pytest.approx((3 + 1) / (5 + 5)) and after_a["<end>"] == pytest.approx(1 / 10)
+    assert sum(after_a.values()) == pytest.approx(1.0)
+
+
+def test_masked_bigram_never_repeats_a_done_step_and_backs_off() -> None:
+    model = MaskedBigram().fit(DEMOS)
+    assert model.next_step(["a", "b"])["b"] == 0.0
+    backed_off = model.next_step(["a", "d"])  # d -> <end> only, but b and c are still open
+    assert backed_off["<end>"] == pytest.approx(1.0)
+    assert MostFrequentNotDone().fit(DEMOS).next_step(list("abcd")) == {"a": 0, "b": 0, "c": 0, "d": 0, "<end>": 1.0}
+
+
+def test_scores_add_up() -> None:
+    scores = StepScores()
+    scores.add({"a": 0.7, "b": 0.3}, "a", set())
+    scores.add({"a": 0.7, "b": 0.3}, "b", {"a"})
+    scores.add({"a": 1.0}, "c", set())
+    rates = scores.as_dict()  # rounded to four places
+    assert rates["top1"] == rates["zero"] == rates["done_top1"] == 0.3333 and rates["top3"] == 0.6667
+    assert rates["log2"] == pytest.approx((-0.5146 - 1.737) / 2, abs=1e-3)
+
+
+def test_the_progress_aware_predictor_beats_the_baselines_on_the_chair() -> None:
+    result = evaluate_task(examples.load("ikea-chair"))
+    scores = {name: s.as_dict() for name, s in result.prediction.items()}
+    ours = scores["progress-aware"]
+    assert ours["zero"] == 0.0 and ours["done_top1"] == 0.0
+    assert ours["top1"] > scores["masked bigram"]["top1"] > scores["bigram"]["top1"]
+    assert ours["log2"] > scores["bigram"]["log2"]
+    assert result.held_out == 6 and result.recall is not None and result.precision == 1.0
+
+
+def test_evaluate_cli(cli) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = cli(["evaluate", str(examples.path("ikea-chair")), "--json"])
+    assert code == 0
+    data = json.loads(out)
+    assert data["held_out"] == 6 and set(data["prediction"]) == {
+        "progress-aware",
+        "bigram",
+        "masked bigram",
+        "most frequent not done",
+    }
+    code, out, _ = cli(["evaluate", "ikea-chair", "--folds", "3"])
+    assert code == 0 and "progress-aware" in out and "held-out demonstrations admitted" in out
+    code, _, err = cli(["evaluate", "ikea-chair", "--folds", "one"])
+    assert code == 2 and "--folds" in err and len(err.strip().splitlines()) == 1
