@@ -146,7 +146,7 @@ def _failures(tmp_path: Path) -> list[tuple[list[str], str]]:
             f"{good}: no topic /none in the bag",
         ),
         (["infer", chair, "--bag", str(broken)], f"{broken}: cannot open the bag: "),
-        (["infer", chair], "give the observations: --observations FILE or --bag BAG"),
+        (["infer", chair], "give one source: --observations FILE, --actions FILE or --bag BAG"),
         (["bag", "export", chair, "-o", str(good)], f"{good}: exists already; a bag is never overwritten"),
     ]
 
@@ -229,7 +229,7 @@ def test_beliefs_written_back_equal_infer_on_the_same_events(
     with AnyReader([out]) as reader:
         latched = {c.topic: c.ext.offered_qos_profiles for c in reader.connections}  # type: ignore[union-attr]
     assert latched["/supportive/hierarchy"] == [LATCHED] and latched["/supportive/belief"] == []
-    assert "/supportive/surprise" not in topics  # today's filter reports no surprise
+    assert "/supportive/surprise" in topics  # the progress-aware tracker says how surprising each frame was
     assert next(out.glob("*.mcap"))
 
 

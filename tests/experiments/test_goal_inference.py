@@ -162,6 +162,7 @@ def _result(index: int, subgoals: int, flat: float, hierarchical: float) -> dict
         s.key: {
             "flat": {"subgoal": flat - s.overlap / 10, "subtask": flat},
             "hierarchical": {"subgoal": hierarchical - s.overlap / 10, "subtask": hierarchical},
+            "progress": {"subgoal": hierarchical - s.overlap / 20, "subtask": hierarchical},
         }
         for s in SETTINGS
     }

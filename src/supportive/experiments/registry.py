@@ -61,6 +61,7 @@ _BUILTINS = (
     "supportive.experiments.active_learning",
     "supportive.experiments.captaincook",
     "supportive.experiments.captaincook_prediction",
+    "supportive.experiments.generalisation",
     "supportive.experiments.transfer",
     "supportive.experiments.caregiver",
     "supportive.experiments.support_tamp",

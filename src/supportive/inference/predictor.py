@@ -8,7 +8,7 @@ finished"; the probabilities add up to one. Unknown actions in ``prefix`` are sl
 
 >>> predictor = StepPredictor().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]] * 2)
 >>> {a: round(p, 2) for a, p in predictor.next_step(["knife", "carrots"]).items() if p > 0.1}
-{'celery': 0.96}
+{'celery': 0.98}
 """
 
 from __future__ import annotations

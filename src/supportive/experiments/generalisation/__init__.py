@@ -1,0 +1,36 @@
+"""Generalisation of the learned hierarchy (issue #13): the general learner beside the strict one.
+
+* Generated chain/clique tasks (``uniform`` and ``ikea`` profiles, 4–12 actions, at most 5,000 orderings), 4
+  sampled demonstrations each: recall (share of the valid orderings admitted) and precision (share of the
+  admitted orderings that are valid).
+* CaptainCook4D: learned from the first half of each recipe's error-free recordings, how many of the other
+  half are admitted; learned from all error-free recordings, and from all recordings with errors too, the
+  precision and recall of the "must come before" pairs against the published graphs.
+
+>>> from supportive.experiments import get
+>>> get("generalisation").default_trials
+324
+"""
+
+from supportive.experiments.generalisation.measure import SYNTHETIC, make_trials, run_trial, summarize
+from supportive.experiments.generalisation.report import headline, plots, report
+from supportive.experiments.registry import Experiment, register
+
+__all__ = ["GENERALISATION", "SYNTHETIC", "headline", "make_trials", "plots", "report", "run_trial", "summarize"]
+
+GENERALISATION = register(
+    Experiment(
+        name="generalisation",
+        title="Generalisation: general vs strict learner on generated tasks and CaptainCook4D",
+        reference="§2.1.4 (compaction), on generated tasks and CaptainCook4D (issue #13)",
+        thesis={},
+        default_trials=SYNTHETIC + 24,
+        make_trials=make_trials,
+        run_trial=run_trial,
+        summarize=summarize,
+        report=report,
+        plots=plots,
+        headline=headline,
+    )
+)
+"""The registered experiment."""

@@ -1,0 +1,118 @@
+"""Generalisation trials: one generated task, or one CaptainCook4D recipe, measured with both learners."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from supportive.errors import ExperimentError
+from supportive.experiments.trials import Trial, spawn_trials
+from supportive.generate import random_structure
+from supportive.io.captaincook import load_captaincook
+from supportive.learning import HTNLearner
+from supportive.learning.precedence import implied_precedences, precedence_scores
+from supportive.tasks.htn import count_orderings, iter_orderings, sample_ordering
+
+__all__ = ["LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
+
+SYNTHETIC = 300
+"""Generated tasks of a full run (half of each profile)."""
+LEARNERS = ("general", "strict")
+SIZES = (4, 12)
+DEMONSTRATIONS = 4
+ORDERINGS_LIMIT = 5000
+
+
+def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
+    """Trials 0..: generated tasks (profiles alternating), then the 24 recipes; fewer trials keep the same
+    proportion."""
+    if trials < 2:
+        raise ExperimentError("generalisation: at least 2 trials (a generated task and a recipe)")
+    recipes = max(1, round(trials * 24 / (SYNTHETIC + 24)))
+    synthetic = trials - recipes
+    params: list[dict[str, Any]] = [
+        {"kind": "synthetic", "profile": ("uniform", "ikea")[i % 2]} for i in range(synthetic)
+    ]
+    params += [{"kind": "recipe", "recipe": i} for i in range(min(recipes, 24))]
+    return spawn_trials(seed, params)
+
+
+def run_trial(trial: Trial) -> dict[str, Any]:
+    """Measure one generated task or one recipe with both learners."""
+    if trial.params["kind"] == "synthetic":
+        return {"index": trial.index, "kind": "synthetic", **_synthetic(trial)}
+    return {"index": trial.index, "kind": "recipe", **_recipe(int(trial.params["recipe"]))}
+
+
+def _synthetic(trial: Trial) -> dict[str, Any]:
+    rng = trial.rng()
+    while True:  # redraw until the valid orderings can be listed
+        structure = random_structure(int(rng.integers(SIZES[0], SIZES[1] + 1)), rng, profile=trial.params["profile"])
+        if count_orderings(structure) <= ORDERINGS_LIMIT:
+            break
+    valid = [[a for a, _ in o] for o in iter_orderings(structure)]
+    demos = [[a for a, _ in sample_ordering(structure, rng)] for _ in range(DEMONSTRATIONS)]
+    out: dict[str, Any] = {"profile": trial.params["profile"], "actions": len(structure.leaves), "orderings": len(valid)}
+    for mode in LEARNERS:
+        htn = HTNLearner(mode=mode).fit(demos).htn_  # type: ignore[arg-type]
+        admitted = htn.count_orderings()
+        hits = sum(htn.admits(o) for o in valid)
+        out[mode] = {
+            "recall": hits / len(valid),
+            "precision": min(1.0, hits / admitted) if admitted else 1.0,
+            "complete": htn.complete,
+        }
+    return out
+
+
+def _recipe(index: int) -> dict[str, Any]:
+    clean = load_captaincook()[index]
+    every = load_captaincook(errors=True)[index]
+    demos = [d.actions for d in clean.spec.demonstrations]
+    half = len(demos) // 2
+    out: dict[str, Any] = {"recipe": clean.name, "held_out": len(demos) - half}
+    for mode in LEARNERS:
+        learned = HTNLearner(mode=mode).fit(demos[:half]).htn_  # type: ignore[arg-type]
+        scores = {}
+        for name, recipe in (("error_free", clean), ("with_errors", every)):
+            htn = HTNLearner(mode=mode).fit(recipe.spec).htn_  # type: ignore[arg-type]
+            score = precedence_scores(implied_precedences(htn), clean.published)
+            scores[name] = {"precision": score.precision, "recall": score.recall}
+        out[mode] = {"admitted": sum(learned.admits(d) for d in demos[half:]), **scores}
+    return out
+
+
+def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """Means per profile and learner; CaptainCook admission and precedence scores per learner."""
+    synthetic = [r for r in results if r["kind"] == "synthetic"]
+    recipes = [r for r in results if r["kind"] == "recipe"]
+    out: dict[str, Any] = {"synthetic": {}, "captaincook": {}, "tasks": [dict(r) for r in results]}
+    for profile in sorted({r["profile"] for r in synthetic}):
+        rows = [r for r in synthetic if r["profile"] == profile]
+        out["synthetic"][profile] = {
+            mode: {
+                "tasks": len(rows),
+                "recall": round(float(np.mean([r[mode]["recall"] for r in rows])), 4),
+                "precision": round(float(np.mean([r[mode]["precision"] for r in rows])), 4),
+                "complete": sum(bool(r[mode]["complete"]) for r in rows),
+            }
+            for mode in LEARNERS
+        }
+    if recipes:
+        held = sum(int(r["held_out"]) for r in recipes)
+        for mode in LEARNERS:
+            admitted = sum(int(r[mode]["admitted"]) for r in recipes)
+            out["captaincook"][mode] = {
+                "recipes": len(recipes),
+                "held_out": held,
+                "admitted": admitted,
+                "admission": round(admitted / held, 4),
+                **{
+                    f"{data}_{metric}": round(float(np.mean([r[mode][data][metric] for r in recipes])), 4)
+                    for data in ("error_free", "with_errors")
+                    for metric in ("precision", "recall")
+                },
+            }
+    return out
