@@ -15,7 +15,7 @@ from rich.table import Table
 from supportive import examples
 from supportive.envs.household import Collision, load_map
 from supportive.errors import LearningError
-from supportive.inference import HierarchicalHMM, ObservationModel
+from supportive.inference import ObservationModel, ProgressHMM
 from supportive.io.tables import fitted_table
 from supportive.io.tree import htn_tree
 from supportive.learning.active import QuerySchedule, TeachingSession, run_session
@@ -211,7 +211,7 @@ def watch(spec: TaskSpec, held_out: int = -1, seed: int = 7, mean_duration: floa
     watched = demos.pop(held_out)
     htn = HTNLearner(names=known_names(spec.structure)).fit(demos, spec.name).htn_
     model = ObservationModel.from_spec(spec)
-    running = HierarchicalHMM(htn, model, mean_duration=mean_duration).filter()
+    running = ProgressHMM(htn, model, mean_duration=mean_duration).filter()
     rng = np.random.default_rng(seed)
     steps = []
     for action in watched.actions:
@@ -222,7 +222,7 @@ def watch(spec: TaskSpec, held_out: int = -1, seed: int = 7, mean_duration: floa
                 truth=action,
                 subgoal=running.top(belief.subgoals, running.subgoal_labels, 1)[0],
                 subtask=running.top(belief.enclosing, running.enclosing_labels, 1)[0],
-                next_subgoal=running.top(belief.next_subgoals, running.subgoal_labels, 1)[0],
+                next_subgoal=max(belief.next_actions.items(), key=lambda kv: (kv[1], kv[0])),
             )
         )
     return steps
@@ -273,8 +273,9 @@ def watch_held_out(console: Console, spec: TaskSpec) -> None:
     steps = watch(spec)
     console.print(
         f"\n[bold]Watching a teammate[/]: demonstration {held_out.id} ({held_out.agent or 'someone'}) was held out "
-        "of learning and is replayed as contact events (which objects touch). After each action, the hierarchical "
-        "HMM's belief about the current action, the subtask it belongs to, and what comes next:"
+        "of learning and is replayed as contact events (which objects touch). After each action, the progress-aware "
+        "tracker's belief about the current action, the subtask it belongs to, and what comes next (it knows what "
+        "is done: never a done action, and <end> after the last):"
     )
     hits = 0
     rows = []

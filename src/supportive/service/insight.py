@@ -11,8 +11,7 @@ from numbers import Real
 from typing import Any
 
 from supportive.errors import SupportiveError
-from supportive.inference import HierarchicalHMM, ObservationModel
-from supportive.inference.hmm import GoalFilter
+from supportive.inference import END_LABEL, ObservationModel, ProgressFilter, ProgressHMM
 from supportive.language.states import TaskStates
 from supportive.learning.learner import learn
 from supportive.social.board import TaskBoard
@@ -23,7 +22,7 @@ __all__ = ["Insight"]
 RECENT = 6
 """How many of the latest observed steps the goal view lists."""
 OFF_SCRIPT = 0.5
-"""A numeric ``surprise`` at or above this marks a step off-script (when the model gives no flag itself)."""
+"""A step is shown off-script when the tracker's probability that it was (``off_script``) is at least this."""
 
 
 @dataclass
@@ -31,7 +30,7 @@ class Insight:
     """The belief and the suggestions of one board's task (None / empty when the task cannot give them)."""
 
     spec: TaskSpec | None
-    filter: GoalFilter | None = field(default=None, init=False)
+    filter: ProgressFilter | None = field(default=None, init=False)
     latest: dict[str, Any] | None = field(default=None, init=False)
     recent: deque[dict[str, Any]] = field(default_factory=lambda: deque(maxlen=RECENT), init=False)
 
@@ -43,12 +42,13 @@ class Insight:
         return TaskStates.of(self.spec)
 
     @cached_property
-    def model(self) -> HierarchicalHMM | None:
-        """The hierarchical HMM, when every action declares observations and there are demonstrations."""
+    def model(self) -> ProgressHMM | None:
+        """The progress-aware tracker's model, when every action declares observations and there are
+        demonstrations."""
         spec = self.spec
         if spec is None or not spec.demonstrations or not all(a.observations for a in spec.actions):
             return None
-        return HierarchicalHMM(learn(spec).htn_, ObservationModel.from_spec(spec))
+        return ProgressHMM(learn(spec).htn_, ObservationModel.from_spec(spec))
 
     @property
     def inference(self) -> bool:
@@ -120,16 +120,16 @@ class Insight:
                 action, _, occurrence = str(label).rpartition("#")
                 if not (action and occurrence.isdigit()):
                     action, occurrence = str(label), ""
-                text = texts.get(action, action) + (f" (#{occurrence})" if occurrence else "")
+                text = "finish the task" if label == END_LABEL else texts.get(action, action)
+                text += f" (#{occurrence})" if occurrence else ""
                 out.append({"action": str(label), "text": text, "probability": float(p)})
             return out
 
         surprise = latest.get("surprise")
         if isinstance(surprise, Real) and not isinstance(surprise, bool):
             surprise = float(surprise)  # plain JSON, whatever number type the filter gives
-        flagged = latest.get("off_script")
-        if flagged is None and isinstance(surprise, float):
-            flagged = surprise >= OFF_SCRIPT
+        chance = latest.get("off_script")
+        flagged = None if chance is None else float(chance) >= OFF_SCRIPT
         return {
             "step": latest.get("step"),
             "subtasks": [{"name": str(n), "probability": float(p)} for n, p in latest.get("subtasks", [])],
