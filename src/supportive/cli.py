@@ -281,7 +281,7 @@ def evaluate(
             f"{m['log2']:.3f}",
             f"{m['done_top1']:.3f}",
         ]
-        for name, m in data["prediction"].items()
+        for name, m in result.as_dict()["prediction"].items()  # type: ignore[attr-defined]
     ]
     headers = ["next-step predictor", "top-1", "top-3", "P = 0", "log2 P / step", "top-1 done"]
     out.print(fitted_table(out, f"{result.prediction['progress-aware'].steps} steps", headers, rows, numeric=range(1, 6)))

@@ -53,7 +53,7 @@ def test_four_legs_come_out_as_one_repeated_subtask() -> None:
         assert [c.action for c in child.children] == LEG  # type: ignore[union-attr]
         assert [c.optional for c in child.children] == [False, True, False]
     assert htn.admits(_bench({0: {0, 1, 2, 3}}))  # nobody skipped every align; each leg may
-    assert not htn.admits(_bench({})[:-2] + ["flip_bench"])  # but a leg is spun
+    assert not htn.admits([*_bench({})[:-2], "flip_bench"])  # but a leg is spun
 
 
 def test_labels_follow_context_not_counts() -> None:

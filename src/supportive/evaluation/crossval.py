@@ -15,15 +15,16 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from supportive.evaluation.baselines import BASELINES, END
 from supportive.inference.predictor import StepPredictor
 from supportive.seeding import Seed, rng_from
-from supportive.tasks.executions import Executions
+from supportive.tasks.executions import Executions, Progress
 from supportive.tasks.htn import HTN, Leaf, Node, count_orderings, iter_orderings
 from supportive.tasks.spec import TaskSpec
 
@@ -191,7 +192,7 @@ def evaluate_task(
 def _score_demo(
     actions: Sequence[str],
     predictor: StepPredictor,
-    baselines: dict[str, object],
+    baselines: Mapping[str, Any],
     most: Counter[str],
     scores: dict[str, StepScores],
 ) -> None:
@@ -203,7 +204,7 @@ def _score_demo(
         already = {a for a, n in done.items() if n >= most.get(a, 0)}
         scores[PREDICTOR].add(dict(running.last.next_actions), truth, already)
         for name, model in baselines.items():
-            scores[name].add(model.next_step(prefix), truth, already)  # type: ignore[attr-defined]
+            scores[name].add(model.next_step(prefix), truth, already)
         if position < len(actions):
             running.observe(truth)
             done[truth] += 1
@@ -223,7 +224,7 @@ def _learned(htn: HTN) -> list[tuple[Leaf, ...]] | None:
 
 
 def _executions(machine: Executions) -> Iterator[tuple[Leaf, ...]]:
-    stack = [(state, ()) for state in machine.initial()]
+    stack: list[tuple[Progress, tuple[Leaf, ...]]] = [(state, ()) for state in machine.initial()]
     seen: set[tuple[Leaf, ...]] = set()
     while stack:
         state, prefix = stack.pop()

@@ -203,7 +203,7 @@ class ProgressFilter:
         """Forget everything observed: the task has not started."""
         start = self.model.executions.initial()
         self.belief: dict[Progress | None, float] = {s: 1.0 / len(start) for s in start}
-        self._vector: np.ndarray | None = None
+        self._vector = None
         self.step = 0
         self.log_likelihood = 0.0
         self._seen: Counter[str] = Counter()
@@ -300,8 +300,7 @@ class ProgressFilter:
         off: dict[Progress | None, float] = defaultdict(float)
         started = self.step > 0
         for state, mass in self.belief.items():
-            working = state is not _FINISHED and state.last >= 0
-            if working and started:
+            if state is not None and state.last >= 0 and started:
                 on[state] += mass * self.stay * likelihood[state.last]
                 leaving = mass * (1.0 - self.stay)
             elif state is _FINISHED:
@@ -341,6 +340,7 @@ class ProgressFilter:
         leaving = vector - staying
         moving = float(leaving.sum() - leaving[matrices.finished])
         on = (staying + matrices.advance(leaving) * (1.0 - slip)) * state_likelihood
+        assert self._slip_share is not None
         off = (slip * moving) * self._slip_share * state_likelihood
         return self._posterior_vector(on, off)
 
@@ -390,7 +390,7 @@ class ProgressFilter:
         matrices, vector = self._matrices, self._vector
         if vector is not None:
             assert matrices is not None
-            current = np.bincount(matrices.last_plus_one, weights=vector, minlength=n + 1)[1:]
+            current: np.ndarray = np.bincount(matrices.last_plus_one, weights=vector, minlength=n + 1)[1:]
         else:
             current = np.zeros(n)
             for state, mass in self.belief.items():

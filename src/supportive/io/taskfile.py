@@ -6,9 +6,8 @@ field (``demonstrations[1].steps[3]``) and what was wrong.
 
 from __future__ import annotations
 
-import dataclasses
-
 import csv
+import dataclasses
 import io
 import json
 from collections import Counter

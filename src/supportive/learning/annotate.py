@@ -10,13 +10,13 @@ orders of its children it admits were seen, and so whether it was observed in fu
 
 from __future__ import annotations
 
+import dataclasses
+import itertools
+import math
+from collections import Counter, defaultdict
 from collections.abc import Mapping, Sequence
 
 from supportive.learning.decomposition import Decomposition
-import dataclasses
-import math
-from collections import Counter, defaultdict
-
 from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
@@ -176,7 +176,7 @@ def _merged_flags(nodes: list[Node]) -> list[Node]:
     orders = [_aligned(node) for node in nodes]
     merged_at = [_merged_flags([node.children[order[k]] for node, order in zip(nodes, orders, strict=True)])  # type: ignore[union-attr]
                  for k in range(len(orders[0]))]
-    out = []
+    out: list[Node] = []
     for n, (node, order) in enumerate(zip(nodes, orders, strict=True)):
         children = list(node.children)  # type: ignore[union-attr]
         for k, position in enumerate(order):
@@ -199,7 +199,7 @@ def _choice_counts(orders: Sequence[Sequence[int]], size: int, performed: int, s
     for order in orders:
         if order:
             first[order[0]] += 1
-        for a, b in zip(order, order[1:], strict=False):
+        for a, b in itertools.pairwise(order):
             after[a][b] += 1
     return Counts(
         performed=performed, skipped=skipped, first=tuple(first), after=tuple(tuple(row) for row in after)

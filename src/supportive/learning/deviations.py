@@ -83,8 +83,8 @@ def set_aside(
         kept[d] = remaining
     for leaf, n in sorted(performers.items()):
         if leaf not in rare and m - n <= tolerated and n < m:
-            for d, demo in enumerate(labelled):
-                if leaf not in demo:
+            for d, performed in enumerate(labelled):
+                if leaf not in performed:
                     found.append(Deviation(d, -1, leaf, "missing"))
     budget = _out_of_order(kept, tolerated, share, budget, found)
     found.sort(key=lambda dev: (dev.demonstration, dev.position, dev.leaf))
@@ -102,7 +102,7 @@ def _out_of_order(
     sequences = [[index[leaf] for _, leaf in demo] for demo in kept]
     before, together = pair_counts(sequences, list(range(len(leaves))))
     allowed = np.floor(share * together + 1e-9)
-    agreed = (before.T <= allowed) & (before.T < before) & (before.T > 0)
+    agreed = (allowed >= before.T) & (before > before.T) & (before.T > 0)
     if not agreed.any():
         return budget
     for d, sequence in enumerate(sequences):

@@ -51,12 +51,13 @@ def pair_counts(sequences: Sequence[Sequence[int]], members: Sequence[int]) -> t
 
 def established_precedences(before: IntMatrix, together: IntMatrix, order_support: int) -> BoolMatrix:
     """``E[i, j]``: "i before j" is established (see the module docstring)."""
-    consistent = (before > 0) & (before.T == 0)
+    consistent: BoolMatrix = (before > 0) & (before.T == 0)
     if not consistent.any():
         return consistent
     as_float = consistent.astype(np.float32)
-    witnessed = consistent & ((as_float @ as_float) > 0)
-    return witnessed | (consistent & (together >= order_support))
+    witnessed: BoolMatrix = consistent & ((as_float @ as_float) > 0)
+    established: BoolMatrix = witnessed | (consistent & (together >= order_support))
+    return established
 
 
 def contiguity_chance(arrays: Sequence[npt.NDArray[np.int64]], members: frozenset[int], size: int) -> float:

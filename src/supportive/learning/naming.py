@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Leaf, Node, shape, with_children
+from supportive.tasks.htn import ActionNode, ChainNode, Leaf, Node, shape, with_children
 
 __all__ = ["known_names", "named"]
 
@@ -50,7 +50,8 @@ def _nest_known_runs(chain: ChainNode, known: Mapping[frozenset[Leaf], str]) -> 
     while i < len(children):
         found = None
         for size in sizes:
-            total, j, leaves = 0, i, set()
+            total, j = 0, i
+            leaves: set[Leaf] = set()
             while j < len(children) and total < size:
                 leaves.update(children[j].leaves)
                 total += len(children[j].leaves)
@@ -65,7 +66,7 @@ def _nest_known_runs(chain: ChainNode, known: Mapping[frozenset[Leaf], str]) -> 
         j, name = found
         out.append(ChainNode(tuple(children[i:j]), name))
         i = j
-    return with_children(chain, out) if len(out) != len(children) else chain
+    return ChainNode(tuple(out), chain.name, chain.optional, chain.counts, chain.support) if len(out) != len(children) else chain
 
 
 def _short(node: Node) -> str:

@@ -87,7 +87,7 @@ def precedence_top_level(
 def seen_top_level(roots: Sequence[int], sequences: Sequence[Sequence[int]]) -> TopLevel:
     """The top level admitting exactly the orders of roots seen (states: the sets of roots done)."""
     index = {root: i for i, root in enumerate(roots)}
-    number = {frozenset(): 0}
+    number: dict[frozenset[int], int] = {frozenset(): 0}
     edges: set[tuple[int, int, int]] = set()
     terminal: set[int] = set()
     for sequence in sequences:

@@ -38,6 +38,7 @@ __all__ = [
     "Counts",
     "Leaf",
     "Node",
+    "Support",
     "TopLevel",
     "allowed_next",
     "canonical",
@@ -55,7 +56,6 @@ __all__ = [
     "sample_ordering",
     "shape",
     "successor_pairs",
-    "Support",
     "to_leaves",
     "with_children",
 ]

@@ -30,7 +30,7 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
 def run_trial(trial: Trial) -> dict[str, Any]:
     """Leave one out over every recording of the trial's recipe (errors included)."""
     recipe = load_captaincook(errors=True)[int(trial.params["recipe"])]
-    evaluation = evaluate_task(recipe.spec, seed=trial.seed)
+    evaluation = evaluate_task(recipe.spec, seed=trial.rng())
     result = evaluation.as_dict()
     result["sums"] = {name: vars(scores) for name, scores in evaluation.prediction.items()}
     return {"index": trial.index, **result}
