@@ -53,14 +53,14 @@ def precedence_top_level(
     for component in nx.strongly_connected_components(graph):
         if len(component) > 1:  # orders established over different demonstrations that contradict: drop
             graph.remove_edges_from([(u, v) for u in component for v in component if graph.has_edge(u, v)])
-    closure = nx.transitive_closure_dag(graph)
+    # no transitive closure: through a root that may be skipped, an order is only as established as it is
     preds = [0] * len(roots)
     succs = [0] * len(roots)
     need = 0
     for i, root in enumerate(roots):
         if root in required:
             need |= 1 << i
-    for u, v in closure.edges():
+    for u, v in graph.edges():
         succs[u] |= 1 << v
         if roots[u] in required:
             preds[v] |= 1 << u
