@@ -131,6 +131,10 @@ def check_infer(result: subprocess.CompletedProcess[str], folder: Path) -> None:
         assert (folder / "beliefs").exists()
 
 
+def check_evaluate(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert "held-out demonstrations admitted" in result.stdout and "progress-aware" in result.stdout
+
+
 def check_bag(result: subprocess.CompletedProcess[str], folder: Path) -> None:
     assert parse_task_file(folder / "chair.yaml").demonstrations
 
@@ -173,6 +177,7 @@ CHECKS: dict[str, Check] = {
     "generate": check_generate,
     "captaincook": check_captaincook,
     "infer": check_infer,
+    "evaluate": check_evaluate,
     "bag": check_bag,
     "reproduce": check_reproduce,
     "teach": check_teach,

@@ -270,16 +270,17 @@ def test_insight_tells_the_belief_in_words(client: TestClient, headers: Headers)
 
 
 def test_the_goal_view_flags_what_the_model_calls_off_script() -> None:
-    """Whatever the filter's summary reports (a flag, a surprise, or neither) reaches the page as
-    ``off_script`` (True, False, None); repeated actions keep their occurrence in words."""
+    """The tracker's probability that the step was off-script reaches the page as ``off_script`` (True from
+    :data:`OFF_SCRIPT` on, None when the summary has none; ``surprise`` is shown, not used to flag);
+    repeated actions keep their occurrence in words."""
     insight = Insight(load("ikea-chair"))
     base = {"step": 3, "subgoals": [["get_seat#2", 0.5]], "subtasks": [], "next": []}
     for extra, flagged in (
         ({}, None),
-        ({"surprise": 0.8}, True),
-        ({"surprise": 0.2}, False),
-        ({"surprise": 0.9, "off_script": False}, False),
-        ({"off_script": True}, True),
+        ({"surprise": 9.5}, None),
+        ({"off_script": 0.8, "surprise": 7.0}, True),
+        ({"off_script": 0.2, "surprise": 0.3}, False),
+        ({"off_script": 0.5}, True),
     ):
         insight.latest = {**base, **extra}
         goal = insight.goal()

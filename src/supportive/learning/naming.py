@@ -27,6 +27,7 @@ def named(node: Node, known: Mapping[frozenset[Leaf], str] | None = None) -> Nod
     A run of a chain's children whose leaves are a known subtask becomes that subtask, a chain of its own
     (a chain in a chain means the same order, so learning merges them; the name brings it back).
 
+    >>> from supportive.tasks.htn import CliqueNode
     >>> named(ChainNode((ActionNode("knife"), CliqueNode((ActionNode("carrots"), ActionNode("celery")))))).name
     'knife → {carrots, celery}'
     """
