@@ -92,6 +92,9 @@ def test_asymmetric_authority(client: TestClient, headers: Headers) -> None:
     assert (
         client.post("/api/nodes/n0/claim", headers=headers("robot")).status_code == 403
     )  # contains the seat
+    for leaf in (n for n in data["nodes"] if n["parent"] == seat):  # inside the seat: its ancestor is lead-only
+        inside = client.post(f"/api/nodes/{leaf['id']}/claim", headers=headers("robot"))
+        assert inside.status_code == 403 and "reserved for leads" in inside.json()["detail"]
     observer = client.post(f"/api/nodes/{seat}/claim", headers=headers("screen"))
     assert observer.status_code == 403 and "observers" in observer.json()["detail"]
     assert client.post(f"/api/nodes/{seat}/claim", headers=headers("alice")).status_code == 200
