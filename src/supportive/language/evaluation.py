@@ -14,7 +14,7 @@ from pathlib import Path
 import yaml
 
 from supportive.errors import FileFormatError
-from supportive.io.text import read_text
+from supportive.io.safe_load import read_text
 from supportive.language.grammar import ExplainSubtask, Preference, parse_utterance
 from supportive.language.grounding import Matcher
 

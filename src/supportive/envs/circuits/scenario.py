@@ -37,8 +37,8 @@ from supportive.envs.tabletop.geometry import Rect
 from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.layout import TableLayout
 from supportive.errors import PlanningError, ScenarioFileError
+from supportive.io.safe_load import read_text
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
-from supportive.io.text import read_text
 from supportive.planning.selection import SupportPlanner
 from supportive.planning.weighting import WeightingScheme
 

@@ -34,7 +34,7 @@ from importlib import resources
 from pathlib import Path
 
 from supportive.errors import MapFileError
-from supportive.io.text import read_text
+from supportive.io.safe_load import read_text
 
 __all__ = [
     "MOVES",
