@@ -13,9 +13,9 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
 
 from supportive.errors import ExperimentError, SupportiveError, TaskFileError
+from supportive.io.terminal import markup_safe, plain, printable, terminal_console
 
 __all__ = ["app", "main"]
 
@@ -25,8 +25,14 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
-out = Console(highlight=False, soft_wrap=True)
-err = Console(stderr=True, highlight=False, soft_wrap=True)
+out = terminal_console()
+err = terminal_console(stderr=True)
+
+
+def say(line: object, *, to_stderr: bool = False) -> None:
+    """Print one line that may hold a user's text: as text (never markup or emoji), escaped for the terminal
+    (:mod:`supportive.io.terminal`)."""
+    (err if to_stderr else out).print(printable(str(line)), markup=False)
 
 
 class LearnFormat(StrEnum):
@@ -80,7 +86,7 @@ def learn(
         if output is None:
             raise TaskFileError("--format hddl needs --output DIR (it writes domain.hddl and problem.hddl)")
         domain, problem = write_hddl(learner.htn_, output)
-        err.print(f"wrote {domain} and {problem}")
+        say(f"wrote {domain} and {problem}", to_stderr=True)
         return
     if format is LearnFormat.json:
         text = json.dumps(htn_to_dict(learner.htn_, learner.stats_.as_dict()), indent=2) + "\n"
@@ -182,7 +188,7 @@ def captaincook(
         )
     for r in reports:
         table.add_row(
-            r.recipe,
+            plain(r.recipe),
             str(r.demonstrations),
             str(r.actions),
             str(r.known_paths),
@@ -235,7 +241,7 @@ def teach(
     def read() -> str:
         return input("> ")
 
-    console = TeachingConsole(file, read, out.print, strategy, schedule, seed)
+    console = TeachingConsole(file, read, say, strategy, schedule, seed)
     console.run(demonstrations)
 
 
@@ -262,7 +268,7 @@ def chat(
     def read() -> str:
         return input("> ")
 
-    ChatConsole(file, read, lambda line: out.print(line, markup=False), matcher).run()
+    ChatConsole(file, read, say, matcher).run()
 
 
 @app.command()
@@ -303,7 +309,6 @@ def caregiver(
     from contextlib import nullcontext
 
     from rich.live import Live
-    from rich.markup import escape
 
     from supportive.envs.household import load_map
     from supportive.safety.episode import THRESHOLD, run_episode
@@ -316,7 +321,7 @@ def caregiver(
     result = run_episode(grid, novice, caregiver=with_caregiver, steps=steps, seed=seed, record=True)
     who = "with the caregiver" if with_caregiver else "without a caregiver"
     out.print(
-        f"[bold]{escape(grid.name)}[/]: a novice making {novice:.0%} random moves (ε = {novice:g}), {who}, "
+        f"[bold]{markup_safe(grid.name)}[/]: a novice making {novice:.0%} random moves (ε = {novice:g}), {who}, "
         f"{steps} steps, seed {seed}"
     )
     out.print(LEGEND, markup=False)
@@ -333,7 +338,7 @@ def caregiver(
     out.print(f"[bold]{who}:[/] " + summary(result, threshold=THRESHOLD, steps=steps), highlight=False)
     if gif is not None:
         write_gif(result.frames, grid, gif)
-        err.print(f"wrote {gif} ({len(result.frames)} frames)", markup=False)
+        say(f"wrote {gif} ({len(result.frames)} frames)", to_stderr=True)
 
 
 class SupportLead(StrEnum):
@@ -412,20 +417,19 @@ def support(
         sys.stdout.write(json.dumps(report, indent=2) + "\n")
     else:
         for line in advice.lines():
-            out.print(line, markup=False)
+            say(line)
         if simulate:
             gain = 100.0 * (1.0 - helped.makespan / alone.makespan) if alone.makespan else 0.0
-            out.print(
+            say(
                 f"Simulated ({lead.value} lead): alone {alone.makespan:.1f} s, with support {helped.makespan:.1f} s "
                 f"({gain:+.1f} % faster, {helped.support_actions} supportive actions); lead search nodes "
-                f"{alone.lead_nodes} -> {helped.lead_nodes}",
-                markup=False,
+                f"{alone.lead_nodes} -> {helped.lead_nodes}"
             )
     if render is not None:
         world = scenario.world
         after = decision.chosen.state
         write_before_after(world, world.initial_state, after, render, moved=decision.chosen.move)
-        err.print(f"wrote {render}", markup=False)
+        say(f"wrote {render}", to_stderr=True)
 
 
 @app.command()
@@ -501,10 +505,8 @@ def workbench_sim(
 
     if role not in ROLES:
         raise SupportiveError(f"--role: unknown role {role!r}; choose {', '.join(ROLES)}")
-    out.print(f"workbench-blocks, the robot as {role}:", markup=False)
-    run_workbench(
-        role, url=url, seconds=seconds, seed=seed, tell=lambda line: out.print(str(line), markup=False)
-    )
+    say(f"workbench-blocks, the robot as {role}:")
+    run_workbench(role, url=url, seconds=seconds, seed=seed, tell=say)
 
 
 @app.command()
@@ -542,9 +544,7 @@ def reproduce(
     results = run_reproduce(name, trials, seed, workers or 1, scheduler, output)
     for result in results:
         files = ", ".join(path.name for path in result.files)
-        out.print(
-            f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}"
-        )
+        say(f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}")
         table = Table(title=f"{result.experiment}: this run beside the thesis")
         for column in ("quantity", "this run", "thesis"):
             table.add_column(column, justify="left")
@@ -558,7 +558,7 @@ def main() -> None:
     try:
         app()
     except SupportiveError as exc:
-        err.print(f"supportive: error: {exc}", markup=False)
+        say(f"supportive: error: {printable(str(exc), newlines=False)}", to_stderr=True)
         sys.exit(2)
 
 
