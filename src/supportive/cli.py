@@ -55,10 +55,9 @@ def _write_text(text: str, output: Path | None) -> None:
     if output is None:
         sys.stdout.write(text)
         return
-    try:
-        output.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise TaskFileError(f"cannot write: {exc.strerror}", path=output) from None
+    from supportive.io.atomic import atomic_write
+
+    atomic_write(output, text, error=TaskFileError)
 
 
 @app.command()

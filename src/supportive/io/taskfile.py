@@ -17,6 +17,7 @@ import yaml
 from pydantic import ValidationError
 
 from supportive.errors import TaskFileError
+from supportive.io.atomic import atomic_write
 from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
 from supportive.io.safe_load import read_csv, read_text
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
@@ -464,9 +465,11 @@ def _blank(value: float | None) -> object:
 
 
 def write_task_file(spec: TaskSpec, path: str | Path, format: Format | None = None) -> None:
-    """Write a task file; the text is produced before the file is opened, so a failure writes nothing."""
-    path = Path(path)
+    """Write a task file atomically (:func:`~supportive.io.atomic.atomic_write`: mode and symlinks kept); the
+    text is produced before the file is opened, so a failure writes nothing.
+
+    Raises:
+        TaskFileError: naming the file, when it cannot be written.
+    """
     text = dump_task(spec, format or format_of(path))
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    tmp.replace(path)
+    atomic_write(path, text, error=TaskFileError)
