@@ -458,9 +458,19 @@ def serve(
         list[str] | None,
         typer.Option("--lead-only", help="A subtask (name or action id) only leads may do; repeatable."),
     ] = None,
+    client_timeout: Annotated[
+        float,
+        typer.Option(
+            "--client-timeout",
+            min=0.1,
+            max=3600.0,
+            help="Seconds a client has to send a request's head, then its body; idle ones are closed.",
+        ),
+    ] = 10.0,
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
-    subtasks through."""
+    subtasks through. The database is checked before the URL and tokens are printed; SIGTERM stops it
+    gracefully (exit status 0)."""
     from supportive.examples import path as example_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
@@ -472,15 +482,17 @@ def serve(
         port=port,
         agents=agent or (),
         lead_only=lead_only or (),
+        client_timeout=client_timeout,
     )
-    out.print(f"task board for {launch.settings.board.task} at {launch.url()}", markup=False)
-    for spec in launch.settings.agents:
-        out.print(f"  {spec.id} ({spec.kind}, {spec.role}): token {spec.token}", markup=False)
-    if launch.tokens_file is not None:
-        out.print(
-            f"  (tokens kept in {launch.tokens_file}; API docs at http://{host}:{port}/docs)", markup=False
-        )
-    run_service(launch)
+
+    def announce() -> None:
+        say(f"task board for {launch.settings.board.task} at {launch.url()}")
+        for spec in launch.settings.agents:
+            say(f"  {spec.id} ({spec.kind}, {spec.role}): token {spec.token}")
+        if launch.tokens_file is not None:
+            say(f"  (tokens kept in {launch.tokens_file}; API docs at http://{host}:{port}/docs)")
+
+    run_service(launch, announce)
 
 
 @app.command("workbench-sim")

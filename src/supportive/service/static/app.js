@@ -15,7 +15,8 @@ async function api(path, options = {}) {
     headers: { "Authorization": `Bearer ${state.token}`, "Content-Type": "application/json", ...(options.headers || {}) },
   });
   const body = await response.json().catch(() => ({}));
-  if (!response.ok) throw new Error(body.detail || `${response.status} ${response.statusText}`);
+  const detail = Array.isArray(body.detail) ? body.detail.map((item) => item.msg).join("; ") : body.detail;
+  if (!response.ok) throw new Error(detail || `${response.status} ${response.statusText}`);
   return body;
 }
 
