@@ -7,6 +7,7 @@ and exit status 2.
 from __future__ import annotations
 
 import json
+import math
 import sys
 from enum import StrEnum
 from pathlib import Path
@@ -49,6 +50,13 @@ class Profile(StrEnum):
 
     ikea = "ikea"
     uniform = "uniform"
+
+
+def _finite(value: float | None) -> float | None:
+    """A float option's value when it is a number (click lets ``nan`` through its ranges)."""
+    if value is not None and not math.isfinite(value):
+        raise typer.BadParameter(f"expected a finite number, got {value}")
+    return value
 
 
 def _write_text(text: str, output: Path | None) -> None:
@@ -112,9 +120,12 @@ def infer(
     model: Annotated[
         InferenceModel, typer.Option("--model", help="Which HMM.")
     ] = InferenceModel.hierarchical,
-    top: Annotated[int, typer.Option("--top", min=1, help="How many entries of each belief to print.")] = 3,
+    top: Annotated[
+        int, typer.Option("--top", min=1, max=10_000, help="How many entries of each belief to print.")
+    ] = 3,
     mean_duration: Annotated[
-        float, typer.Option("--mean-duration", min=1.0, help="Mean observations per subgoal.")
+        float,
+        typer.Option("--mean-duration", min=1.0, max=1e6, callback=_finite, help="Mean observations per subgoal."),
     ] = 5.0,
 ) -> None:
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
@@ -140,11 +151,15 @@ def infer(
 
 @app.command()
 def generate(
-    actions: Annotated[int, typer.Option("--actions", "-n", min=2, help="Number of primitive actions.")] = 20,
-    seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same task).")] = 0,
+    actions: Annotated[
+        int, typer.Option("--actions", "-n", min=2, max=100_000, help="Number of primitive actions.")
+    ] = 20,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same task).")] = 0,
     demonstrations: Annotated[
         int,
-        typer.Option("--demonstrations", "-d", min=0, help="Valid orderings to sample as demonstrations."),
+        typer.Option(
+            "--demonstrations", "-d", min=0, max=10_000, help="Valid orderings to sample as demonstrations."
+        ),
     ] = 4,
     profile: Annotated[Profile, typer.Option("--profile", help="Shape of the structure.")] = Profile.ikea,
     output: Annotated[
@@ -220,7 +235,9 @@ def teach(
     demonstrations: Annotated[
         int | None, typer.Option("--demonstrations", "-d", min=1, help="Stop after this many.")
     ] = None,
-    seed: Annotated[int, typer.Option("--seed", help="Seeds the choice among equally good questions.")] = 0,
+    seed: Annotated[
+        int, typer.Option("--seed", min=0, help="Seeds the choice among equally good questions.")
+    ] = 0,
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.errors import LearningError
@@ -286,8 +303,8 @@ def caregiver(
     novice: Annotated[
         float, typer.Option("--novice", help="The novice's share of random moves ε, in [0, 1].")
     ] = 0.5,
-    seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same episode).")] = 0,
-    steps: Annotated[int, typer.Option("--steps", min=1, help="Novice steps in the episode.")] = 200,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same episode).")] = 0,
+    steps: Annotated[int, typer.Option("--steps", min=1, max=100_000, help="Novice steps in the episode.")] = 200,
     no_caregiver: Annotated[bool, typer.Option("--no-caregiver", help="Let the novice play alone.")] = False,
     gif: Annotated[
         Path | None,
@@ -297,7 +314,11 @@ def caregiver(
     delay: Annotated[
         float,
         typer.Option(
-            "--delay", min=0.0, help="Seconds between printed steps (on a terminal: redrawn in place)."
+            "--delay",
+            min=0.0,
+            max=60.0,
+            callback=_finite,
+            help="Seconds between printed steps (on a terminal: redrawn in place).",
         ),
     ] = 0.0,
 ) -> None:
@@ -356,12 +377,15 @@ def support(
         int, typer.Option("--seed", min=0, help="Seeds the sampling (same seed, same choice).")
     ] = 0,
     environments: Annotated[
-        int | None, typer.Option("--environments", "-e", min=1, help="Hypothetical environments to sample.")
+        int | None,
+        typer.Option("--environments", "-e", min=1, max=100_000, help="Hypothetical environments to sample."),
     ] = None,
     scheme: Annotated[
         str | None, typer.Option("--scheme", help="Plan weights: conservative, greedy or aggressive.")
     ] = None,
-    workers: Annotated[int, typer.Option("--workers", "-w", min=1, help="Local processes scoring them.")] = 1,
+    workers: Annotated[
+        int, typer.Option("--workers", "-w", min=1, max=256, help="Local processes scoring them.")
+    ] = 1,
     render: Annotated[
         Path | None,
         typer.Option("--render", help="Draw the table before and after as a PNG (needs matplotlib)."),
@@ -464,6 +488,7 @@ def serve(
             "--client-timeout",
             min=0.1,
             max=3600.0,
+            callback=_finite,
             help="Seconds a client has to send a request's head, then its body; idle ones are closed.",
         ),
     ] = 10.0,
@@ -500,7 +525,9 @@ def workbench_sim(
     role: Annotated[
         str, typer.Option("--role", help="The robot's role: student, peer or instructor.")
     ] = "student",
-    seconds: Annotated[float, typer.Option("--seconds", min=1.0, help="Simulated seconds at most.")] = 40.0,
+    seconds: Annotated[
+        float, typer.Option("--seconds", min=1.0, max=3600.0, callback=_finite, help="Simulated seconds at most.")
+    ] = 40.0,
     url: Annotated[
         str | None,
         typer.Option(
@@ -524,7 +551,8 @@ def workbench_sim(
 def reproduce(
     name: Annotated[str, typer.Argument(help="Experiment to run (e.g. edge-reduction), or 'all'.")],
     trials: Annotated[
-        int | None, typer.Option("--trials", "-n", min=1, help="Trials per experiment (default: a full run).")
+        int | None,
+        typer.Option("--trials", "-n", min=1, max=1_000_000, help="Trials per experiment (default: a full run)."),
     ] = None,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same metrics).")] = 0,
     workers: Annotated[
@@ -533,6 +561,7 @@ def reproduce(
             "--workers",
             "-w",
             min=1,
+            max=256,
             help="Worker processes on a local dask cluster (default: 1, in process).",
         ),
     ] = None,
