@@ -70,3 +70,22 @@ def test_circuit_table_sizes_must_be_finite_and_sane(tmp_path: Path, cli, value:
     path.write_text(f"name: t\ntable: {{width: {value}, depth: 70}}\nscatter: {{seed: 1, pieces: {{battery: 2, led: 1}}}}\n")
     code, out, err = cli(["support", str(path)])
     assert code == 2 and out == "" and err.startswith(f"supportive: error: {path}:2: table.width: ") and problem in err
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["reproduce", "edge-reduction", "--trials", "1"],
+        ["caregiver", "--steps", "2", "--gif", "episode.gif"],
+        ["support", "two-cells-led", "--render", "table.png"],
+    ],
+)
+def test_a_missing_plot_extra_is_said_before_any_work(tmp_path: Path, cli, monkeypatch: pytest.MonkeyPatch, args: list[str]) -> None:  # type: ignore[no-untyped-def]
+    import sys
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # as if the plot extra were not installed
+    code, out, err = cli([*args, "--output", "out"] if args[0] == "reproduce" else args)
+    assert code == 2 and out == "", out  # nothing computed or printed first
+    assert err.strip().endswith("needs matplotlib, which is not installed: pip install 'supportive[plot]'")
+    assert len(err.strip().splitlines()) == 1 and list(tmp_path.iterdir()) == []

@@ -16,6 +16,7 @@ from typing import Annotated
 import typer
 
 from supportive.errors import ExperimentError, SupportiveError, TaskFileError
+from supportive.extras import require_extra
 from supportive.io.terminal import markup_safe, plain, printable, terminal_console
 
 __all__ = ["app", "main"]
@@ -336,6 +337,8 @@ def caregiver(
 
     if not 0.0 <= novice <= 1.0:
         raise ExperimentError(f"--novice: ε must be in [0, 1] (the share of random moves), got {novice}")
+    if gif is not None:
+        require_extra("drawing an episode as a GIF (--gif)", "matplotlib", "plot")
     grid = load_map(map_name)
     with_caregiver = not no_caregiver
     result = run_episode(grid, novice, caregiver=with_caregiver, steps=steps, seed=seed, record=True)
@@ -409,6 +412,8 @@ def support(
     from supportive.examples import circuit_names, circuit_path
     from supportive.planning.weighting import parse_scheme
 
+    if render is not None:
+        require_extra("drawing the circuit table (--render)", "matplotlib", "plot")
     if not file.suffix and not file.exists() and str(file) in circuit_names():
         file = circuit_path(str(file))
     scenario = parse_scenario_file(file)
@@ -581,6 +586,7 @@ def reproduce(
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
+    require_extra("plotting experiment results", "matplotlib", "plot")
     results = run_reproduce(name, trials, seed, workers or 1, scheduler, output)
     for result in results:
         files = ", ".join(path.name for path in result.files)
