@@ -89,3 +89,25 @@ def test_a_missing_plot_extra_is_said_before_any_work(tmp_path: Path, cli, monke
     assert code == 2 and out == "", out  # nothing computed or printed first
     assert err.strip().endswith("needs matplotlib, which is not installed: pip install 'supportive[plot]'")
     assert len(err.strip().splitlines()) == 1 and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("command", "text", "problem"),
+    [
+        (
+            ["learn"],
+            "name: t\ndemonstrations:\n  - steps: [{action: a, state: [x]}, {action: b, state: [y]}]\n"
+            "  - steps: [{action: b, state: [x]}, {action: a, state: [z]}]\n",
+            "demonstration d2: state ['x'] is reached after different actions",
+        ),
+        (["chat"], "name: t\nactions: [a]\n", "task 't' has no structure to enumerate states from"),
+        (["serve", "--port", "1", "--task"], "name: t\nactions: [a]\n", "task 't' has no structure and no demonstrations"),
+        (["serve", "--port", "1", "--lead-only", "zz", "--task"], "name: t\ndemonstrations:\n  - steps: [a, b]\n", "lead-only names that are no subtask's: zz"),
+    ],
+)
+def test_errors_about_a_files_contents_name_the_file(tmp_path: Path, cli, command: list[str], text: str, problem: str) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "t.yaml"
+    path.write_text(text)
+    code, out, err = cli([*command, str(path)])
+    assert code == 2 and out == "" and err.startswith(f"supportive: error: {path}: ") and problem in err, err
+    assert len(err.strip().splitlines()) == 1

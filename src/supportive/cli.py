@@ -9,13 +9,21 @@ from __future__ import annotations
 import json
 import math
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from enum import StrEnum
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from supportive.errors import ExperimentError, SupportiveError, TaskFileError
+from supportive.errors import (
+    ExperimentError,
+    FileFormatError,
+    MissingExtraError,
+    SupportiveError,
+    TaskFileError,
+)
 from supportive.extras import require_extra
 from supportive.io.terminal import markup_safe, plain, printable, terminal_console
 
@@ -60,6 +68,18 @@ def _finite(value: float | None) -> float | None:
     return value
 
 
+@contextmanager
+def _about(path: Path) -> Iterator[None]:
+    """Name ``path`` in an error the library raises about its contents (a demonstration, the task) without
+    naming the file; file errors name it already, and a missing extra is not the file's fault."""
+    try:
+        yield
+    except (FileFormatError, MissingExtraError):
+        raise
+    except SupportiveError as exc:
+        raise SupportiveError(f"{path}: {exc}") from None
+
+
 def _write_text(text: str, output: Path | None) -> None:
     if output is None:
         sys.stdout.write(text)
@@ -87,7 +107,8 @@ def learn(
     spec = parse_task_file(file)
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
-    learner = learn_htn(spec)
+    with _about(file):
+        learner = learn_htn(spec)
     if format is LearnFormat.hddl:
         from supportive.io.hddl import write_hddl
 
@@ -140,9 +161,10 @@ def infer(
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     stream = parse_observation_file(observations)
-    events = ObservationModel.from_spec(spec)
     kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
-    running = kind(learn_htn(spec).htn_, events, mean_duration=mean_duration).filter()
+    with _about(file):
+        events = ObservationModel.from_spec(spec)
+        running = kind(learn_htn(spec).htn_, events, mean_duration=mean_duration).filter()
     for moment, time in stream:
         record = running.summary(running.update(moment), top)
         if time is not None:
@@ -258,8 +280,8 @@ def teach(
     def read() -> str:
         return input("> ")
 
-    console = TeachingConsole(file, read, say, strategy, schedule, seed)
-    console.run(demonstrations)
+    with _about(file):
+        TeachingConsole(file, read, say, strategy, schedule, seed).run(demonstrations)
 
 
 @app.command()
@@ -285,7 +307,8 @@ def chat(
     def read() -> str:
         return input("> ")
 
-    ChatConsole(file, read, say, matcher).run()
+    with _about(file):
+        ChatConsole(file, read, say, matcher).run()
 
 
 @app.command()
@@ -421,11 +444,13 @@ def support(
         scenario = replace(scenario, environments=environments)
     if scheme is not None:
         scenario = replace(scenario, scheme=parse_scheme(scheme))
-    plans = scenario.plans()
-    advice, decision = advise(scenario, plans, seed=seed, workers=workers)
+    with _about(file):
+        plans = scenario.plans()
+        advice, decision = advise(scenario, plans, seed=seed, workers=workers)
     report: dict[str, object] = advice.as_dict()
     if simulate:
-        alone, helped = run_simulation(scenario, plans, lead.value, seed=seed, workers=workers)
+        with _about(file):
+            alone, helped = run_simulation(scenario, plans, lead.value, seed=seed, workers=workers)
         report["simulation"] = {
             "lead": lead.value,
             "alone": {

@@ -62,7 +62,10 @@ def prepare(
         SupportiveError: for an agent named twice, or two agents given one token.
     """
     spec = parse_task_file(task)
-    board = board_of(spec, lead_only)
+    try:
+        board = board_of(spec, lead_only)
+    except SupportiveError as exc:  # about the task file's contents: name the file
+        raise SupportiveError(f"{task}: {exc}") from None
     texts = list(agents or DEFAULT_AGENTS)
     specs = [parse_agent(text) for text in texts]
     names = [agent.id for agent in specs]
