@@ -158,7 +158,7 @@ def test_asymmetric_authority(client: TestClient, headers: Headers) -> None:
             409,
             "not claimed by alice",
         ),
-        ({"method": "POST", "url": "/api/nodes/n1/complete", "agent": "alice"}, 400, "not a single action"),
+        ({"method": "POST", "url": "/api/nodes/n1/complete", "agent": "alice"}, 409, "not a single action"),
         (
             {
                 "method": "POST",

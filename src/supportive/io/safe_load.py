@@ -183,7 +183,7 @@ def _count(root: Node) -> None:
 
 
 def _compose(text: str) -> Node | None:
-    loader = _Loader(text)
+    loader = _Loader(text)  # the reader checks every character here: it may raise yaml.ReaderError
     try:
         node = loader.get_single_node()
         if node is not None:
@@ -208,8 +208,9 @@ def load_yaml(text: str, path: str | Path | None, error: type[FileFormatError]) 
     Raises:
         error: for text that does not parse or breaks a limit, with the line.
     """
-    loader = _Loader(text)
+    loader: _Loader | None = None
     try:
+        loader = _Loader(text)  # the reader checks the characters here (and on later chunks of a long text)
         node = loader.get_single_node()
         if node is None:
             return None
@@ -217,12 +218,16 @@ def load_yaml(text: str, path: str | Path | None, error: type[FileFormatError]) 
         return loader.construct_document(node)
     except _Refused as exc:
         raise error(exc.problem, path=path, line=exc.line) from None
+    except yaml.reader.ReaderError as exc:
+        line = text.count("\n", 0, exc.position) + 1
+        raise error(f"invalid YAML: character U+{exc.character:04X} is not allowed in YAML", path=path, line=line) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
         raise error(f"invalid YAML: {problem}", path=path, line=None if mark is None else mark.line + 1) from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
 
 
 # ------------------------------------------------------------------------------------------------- JSON

@@ -240,7 +240,7 @@ class TaskBoard:
         """``agent`` reports progress (0–1) on a leaf it owns.
 
         Raises:
-            BoardError: 400 for progress outside [0, 1] or an internal node; 403, 404, 409 as for complete.
+            BoardError: 400 for progress outside [0, 1]; 403, 404, 409 as for complete.
         """
         node = self._owned_leaf(ident, agent, role, "report progress on")
         if not 0.0 <= progress <= 1.0:
@@ -251,7 +251,7 @@ class TaskBoard:
         """``agent`` completes a leaf it owns whose prerequisites are done; finished parents complete too.
 
         Raises:
-            BoardError: 400 for an internal node; 403 not allowed; 404 unknown; 409 not owned by ``agent``,
+            BoardError: 403 not allowed; 404 unknown; 409 an internal node, not owned by ``agent``,
                 already done, or a prerequisite not done.
         """
         node = self._owned_leaf(ident, agent, role, "complete")
@@ -362,7 +362,7 @@ class TaskBoard:
         node = self.node(ident)
         self._may_act(node, role, verb)
         if node.kind != "action":
-            raise BoardError(400, f"{node.name!r} is not a single action: {verb} its actions one by one")
+            raise BoardError(409, f"{node.name!r} is not a single action: {verb} its actions one by one")
         if node.owner != agent:
             raise BoardError(409, f"{node.name!r} is not claimed by {agent}")
         return node
