@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test lint bench serve system clean
+.PHONY: demo test lint bench serve system clean example-bags
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -13,7 +13,7 @@ $(VENV)/.core: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.dev: pyproject.toml | $(BIN)/python
-	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server]'
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server,ros]'
 	touch $(VENV)/.core $@
 
 $(VENV)/.server: pyproject.toml | $(BIN)/python
@@ -48,6 +48,12 @@ bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_support.py
 	$(BIN)/python benchmarks/bench_service.py
 	$(BIN)/python benchmarks/bench_social.py
+	$(BIN)/python benchmarks/bench_rosbag.py
+
+# The example bags in examples/bags/, made again from the bundled task files (the same messages every time).
+example-bags: $(VENV)/.dev
+	rm -rf examples/bags/ikea-chair examples/bags/workbench-blocks
+	$(BIN)/python -m supportive.example_bags examples/bags
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache .hypothesis

@@ -17,6 +17,7 @@ from typing import Annotated
 
 import typer
 
+from supportive.bag_cli import bag_app
 from supportive.errors import (
     ExperimentError,
     FileFormatError,
@@ -35,6 +36,7 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
+app.add_typer(bag_app, name="bag")
 out = terminal_console()
 err = terminal_console(stderr=True)
 
@@ -137,8 +139,9 @@ class InferenceModel(StrEnum):
 def infer(
     file: Annotated[Path, typer.Argument(help="Task file whose actions declare their 'observations'.")],
     observations: Annotated[
-        Path, typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml.")
-    ],
+        Path | None,
+        typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml."),
+    ] = None,
     model: Annotated[
         InferenceModel, typer.Option("--model", help="Which HMM.")
     ] = InferenceModel.hierarchical,
@@ -149,27 +152,63 @@ def infer(
         float,
         typer.Option("--mean-duration", min=1.0, max=1e6, callback=_finite, help="Mean observations per subgoal."),
     ] = 5.0,
+    bag: Annotated[
+        Path | None, typer.Option("--bag", help="Read contact events from a ROS bag instead (ros extra).")
+    ] = None,
+    contacts_topic: Annotated[
+        str, typer.Option("--contacts-topic", help="The bag's contacts topic (see docs/ros.md).")
+    ] = "/contacts",
+    write_bag: Annotated[
+        Path | None,
+        typer.Option("--write-bag", help="Also write the beliefs as a new MCAP bag (with --bag)."),
+    ] = None,
+    types: Annotated[
+        list[Path] | None,
+        typer.Option(
+            "--types", help="A .msg/.idl file or folder of message types the bag lacks; repeatable."
+        ),
+    ] = None,
 ) -> None:
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
     each: top subgoals, enclosing subtasks and next subgoals, with probabilities)."""
+    from supportive.bag_inference import belief_record, infer_bag
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
+    from supportive.io.htn_json import htn_to_dict
     from supportive.io.observation_file import parse_observation_file
     from supportive.io.taskfile import parse_task_file
     from supportive.learning.learner import learn as learn_htn
 
+    if (observations is None) == (bag is None):
+        raise SupportiveError("give the observations: --observations FILE or --bag BAG (not both)")
+    if write_bag is not None and bag is None:
+        raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
     spec = parse_task_file(file)
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
-    stream = parse_observation_file(observations)
+    stream = parse_observation_file(observations) if observations is not None else []
     kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
     with _about(file):
         events = ObservationModel.from_spec(spec)
-        running = kind(learn_htn(spec).htn_, events, mean_duration=mean_duration).filter()
-    for moment, time in stream:
-        record = running.summary(running.update(moment), top)
-        if time is not None:
-            record["time"] = time
+        learner = learn_htn(spec)
+        running = kind(learner.htn_, events, mean_duration=mean_duration).filter()
+
+    def emit(record: dict[str, object]) -> None:
         sys.stdout.write(json.dumps(record) + "\n")
+
+    if bag is not None:
+        hierarchy = htn_to_dict(learner.htn_, learner.stats_.as_dict())
+        infer_bag(
+            running,
+            bag,
+            contacts_topic,
+            top=top,
+            emit=emit,
+            write_bag=write_bag,
+            hierarchy=hierarchy,
+            definitions=types or (),
+        )
+    for moment, time in stream:
+        emit(belief_record(running, running.update(moment), top, time))
 
 
 @app.command()
