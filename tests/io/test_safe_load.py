@@ -167,6 +167,7 @@ def test_text_that_is_not_utf8_names_its_line(tmp_path: Path) -> None:
     [
         ('{"events": ["a"], "time": ' + "9" * 5000 + "}", "a number of 5,000 characters"),
         ('{"events": ["a"], "time": 1e300}', "time must be between"),
+        ('{"events": ["a"], "time": 2e11}', "time must be between -1e+11 and 1e+11, got 2e+11"),
         ('{"events": ["a"], "time": 1e400}', "time must be a finite number"),
         ("[" * 1000 + "]" * 1000, "nested deeper than 100 levels"),
         ('{"events": ["a"], "events": ["b"]}', "key 'events' appears twice"),

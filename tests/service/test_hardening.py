@@ -19,6 +19,8 @@ import websockets
 from fastapi.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
 
+from supportive.io.limits import MAX_SECONDS
+
 from .conftest import TOKENS, Server, auth
 
 Headers = Callable[[str], dict[str, str]]
@@ -50,6 +52,7 @@ def test_events_after_beyond_any_sequence_number_is_a_422_not_a_500(sqlite_clien
         {"x": -1e308, "y": 0.2},
         {"x": 0.4, "y": 0.2, "t": 1e300},
         {"x": 0.4, "y": 0.2, "t": -1e300},
+        {"x": 0.4, "y": 0.2, "t": 2e11},
     ],
 )
 def test_hands_beyond_the_limits_are_refused_and_social_keeps_answering(sqlite_client: TestClient, body: dict[str, float]) -> None:
@@ -62,7 +65,7 @@ def test_hands_beyond_the_limits_are_refused_and_social_keeps_answering(sqlite_c
 
 def test_hands_at_the_limits_keep_the_force_finite(sqlite_client: TestClient) -> None:
     for t, (x, y) in enumerate([(1e6, 1e6), (-1e6, -1e6), (1e6, -1e6)], start=1):
-        body = {"x": x, "y": y, "t": 1e9 - 10 + t}
+        body = {"x": x, "y": y, "t": MAX_SECONDS - 10 + t}
         assert sqlite_client.post("/api/hands", headers=auth("alice"), json=body).status_code == 200
     social = sqlite_client.get("/api/social", headers=auth("robot"))
     assert social.status_code == 200 and all(0 <= v <= 1 for v in social.json()["field"]["values"])

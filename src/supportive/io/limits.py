@@ -39,8 +39,9 @@ MAX_CSV_FIELD = 131_072
 MAX_ID_LENGTH = 200
 """The longest id (action, demonstration, agent, subtask name), characters."""
 
-MAX_SECONDS = 1e9
-"""The largest time (a step's start or end, an observation's or a hand sample's ``t``), seconds: 31 years."""
+MAX_SECONDS = 1e11
+"""The largest time (a step's start or end, an observation's or a hand sample's ``t``), seconds: 3,000 years,
+so Unix timestamps (1.7e9 s) pass and the squares the social force computes stay finite."""
 
 MAX_SENTENCE_CHARS = 500
 """The longest sentence ``chat`` (and :func:`~supportive.language.grammar.parse_utterance`) reads."""

@@ -24,7 +24,7 @@ class ProgressIn(_Strict):
 class HandIn(_Strict):
     """``{"x": 0.4, "y": 0.2, "t": 12.5}``: where the agent's hand (or end effector) is, metres on the
     workbench; ``t`` in seconds (default: the server's clock). Coordinates within ±10^6 and times within
-    ±10^9 s (:mod:`supportive.io.values`): the force computed from them stays finite."""
+    ±10^11 s (:mod:`supportive.io.values`): the force computed from them stays finite."""
 
     x: Coordinate
     y: Coordinate

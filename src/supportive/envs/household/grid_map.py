@@ -269,16 +269,6 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
     if not grid.bins:
         raise MapFileError("the map has no toy bin ('B'): the novice needs a goal", path=path)
     area = set(grid.play_area)
-    if len(area) > MAX_MAP_CELLS:
-        raise MapFileError(
-            f"the play area has {len(area):,} floor cells, more than {MAX_MAP_CELLS:,}, the limit (the caregiver's "
-            "model grows with the square of it)",
-            path=path,
-        )
-    if len(area) < 2:
-        raise MapFileError(
-            f"the play area has {len(area)} floor cell: the novice and the caregiver need at least two", path=path
-        )
     for cell in grid.bins:
         if not any(n in area for _, n in grid.neighbours(cell)):
             raise MapFileError(
@@ -293,6 +283,16 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
             path=path,
             line=lines[caregiver[0]],
             column=caregiver[1] + 1,
+        )
+    if len(area) > MAX_MAP_CELLS:
+        raise MapFileError(
+            f"the play area has {len(area):,} floor cells, more than {MAX_MAP_CELLS:,}, the limit (the caregiver's "
+            "model grows with the square of it)",
+            path=path,
+        )
+    if len(area) < 2:
+        raise MapFileError(
+            f"the play area has {len(area)} floor cell: the novice and the caregiver need at least two", path=path
         )
     return grid
 
