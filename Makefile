@@ -14,7 +14,12 @@ $(VENV)/.core: pyproject.toml | $(BIN)/python
 
 $(VENV)/.dev: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server,ros]'
-	touch $(VENV)/.core $@
+	touch $(VENV)/.core $(VENV)/.demo $(VENV)/.server $@
+
+# Every extra a README command needs: all but the sentence-embedding one (torch).
+$(VENV)/.demo: pyproject.toml | $(BIN)/python
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[language,planning,distributed,plot,envs,espresso,server,ros]'
+	touch $(VENV)/.core $(VENV)/.server $@
 
 $(VENV)/.server: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[language,server]'
@@ -25,7 +30,7 @@ system:
 	@command -v chromium >/dev/null 2>&1 || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null)
 	@ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq postgresql >/dev/null)
 
-demo: $(VENV)/.core
+demo: $(VENV)/.demo
 	$(BIN)/supportive demo
 
 test: $(VENV)/.dev system

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -26,7 +26,7 @@ from supportive.errors import (
     TaskFileError,
 )
 from supportive.extras import require_extra
-from supportive.io.terminal import markup_safe, plain, printable, terminal_console
+from supportive.io.terminal import markup_safe, printable, terminal_console
 
 __all__ = ["app", "main"]
 
@@ -37,8 +37,8 @@ app = typer.Typer(
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
 app.add_typer(bag_app, name="bag")
-out = terminal_console()
-err = terminal_console(stderr=True)
+out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
+err = terminal_console(stderr=True)  # an error is one line, whatever its length
 
 
 def say(line: object, *, to_stderr: bool = False) -> None:
@@ -93,20 +93,23 @@ def _write_text(text: str, output: Path | None) -> None:
 
 @app.command()
 def learn(
-    file: Annotated[Path, typer.Argument(help="Task file: .yaml, .yml, .json or .csv.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
+    ],
     format: Annotated[LearnFormat, typer.Option("--format", "-f", help="What to print.")] = LearnFormat.tree,
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
     ] = None,
 ) -> None:
     """Learn the CC-HTN of a task from its demonstrations and print or write it."""
+    from supportive.examples import task_path
     from supportive.io.dot import htn_to_dot
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.taskfile import parse_task_file
     from supportive.io.tree import render_tree
     from supportive.learning.learner import learn as learn_htn
 
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     with _about(file):
@@ -124,7 +127,7 @@ def learn(
     elif format is LearnFormat.dot:
         text = htn_to_dot(learner.htn_)
     else:
-        text = render_tree(learner.htn_, spec.texts(), width=120)
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
     _write_text(text, output)
 
 
@@ -137,7 +140,10 @@ class InferenceModel(StrEnum):
 
 @app.command()
 def infer(
-    file: Annotated[Path, typer.Argument(help="Task file whose actions declare their 'observations'.")],
+    file: Annotated[
+        Path,
+        typer.Argument(help="Task file whose actions declare their 'observations', or a bundled example's name."),
+    ],
     observations: Annotated[
         Path | None,
         typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml."),
@@ -172,6 +178,7 @@ def infer(
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
     each: top subgoals, enclosing subtasks and next subgoals, with probabilities)."""
     from supportive.bag_inference import belief_record, infer_bag
+    from supportive.examples import task_path
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.observation_file import parse_observation_file
@@ -182,7 +189,7 @@ def infer(
         raise SupportiveError("give the observations: --observations FILE or --bag BAG (not both)")
     if write_bag is not None and bag is None:
         raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     stream = parse_observation_file(observations) if observations is not None else []
@@ -247,9 +254,8 @@ def captaincook(
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph."""
-    from rich.table import Table
-
     from supportive.io.captaincook import load_captaincook
+    from supportive.io.tables import fitted_table
     from supportive.learning.precedence import captaincook_report
 
     reports = captaincook_report(load_captaincook(data))
@@ -257,14 +263,10 @@ def captaincook(
         rows = [r.as_dict() for r in reports]
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
-    table = Table(title="CaptainCook4D: implied precedences vs the published task graphs")
-    for column in ("recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"):
-        table.add_column(
-            column, justify="left" if column == "recipe" else "right", no_wrap=column == "recipe"
-        )
-    for r in reports:
-        table.add_row(
-            plain(r.recipe),
+    headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
+    cells = [
+        [
+            r.recipe,
             str(r.demonstrations),
             str(r.actions),
             str(r.known_paths),
@@ -272,8 +274,11 @@ def captaincook(
             f"{r.score.precision:.3f}",
             f"{r.score.recall:.3f}",
             f"{r.score.f1:.3f}",
-        )
-    out.print(table)
+        ]
+        for r in reports
+    ]
+    title = "CaptainCook4D: implied precedences vs the published task graphs"
+    out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
     mean = {
         k: sum(getattr(r.score, k) for r in reports) / len(reports) for k in ("precision", "recall", "f1")
     }
@@ -286,7 +291,17 @@ def captaincook(
 
 @app.command()
 def teach(
-    file: Annotated[Path, typer.Argument(help="Task file (.yaml or .json); demonstrations are saved to it.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml or .json) or a bundled example's name; it is not changed.")
+    ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy your demonstrations are saved to (default: NAME.edited.yaml beside FILE, or here for "
+            "a bundled example); when it exists, teaching carries on in it.",
+        ),
+    ] = None,
     strategy: Annotated[
         str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
     ] = "distance",
@@ -303,6 +318,8 @@ def teach(
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.learning.active import QuerySchedule, strategy_names
     from supportive.teach import TeachingConsole
 
@@ -319,15 +336,27 @@ def teach(
     def read() -> str:
         return input("> ")
 
+    copy = working_copy(task_path(file), save)
     with _about(file):
-        TeachingConsole(file, read, say, strategy, schedule, seed).run(demonstrations)
+        console = TeachingConsole(copy.start(), read, say, strategy, schedule, seed)
+        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console.run(demonstrations)
 
 
 @app.command()
 def chat(
     file: Annotated[
-        Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")
+        Path,
+        typer.Argument(help="Task file with a structure, or a bundled example's name; it is not changed."),
     ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy changed behaviors are saved to (default: NAME.edited.yaml beside FILE, or here for a "
+            "bundled example); when it exists, the conversation carries on in it.",
+        ),
+    ] = None,
     matcher: Annotated[
         str,
         typer.Option(
@@ -338,6 +367,8 @@ def chat(
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
     from supportive.chat import ChatConsole
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.language.understand import MATCHERS
 
     if matcher not in MATCHERS:
@@ -346,8 +377,12 @@ def chat(
     def read() -> str:
         return input("> ")
 
+    copy = working_copy(task_path(file), save)
     with _about(file):
-        ChatConsole(file, read, say, matcher).run()
+        console = ChatConsole(copy.reads(), read, say, matcher)
+        console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console.run()
 
 
 @app.command()
@@ -529,7 +564,9 @@ def serve(
     task: Annotated[
         Path | None,
         typer.Option(
-            "--task", help="Task file whose structure (or learned HTN) is the board (default: the chair)."
+            "--task",
+            help="Task file (or a bundled example's name) whose structure or learned HTN is the board "
+            "(default: the chair).",
         ),
     ] = None,
     db: Annotated[
@@ -565,12 +602,12 @@ def serve(
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
     subtasks through. The database is checked before the URL and tokens are printed; SIGTERM stops it
     gracefully (exit status 0)."""
-    from supportive.examples import path as example_path
+    from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
 
     launch = prepare(
-        task or example_path("ikea-chair"),
+        task_path(task or "ikea-chair"),
         db,
         host=host,
         port=port,
@@ -644,9 +681,8 @@ def reproduce(
 ) -> None:
     """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
     this run's."""
-    from rich.table import Table
-
     from supportive.experiments import reproduce as run_reproduce
+    from supportive.io.tables import fitted_table
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
@@ -655,20 +691,68 @@ def reproduce(
     for result in results:
         files = ", ".join(path.name for path in result.files)
         say(f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}")
-        table = Table(title=f"{result.experiment}: this run beside the thesis")
-        for column in ("quantity", "this run", "thesis"):
-            table.add_column(column, justify="left")
-        for row in result.headline:
-            table.add_row(*row)
-        out.print(table)
+        rows = [list(row) for row in result.headline]
+        title = f"{result.experiment}: this run beside the thesis"
+        out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
+
+
+def _print_version(wanted: bool) -> None:
+    if wanted:
+        from importlib.metadata import version
+
+        out.print(f"supportive {version('supportive')}", markup=False)
+        raise typer.Exit
+
+
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", is_eager=True, callback=_print_version, help="Print the version and exit."),
+    ] = False,
+) -> None:
+    """Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more."""
+
+
+def _plain_placeholders(command: Any) -> None:
+    """Help without typer's ``<bool>``/``<str>``/``<path>`` placeholders (typer ≥ 0.2x shows every parameter's
+    Python type): a flag shows none, a value its kind in capitals (``TEXT``, ``INTEGER``, ``NUMBER``,
+    ``PATH``), a choice its choices, an argument its name (``FILE``) and no type. A typer without them has no
+    ``display_type`` and is left alone."""
+    kinds = {"str": "TEXT", "int": "INTEGER", "float": "NUMBER", "path": "PATH", "file": "PATH"}
+    helper = command.get_help_option(command.context_class(command))
+    for param in [*command.params, *([helper] if helper is not None else [])]:
+        if param.metavar is not None or not hasattr(param, "display_type"):
+            continue
+        if param.param_type_name == "argument":
+            param.metavar = str(param.name).upper()
+            param.display_type_rich = lambda ctx: None  # the name says it; no type column
+        elif getattr(param, "is_flag", False):
+            param.metavar = ""
+        else:
+            label = str(param.display_type(None)).strip("<>").removesuffix(" range")
+            param.metavar = kinds.get(label, label)
+    for sub in getattr(command, "commands", {}).values():
+        _plain_placeholders(sub)
 
 
 def main() -> None:
-    """Entry point: run the app, turning library errors into one line and exit status 2."""
+    """Entry point: run the app, turning library errors into one line and exit status 2 (a missing optional
+    dependency too: the line names the extra that installs it)."""
+    from supportive.extras import missing_extra
+
+    command = typer.main.get_command(app)
+    _plain_placeholders(command)
     try:
-        app()
+        command()
     except SupportiveError as exc:
         say(f"supportive: error: {printable(str(exc), newlines=False)}", to_stderr=True)
+        sys.exit(2)
+    except ModuleNotFoundError as exc:
+        problem = missing_extra(exc, " ".join(sys.argv[1:2]) or "this command")
+        if problem is None:
+            raise
+        say(f"supportive: error: {problem}", to_stderr=True)
         sys.exit(2)
 
 
