@@ -4,7 +4,6 @@ prints anything."""
 
 from __future__ import annotations
 
-import asyncio
 import signal
 import socket
 import stat
@@ -15,9 +14,9 @@ from pathlib import Path
 
 import httpx
 import pytest
-import websockets
 from fastapi.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
+from websockets.sync.client import connect
 
 from supportive.io.limits import MAX_SECONDS
 
@@ -128,15 +127,10 @@ def test_idle_and_slow_clients_are_timed_out(sqlite_server: Server) -> None:
 
 
 def test_sigterm_drains_and_exits_0_with_no_traceback_after_websocket_closes(sqlite_server: Server) -> None:
-    async def sockets() -> None:
-        for _ in range(5):
-            async with websockets.connect(f"ws://127.0.0.1:{sqlite_server.port}/api/ws?token={TOKENS['screen']}") as ws:
-                assert "snapshot" in await ws.recv()
-        ws = await websockets.connect(f"ws://127.0.0.1:{sqlite_server.port}/api/ws?token={TOKENS['screen']}")
-        await ws.recv()
-        await ws.close()
-
-    asyncio.run(sockets())
+    url = f"ws://127.0.0.1:{sqlite_server.port}/api/ws?token={TOKENS['screen']}"
+    for _ in range(5):  # the sync client: an earlier test may leave an event loop running in this thread
+        with connect(url) as ws:  # closed normally on leaving
+            assert "snapshot" in ws.recv()
     with httpx.Client(base_url=sqlite_server.url) as client:
         assert client.post("/api/nodes/n1/claim", headers=auth("alice")).status_code == 200
     sqlite_server.process.send_signal(signal.SIGTERM)
