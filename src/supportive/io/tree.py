@@ -4,22 +4,30 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from rich.console import Console
+from rich.text import Text
 from rich.tree import Tree
 
+from supportive.io.terminal import plain, printable, terminal_console
 from supportive.tasks.htn import HTN, ActionNode, Node
 
 __all__ = ["htn_tree", "render_tree"]
 
-_KIND = {"chain": "[bold cyan]in order[/]", "clique": "[bold magenta]any order[/]"}
+_KIND = {"chain": ("in order", "bold cyan"), "clique": ("any order", "bold magenta")}
 
 
 def _add(parent: Tree, node: Node, texts: Mapping[str, str]) -> None:
+    """Labels are rich Text, never markup: ids and names are the user's (see :mod:`supportive.io.terminal`)."""
     if isinstance(node, ActionNode):
         text = texts.get(node.action)
-        parent.add(f"{node.label}" + (f" [dim]— {text}[/]" if text and text != node.action else ""))
+        label = plain(node.label)
+        if text and text != node.action:
+            label.append(f" — {printable(text)}", style="dim")
+        parent.add(label)
         return
-    branch = parent.add(f"{_KIND[node.kind]} {node.name or ''}".rstrip())
+    label = Text.assemble(_KIND[node.kind])
+    if node.name:
+        label.append(f" {printable(node.name)}")
+    branch = parent.add(label)
     for child in node.children:
         _add(branch, child, texts)
 
@@ -27,10 +35,9 @@ def _add(parent: Tree, node: Node, texts: Mapping[str, str]) -> None:
 def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
     """A rich Tree: chains read "in order", cliques "any order"; leaves show their action text."""
     texts = texts or {}
-    if htn.complete:
-        label = f"[bold]{htn.task or 'task'}[/]"
-    else:
-        label = f"[bold]{htn.task or 'task'}[/] [yellow](partial: {len(htn.roots)} top-level parts)[/]"
+    label = plain(htn.task or "task", style="bold")
+    if not htn.complete:
+        label.append(f" (partial: {len(htn.roots)} top-level parts)", style="yellow")
     tree = Tree(label)
     for root in htn.roots:
         _add(tree, root, texts)
@@ -39,7 +46,7 @@ def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
 
 def render_tree(htn: HTN, texts: Mapping[str, str] | None = None, *, width: int = 100) -> str:
     """The tree as plain text."""
-    console = Console(width=width, record=True, color_system=None, force_terminal=False)
+    console = terminal_console(width=width, soft_wrap=False, record=True, color_system=None, force_terminal=False)
     with console.capture() as capture:
         console.print(htn_tree(htn, texts))
     return capture.get()
