@@ -25,7 +25,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from supportive.io.taskfile import parse_task_file, write_task_file
+from supportive.io.task_edit import update_task_file
+from supportive.io.taskfile import parse_task_file
 from supportive.language.explain import explain_behavior, explain_subtask
 from supportive.language.grammar import (
     ExplainBehavior,
@@ -201,13 +202,16 @@ class ChatConsole:
             self.write(f"{understood.acknowledgement} {explanation}")
 
     def _save(self, behavior: SupportiveBehavior) -> None:
-        others = [b for b in self.spec.behaviors if b.name != behavior.name]
-        position = next((i for i, b in enumerate(self.spec.behaviors) if b.name == behavior.name), len(others))
-        others.insert(position, behavior)
-        self.spec = self.spec.with_behaviors(others)
+        def put(current: TaskSpec) -> TaskSpec:
+            """The file's task now (another session may have saved to it) with ``behavior`` in its place."""
+            others = [b for b in current.behaviors if b.name != behavior.name]
+            position = next((i for i, b in enumerate(current.behaviors) if b.name == behavior.name), len(others))
+            others.insert(position, behavior)
+            return current.with_behaviors(others)
+
+        self.spec = update_task_file(self.path, put)
         self.states = TaskStates.of(self.spec, self.states.structure)
         self.understanding = self.understanding.with_states(self.states)
-        write_task_file(self.spec, self.path)
 
     def _explain_subtask(self, request: ExplainSubtask) -> None:
         ranked = self.understanding.subtask_matcher.candidates(request.subtask_phrase)

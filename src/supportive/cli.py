@@ -7,16 +7,26 @@ and exit status 2.
 from __future__ import annotations
 
 import json
+import math
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.console import Console
 
 from supportive.bag_cli import bag_app
-from supportive.errors import ExperimentError, SupportiveError, TaskFileError
+from supportive.errors import (
+    ExperimentError,
+    FileFormatError,
+    MissingExtraError,
+    SupportiveError,
+    TaskFileError,
+)
+from supportive.extras import require_extra
+from supportive.io.terminal import markup_safe, printable, terminal_console
 
 __all__ = ["app", "main"]
 
@@ -27,8 +37,14 @@ app = typer.Typer(
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
 app.add_typer(bag_app, name="bag")
-out = Console(highlight=False)  # wraps at words to the terminal's width (COLUMNS when set)
-err = Console(stderr=True, highlight=False, soft_wrap=True)  # an error is one line, whatever its length
+out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
+err = terminal_console(stderr=True)  # an error is one line, whatever its length
+
+
+def say(line: object, *, to_stderr: bool = False) -> None:
+    """Print one line that may hold a user's text: as text (never markup or emoji), escaped for the terminal
+    (:mod:`supportive.io.terminal`)."""
+    (err if to_stderr else out).print(printable(str(line)), markup=False)
 
 
 class LearnFormat(StrEnum):
@@ -54,14 +70,32 @@ class Profile(StrEnum):
     uniform = "uniform"
 
 
+def _finite(value: float | None) -> float | None:
+    """A float option's value when it is a number (click lets ``nan`` through its ranges)."""
+    if value is not None and not math.isfinite(value):
+        raise typer.BadParameter(f"expected a finite number, got {value}")
+    return value
+
+
+@contextmanager
+def _about(path: Path) -> Iterator[None]:
+    """Name ``path`` in an error the library raises about its contents (a demonstration, the task) without
+    naming the file; file errors name it already, and a missing extra is not the file's fault."""
+    try:
+        yield
+    except (FileFormatError, MissingExtraError):
+        raise
+    except SupportiveError as exc:
+        raise SupportiveError(f"{path}: {exc}") from None
+
+
 def _write_text(text: str, output: Path | None) -> None:
     if output is None:
         sys.stdout.write(text)
         return
-    try:
-        output.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise TaskFileError(f"cannot write: {exc.strerror}", path=output) from None
+    from supportive.io.atomic import atomic_write
+
+    atomic_write(output, text, error=TaskFileError)
 
 
 @app.command()
@@ -93,14 +127,15 @@ def learn(
     spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
-    learner = learn_htn(spec, mode=mode.value)
+    with _about(file):
+        learner = learn_htn(spec, mode=mode.value)
     if format is LearnFormat.hddl:
         from supportive.io.hddl import write_hddl
 
         if output is None:
             raise TaskFileError("--format hddl needs --output DIR (it writes domain.hddl and problem.hddl)")
         domain, problem = write_hddl(learner.htn_, output)
-        err.print(f"wrote {domain} and {problem}")
+        say(f"wrote {domain} and {problem}", to_stderr=True)
         return
     if format is LearnFormat.json:
         data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
@@ -140,9 +175,12 @@ def infer(
         InferenceModel,
         typer.Option("--model", help="progress: knows what is done (default); or the thesis's HMMs."),
     ] = InferenceModel.progress,
-    top: Annotated[int, typer.Option("--top", min=1, help="How many entries of each belief to print.")] = 3,
+    top: Annotated[
+        int, typer.Option("--top", min=1, max=10_000, help="How many entries of each belief to print.")
+    ] = 3,
     mean_duration: Annotated[
-        float, typer.Option("--mean-duration", min=1.0, help="Mean observations per subgoal.")
+        float,
+        typer.Option("--mean-duration", min=1.0, max=1e6, callback=_finite, help="Mean observations per subgoal."),
     ] = 5.0,
     bag: Annotated[
         Path | None, typer.Option("--bag", help="Read contact events from a ROS bag instead (ros extra).")
@@ -183,13 +221,15 @@ def infer(
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     steps = parse_action_file(actions) if actions is not None else []
     stream = parse_observation_file(observations) if observations is not None else []
-    learner = learn_htn(spec)
-    if model is InferenceModel.progress:
-        events = ObservationModel.from_spec(spec) if actions is None else None
-        running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).filter()
-    else:
-        kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
-        running = kind(learner.htn_, ObservationModel.from_spec(spec), mean_duration=mean_duration).filter()
+    with _about(file):
+        learner = learn_htn(spec)
+        if model is InferenceModel.progress:
+            events = ObservationModel.from_spec(spec) if actions is None else None
+            running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).filter()
+        else:
+            kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
+            model_events = ObservationModel.from_spec(spec)
+            running = kind(learner.htn_, model_events, mean_duration=mean_duration).filter()
 
     def emit(record: dict[str, object]) -> None:
         sys.stdout.write(json.dumps(record) + "\n")
@@ -214,11 +254,15 @@ def infer(
 
 @app.command()
 def generate(
-    actions: Annotated[int, typer.Option("--actions", "-n", min=2, help="Number of primitive actions.")] = 20,
-    seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same task).")] = 0,
+    actions: Annotated[
+        int, typer.Option("--actions", "-n", min=2, max=100_000, help="Number of primitive actions.")
+    ] = 20,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same task).")] = 0,
     demonstrations: Annotated[
         int,
-        typer.Option("--demonstrations", "-d", min=0, help="Valid orderings to sample as demonstrations."),
+        typer.Option(
+            "--demonstrations", "-d", min=0, max=10_000, help="Valid orderings to sample as demonstrations."
+        ),
     ] = 4,
     profile: Annotated[Profile, typer.Option("--profile", help="Shape of the structure.")] = Profile.ikea,
     output: Annotated[
@@ -258,7 +302,7 @@ def evaluate(
     if len(spec.demonstrations) < 2:
         raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")
     k = None if folds == "loo" else int(folds)
-    with progress_bar(f"evaluate {spec.name}", len(spec.demonstrations)) as advance:
+    with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, _about(file):
         result = evaluate_task(spec, k=k, seed=seed, progress=advance)
     data = result.as_dict()
     if as_json:
@@ -269,9 +313,9 @@ def evaluate(
     ]
     if data["recall"] is not None:
         learning.append(f"orderings of the structure: recall {data['recall']:.3f}, precision {data['precision']:.3f}")
-    out.print(f"[bold]{spec.name}[/]: {'leave one out' if k is None else f'{k} folds'}, {result.folds} folds")
+    say(f"{spec.name}: {'leave one out' if k is None else f'{k} folds'}, {result.folds} folds")
     for line in learning:
-        out.print("  " + line)
+        say("  " + line)
     rows = [
         [
             name,
@@ -355,7 +399,9 @@ def teach(
     demonstrations: Annotated[
         int | None, typer.Option("--demonstrations", "-d", min=1, help="Stop after this many.")
     ] = None,
-    seed: Annotated[int, typer.Option("--seed", help="Seeds the choice among equally good questions.")] = 0,
+    seed: Annotated[
+        int, typer.Option("--seed", min=0, help="Seeds the choice among equally good questions.")
+    ] = 0,
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.errors import LearningError
@@ -378,9 +424,10 @@ def teach(
         return input("> ")
 
     copy = working_copy(task_path(file), save)
-    console = TeachingConsole(copy.start(), read, out.print, strategy, schedule, seed)
-    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
-    console.run(demonstrations)
+    with _about(file):
+        console = TeachingConsole(copy.start(), read, say, strategy, schedule, seed)
+        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console.run(demonstrations)
 
 
 @app.command()
@@ -418,10 +465,11 @@ def chat(
         return input("> ")
 
     copy = working_copy(task_path(file), save)
-    console = ChatConsole(copy.reads(), read, lambda line: out.print(line, markup=False), matcher)
-    console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
-    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
-    console.run()
+    with _about(file):
+        console = ChatConsole(copy.reads(), read, say, matcher)
+        console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console.run()
 
 
 @app.command()
@@ -440,8 +488,8 @@ def caregiver(
     novice: Annotated[
         float, typer.Option("--novice", help="The novice's share of random moves ε, in [0, 1].")
     ] = 0.5,
-    seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same episode).")] = 0,
-    steps: Annotated[int, typer.Option("--steps", min=1, help="Novice steps in the episode.")] = 200,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same episode).")] = 0,
+    steps: Annotated[int, typer.Option("--steps", min=1, max=100_000, help="Novice steps in the episode.")] = 200,
     no_caregiver: Annotated[bool, typer.Option("--no-caregiver", help="Let the novice play alone.")] = False,
     gif: Annotated[
         Path | None,
@@ -451,7 +499,11 @@ def caregiver(
     delay: Annotated[
         float,
         typer.Option(
-            "--delay", min=0.0, help="Seconds between printed steps (on a terminal: redrawn in place)."
+            "--delay",
+            min=0.0,
+            max=60.0,
+            callback=_finite,
+            help="Seconds between printed steps (on a terminal: redrawn in place).",
         ),
     ] = 0.0,
 ) -> None:
@@ -462,7 +514,6 @@ def caregiver(
     from contextlib import nullcontext
 
     from rich.live import Live
-    from rich.markup import escape
 
     from supportive.envs.household import load_map
     from supportive.safety.episode import THRESHOLD, run_episode
@@ -470,12 +521,14 @@ def caregiver(
 
     if not 0.0 <= novice <= 1.0:
         raise ExperimentError(f"--novice: ε must be in [0, 1] (the share of random moves), got {novice}")
+    if gif is not None:
+        require_extra("drawing an episode as a GIF (--gif)", "matplotlib", "plot")
     grid = load_map(map_name)
     with_caregiver = not no_caregiver
     result = run_episode(grid, novice, caregiver=with_caregiver, steps=steps, seed=seed, record=True)
     who = "with the caregiver" if with_caregiver else "without a caregiver"
     out.print(
-        f"[bold]{escape(grid.name)}[/]: a novice making {novice:.0%} random moves (ε = {novice:g}), {who}, "
+        f"[bold]{markup_safe(grid.name)}[/]: a novice making {novice:.0%} random moves (ε = {novice:g}), {who}, "
         f"{steps} steps, seed {seed}"
     )
     out.print(LEGEND, markup=False)
@@ -492,7 +545,7 @@ def caregiver(
     out.print(f"[bold]{who}:[/] " + summary(result, threshold=THRESHOLD, steps=steps), highlight=False)
     if gif is not None:
         write_gif(result.frames, grid, gif)
-        err.print(f"wrote {gif} ({len(result.frames)} frames)", markup=False)
+        say(f"wrote {gif} ({len(result.frames)} frames)", to_stderr=True)
 
 
 class SupportLead(StrEnum):
@@ -511,12 +564,15 @@ def support(
         int, typer.Option("--seed", min=0, help="Seeds the sampling (same seed, same choice).")
     ] = 0,
     environments: Annotated[
-        int | None, typer.Option("--environments", "-e", min=1, help="Hypothetical environments to sample.")
+        int | None,
+        typer.Option("--environments", "-e", min=1, max=100_000, help="Hypothetical environments to sample."),
     ] = None,
     scheme: Annotated[
         str | None, typer.Option("--scheme", help="Plan weights: conservative, greedy or aggressive.")
     ] = None,
-    workers: Annotated[int, typer.Option("--workers", "-w", min=1, help="Local processes scoring them.")] = 1,
+    workers: Annotated[
+        int, typer.Option("--workers", "-w", min=1, max=256, help="Local processes scoring them.")
+    ] = 1,
     render: Annotated[
         Path | None,
         typer.Option("--render", help="Draw the table before and after as a PNG (needs matplotlib)."),
@@ -540,6 +596,8 @@ def support(
     from supportive.examples import circuit_names, circuit_path
     from supportive.planning.weighting import parse_scheme
 
+    if render is not None:
+        require_extra("drawing the circuit table (--render)", "matplotlib", "plot")
     if not file.suffix and not file.exists() and str(file) in circuit_names():
         file = circuit_path(str(file))
     scenario = parse_scenario_file(file)
@@ -547,11 +605,13 @@ def support(
         scenario = replace(scenario, environments=environments)
     if scheme is not None:
         scenario = replace(scenario, scheme=parse_scheme(scheme))
-    plans = scenario.plans()
-    advice, decision = advise(scenario, plans, seed=seed, workers=workers)
+    with _about(file):
+        plans = scenario.plans()
+        advice, decision = advise(scenario, plans, seed=seed, workers=workers)
     report: dict[str, object] = advice.as_dict()
     if simulate:
-        alone, helped = run_simulation(scenario, plans, lead.value, seed=seed, workers=workers)
+        with _about(file):
+            alone, helped = run_simulation(scenario, plans, lead.value, seed=seed, workers=workers)
         report["simulation"] = {
             "lead": lead.value,
             "alone": {
@@ -571,20 +631,19 @@ def support(
         sys.stdout.write(json.dumps(report, indent=2) + "\n")
     else:
         for line in advice.lines():
-            out.print(line, markup=False)
+            say(line)
         if simulate:
             gain = 100.0 * (1.0 - helped.makespan / alone.makespan) if alone.makespan else 0.0
-            out.print(
+            say(
                 f"Simulated ({lead.value} lead): alone {alone.makespan:.1f} s, with support {helped.makespan:.1f} s "
                 f"({gain:+.1f} % faster, {helped.support_actions} supportive actions); lead search nodes "
-                f"{alone.lead_nodes} -> {helped.lead_nodes}",
-                markup=False,
+                f"{alone.lead_nodes} -> {helped.lead_nodes}"
             )
     if render is not None:
         world = scenario.world
         after = decision.chosen.state
         write_before_after(world, world.initial_state, after, render, moved=decision.chosen.move)
-        err.print(f"wrote {render}", markup=False)
+        say(f"wrote {render}", to_stderr=True)
 
 
 @app.command()
@@ -616,9 +675,20 @@ def serve(
         list[str] | None,
         typer.Option("--lead-only", help="A subtask (name or action id) only leads may do; repeatable."),
     ] = None,
+    client_timeout: Annotated[
+        float,
+        typer.Option(
+            "--client-timeout",
+            min=0.1,
+            max=3600.0,
+            callback=_finite,
+            help="Seconds a client has to send a request's head, then its body; idle ones are closed.",
+        ),
+    ] = 10.0,
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
-    subtasks through."""
+    subtasks through. The database is checked before the URL and tokens are printed; SIGTERM stops it
+    gracefully (exit status 0)."""
     from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
@@ -630,15 +700,17 @@ def serve(
         port=port,
         agents=agent or (),
         lead_only=lead_only or (),
+        client_timeout=client_timeout,
     )
-    out.print(f"task board for {launch.settings.board.task} at {launch.url()}", markup=False)
-    for spec in launch.settings.agents:
-        out.print(f"  {spec.id} ({spec.kind}, {spec.role}): token {spec.token}", markup=False)
-    if launch.tokens_file is not None:
-        out.print(
-            f"  (tokens kept in {launch.tokens_file}; API docs at http://{host}:{port}/docs)", markup=False
-        )
-    run_service(launch)
+
+    def announce() -> None:
+        say(f"task board for {launch.settings.board.task} at {launch.url()}")
+        for spec in launch.settings.agents:
+            say(f"  {spec.id} ({spec.kind}, {spec.role}): token {spec.token}")
+        if launch.tokens_file is not None:
+            say(f"  (tokens kept in {launch.tokens_file}; API docs at http://{host}:{port}/docs)")
+
+    run_service(launch, announce)
 
 
 @app.command("workbench-sim")
@@ -646,7 +718,9 @@ def workbench_sim(
     role: Annotated[
         str, typer.Option("--role", help="The robot's role: student, peer or instructor.")
     ] = "student",
-    seconds: Annotated[float, typer.Option("--seconds", min=1.0, help="Simulated seconds at most.")] = 40.0,
+    seconds: Annotated[
+        float, typer.Option("--seconds", min=1.0, max=3600.0, callback=_finite, help="Simulated seconds at most.")
+    ] = 40.0,
     url: Annotated[
         str | None,
         typer.Option(
@@ -662,17 +736,16 @@ def workbench_sim(
 
     if role not in ROLES:
         raise SupportiveError(f"--role: unknown role {role!r}; choose {', '.join(ROLES)}")
-    out.print(f"workbench-blocks, the robot as {role}:", markup=False)
-    run_workbench(
-        role, url=url, seconds=seconds, seed=seed, tell=lambda line: out.print(str(line), markup=False)
-    )
+    say(f"workbench-blocks, the robot as {role}:")
+    run_workbench(role, url=url, seconds=seconds, seed=seed, tell=say)
 
 
 @app.command()
 def reproduce(
     name: Annotated[str, typer.Argument(help="Experiment to run (e.g. edge-reduction), or 'all'.")],
     trials: Annotated[
-        int | None, typer.Option("--trials", "-n", min=1, help="Trials per experiment (default: a full run).")
+        int | None,
+        typer.Option("--trials", "-n", min=1, max=1_000_000, help="Trials per experiment (default: a full run)."),
     ] = None,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same metrics).")] = 0,
     workers: Annotated[
@@ -681,6 +754,7 @@ def reproduce(
             "--workers",
             "-w",
             min=1,
+            max=256,
             help="Worker processes on a local dask cluster (default: 1, in process).",
         ),
     ] = None,
@@ -699,12 +773,11 @@ def reproduce(
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
+    require_extra("plotting experiment results", "matplotlib", "plot")
     results = run_reproduce(name, trials, seed, workers or 1, scheduler, output)
     for result in results:
         files = ", ".join(path.name for path in result.files)
-        out.print(
-            f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}"
-        )
+        say(f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}")
         rows = [list(row) for row in result.headline]
         title = f"{result.experiment}: this run beside the thesis"
         out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
@@ -760,13 +833,13 @@ def main() -> None:
     try:
         command()
     except SupportiveError as exc:
-        err.print(f"supportive: error: {exc}", markup=False)
+        say(f"supportive: error: {printable(str(exc), newlines=False)}", to_stderr=True)
         sys.exit(2)
     except ModuleNotFoundError as exc:
         problem = missing_extra(exc, " ".join(sys.argv[1:2]) or "this command")
         if problem is None:
             raise
-        err.print(f"supportive: error: {problem}", markup=False)
+        say(f"supportive: error: {problem}", to_stderr=True)
         sys.exit(2)
 
 

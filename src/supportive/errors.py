@@ -6,6 +6,7 @@ as one line without a traceback.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 __all__ = [
@@ -144,8 +145,7 @@ class TooManyOrderingsError(GenerationError, LearningError):
     def __init__(self, count: int, limit: int) -> None:
         self.count = count
         self.limit = limit
-        text = str(count)
-        shown = text if len(text) <= 12 else f"about 10^{len(text) - 1}"
+        shown = str(count) if count < 10**12 else f"about 10^{int(math.log10(count))}"
         super().__init__(
             f"the structure admits {shown} orderings, more than the limit of {limit}: "
             "sample demonstrations instead, or raise the limit"

@@ -3,16 +3,21 @@
 
 The command line turns a ``ModuleNotFoundError`` for one of them into one line naming the extra
 (``serve needs sqlalchemy, which is not installed: pip install 'supportive[server]'``) wherever
-the import happens; a module no extra provides is a real bug and keeps its traceback.
+the import happens; a module no extra provides is a real bug and keeps its traceback. :func:`require_extra`
+checks for one before the work that needs it starts (``reproduce``'s plots, ``--gif``, ``--render``), so a
+missing one is said at once rather than after minutes of computing.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import re
 from functools import cache
 from importlib.metadata import PackageNotFoundError, requires
 
-__all__ = ["extra_of", "missing_extra"]
+from supportive.errors import MissingExtraError
+
+__all__ = ["extra_of", "missing_extra", "require_extra"]
 
 _REQUIREMENT = re.compile(r"^\s*([A-Za-z0-9._-]+)\s*(?:\[([^\]]*)\])?[^;]*;.*extra\s*==\s*['\"]([^'\"]+)['\"]")
 _MODULES = {"scikit-learn": ("sklearn",), "psycopg": ("psycopg", "psycopg_binary")}
@@ -62,3 +67,23 @@ def missing_extra(error: ModuleNotFoundError, command: str) -> str | None:
         return None
     top = module.split(".")[0]
     return f"{command} needs {top}, which is not installed: pip install 'supportive[{extra}]'"
+
+
+def require_extra(feature: str, module: str, extra: str) -> None:
+    """Raise at once when ``module`` (installed by the ``extra``) is missing.
+
+    Raises:
+        MissingExtraError: naming the feature, the module and the extra to install.
+
+    >>> require_extra("drawing", "json", "none")
+    >>> require_extra("drawing", "no_such_module_here", "plot")
+    Traceback (most recent call last):
+    ...
+    supportive.errors.MissingExtraError: drawing needs no_such_module_here, which is not installed: pip install 'supportive[plot]'
+    """
+    try:
+        found = importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):
+        found = False
+    if not found:
+        raise MissingExtraError(feature, module, extra)

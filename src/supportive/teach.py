@@ -17,7 +17,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from supportive.io.taskfile import parse_task_file, write_task_file
+from supportive.io.task_edit import update_task_file
+from supportive.io.taskfile import parse_task_file
 from supportive.learning.active import QuerySchedule, TeachingSession
 from supportive.learning.learner import HTNLearner
 from supportive.learning.naming import known_names
@@ -156,13 +157,17 @@ class TeachingConsole:
             finished = self._demonstration(session, repertoire)
             if finished is None:
                 break
-            taken = {d.id for d in spec.demonstrations}
-            number = len(spec.demonstrations) + 1
-            while f"d{number}" in taken:
-                number += 1
-            finished = replace(finished, id=f"d{number}")
-            spec = spec.with_demonstrations([*spec.demonstrations, finished])
-            write_task_file(spec, self.path)
+
+            def append(current: TaskSpec, finished: Demonstration = finished) -> TaskSpec:
+                """The file's task now (another session may have saved to it) with the new demonstration."""
+                taken = {d.id for d in current.demonstrations}
+                number = len(current.demonstrations) + 1
+                while f"d{number}" in taken:
+                    number += 1
+                return current.with_demonstrations([*current.demonstrations, replace(finished, id=f"d{number}")])
+
+            spec = update_task_file(self.path, append)
+            finished = spec.demonstrations[-1]
             recorded += 1
             graph = session.learner.task_graph_
             shape = (

@@ -59,3 +59,22 @@ def test_tree_reads_in_order_and_any_order() -> None:
     assert "in order Prepare salad vegetables" in text
     assert "any order Chop vegetables" in text
     assert "get_knife — get the knife" in text
+
+
+def test_counts_beyond_what_json_holds_are_written_as_scientific_strings() -> None:
+    """A task graph with more than 10^4300 paths (a valid task: 14,300 pairs each done both ways) used to
+    crash ``learn --format json``: Python cannot even turn the count into digits."""
+    import json
+
+    from supportive.io.htn_json import htn_to_dict, json_count
+    from supportive.learning.learner import learn as learn_htn
+    from supportive.tasks.spec import Demonstration, TaskSpec
+
+    spec = TaskSpec("pair", demonstrations=(Demonstration.of(["a", "b"]), Demonstration.of(["b", "a"])))
+    learner = learn_htn(spec)
+    stats = learner.stats_.as_dict()
+    stats["task_graph"]["paths"] = 2**14_300
+    data = json.loads(json.dumps(htn_to_dict(learner.htn_, stats)))
+    assert data["stats"]["task_graph"]["paths"] == "5.35720e+4304"
+    assert json_count(2**53) == 2**53 and json_count(2**53 + 1) == "9.00719e+15"
+    assert [json_count(10**k) for k in (16, 300, 5000)] == ["1.00000e+16", "1.00000e+300", "1.00000e+5000"]

@@ -157,7 +157,7 @@ class Server:
                 self.kill()
 
 
-def start_server(database: str, port: int | None = None) -> Server:
+def start_server(database: str, port: int | None = None, extra: tuple[str, ...] = ()) -> Server:
     port = port or free_port()
     command = [
         sys.executable,
@@ -172,6 +172,7 @@ def start_server(database: str, port: int | None = None) -> Server:
         "127.0.0.1",
         *(x for a in AGENTS for x in ("--agent", a)),
         *(x for name in LEAD_ONLY for x in ("--lead-only", name)),
+        *extra,
     ]
     process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     url = f"http://127.0.0.1:{port}"
@@ -192,8 +193,8 @@ def start_server(database: str, port: int | None = None) -> Server:
 def server_factory() -> Iterator[Callable[..., Server]]:
     started: list[Server] = []
 
-    def make(database: str, port: int | None = None) -> Server:
-        server = start_server(database, port)
+    def make(database: str, port: int | None = None, extra: tuple[str, ...] = ()) -> Server:
+        server = start_server(database, port, extra)
         started.append(server)
         return server
 

@@ -8,7 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from supportive.errors import ObservationFileError
-from supportive.io.text import read_text
+from supportive.io.safe_load import read_text
+from supportive.io.values import check_id
 
 __all__ = ["parse_action_file"]
 
@@ -35,7 +36,10 @@ def parse_action_file(path: str | Path) -> list[str]:
             continue
         if len(content.split()) != 1:
             raise ObservationFileError(f"expected one action id, got {content!r}", path=path, line=number)
-        actions.append(content)
+        try:
+            actions.append(check_id(content, action=True, what="an action id"))
+        except ValueError as exc:
+            raise ObservationFileError(str(exc), path=path, line=number) from None
     if not actions:
         raise ObservationFileError("no action ids in the file", path=path)
     return actions

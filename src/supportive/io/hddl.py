@@ -23,7 +23,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from supportive.errors import ExportError
+from supportive.errors import ExportError, FileFormatError
+from supportive.io.atomic import atomic_write
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, first_leaves, nullable
 
 __all__ = ["hddl_strings", "htn_to_problem", "read_hddl", "solve_hddl", "write_hddl"]
@@ -207,20 +208,32 @@ def hddl_strings(htn: HTN) -> tuple[str, str]:
 def write_hddl(htn: HTN, directory: str | Path) -> tuple[Path, Path]:
     """Write ``domain.hddl`` and ``problem.hddl`` into ``directory`` (created if missing).
 
-    Both texts are produced before anything is written, so a failed export leaves no half-written pair.
+    Both texts are produced before anything is written, and each file is written atomically (mode and symlinks
+    kept), so a failed export leaves no half-written file and no domain without its problem.
 
     Returns:
         The paths of the domain and problem files.
 
     Raises:
-        ExportError: as :func:`htn_to_problem`.
+        ExportError: as :func:`htn_to_problem`; when ``directory`` is a file or cannot be written.
     """
-    domain, problem = hddl_strings(htn)
     folder = Path(directory)
-    folder.mkdir(parents=True, exist_ok=True)
+    if folder.exists() and not folder.is_dir():
+        raise ExportError(f"{folder}: is a file, not a directory: HDDL export writes domain.hddl and problem.hddl into a directory")
+    domain, problem = hddl_strings(htn)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ExportError(f"{folder}: cannot make the directory: {exc.strerror}") from None
     paths = folder / "domain.hddl", folder / "problem.hddl"
-    paths[0].write_text(domain, encoding="utf-8")
-    paths[1].write_text(problem, encoding="utf-8")
+    fresh = not paths[0].exists()
+    try:
+        atomic_write(paths[0], domain)
+        atomic_write(paths[1], problem)
+    except FileFormatError as exc:
+        if fresh:  # never leave a domain without its problem
+            paths[0].unlink(missing_ok=True)
+        raise ExportError(str(exc)) from None
     return paths
 
 

@@ -2,12 +2,47 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from supportive.errors import TaskFileError
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, Support, TopLevel
 
-__all__ = ["htn_from_dict", "htn_to_dict", "node_from_dict", "node_to_dict"]
+__all__ = ["JSON_EXACT", "htn_from_dict", "htn_to_dict", "json_count", "node_from_dict", "node_to_dict"]
+
+JSON_EXACT = 2**53
+"""Counts up to this are written as JSON integers (every JSON reader holds them exactly)."""
+
+
+def json_count(count: int) -> int | str:
+    """A count as JSON holds it: the integer up to :data:`JSON_EXACT`, beyond it a string in scientific
+    notation with six significant digits (a valid task may admit more than 10^4300 orderings, more digits
+    than Python converts to text, and more than any JSON reader holds as a number).
+
+    >>> json_count(720), json_count(10**4301 * 3)
+    (720, '3.00000e+4301')
+    """
+    if count <= JSON_EXACT:
+        return count
+    exponent = int(math.log10(count))
+    leading = count // 10 ** max(exponent - 5, 0)
+    while leading >= 10**6:  # log10 of a huge integer can round up to the next power
+        exponent += 1
+        leading = count // 10 ** (exponent - 5)
+    while leading < 10**5:
+        exponent -= 1
+        leading = count // 10 ** (exponent - 5)
+    return f"{leading / 10**5:.5f}e+{exponent}"
+
+
+def _json_numbers(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {key: _json_numbers(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_json_numbers(item) for item in value]
+    if isinstance(value, int) and not isinstance(value, bool):
+        return json_count(value)
+    return value
 
 
 def node_to_dict(node: Node) -> dict[str, Any]:
@@ -84,7 +119,8 @@ def node_from_dict(data: Any, place: str = "node") -> Node:
 
 def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]:
     """The JSON form of docs/exports.md; ``top_level`` is added for a partial hierarchy (how its roots may follow
-    one another: ``edges`` are ``[from state, root index, to state]``)."""
+    one another: ``edges`` are ``[from state, root index, to state]``); counts in ``stats`` beyond 2^53 are
+    strings (:func:`json_count`)."""
     data: dict[str, Any] = {
         "task": htn.task,
         "complete": htn.complete,
@@ -101,7 +137,7 @@ def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]
             data["top_level"]["counts"] = top.counts.as_dict()
     data["alternatives"] = [{"roots": [node_to_dict(r) for r in alt.roots]} for alt in htn.alternatives]
     if stats is not None:
-        data["stats"] = stats
+        data["stats"] = _json_numbers(stats)
     return data
 
 

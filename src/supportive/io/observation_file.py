@@ -7,14 +7,13 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from supportive.errors import ObservationFileError
-from supportive.io.text import read_text
+from supportive.io.limits import MAX_SECONDS
+from supportive.io.safe_load import load_json, load_yaml, read_text
+from supportive.io.values import check_id, check_number
 
 __all__ = ["Moment", "parse_observation_file"]
 
@@ -38,25 +37,17 @@ def parse_observation_file(path: str | Path) -> list[Moment]:
         for number, line in enumerate(text.splitlines(), start=1):
             if not line.strip():
                 continue
-            try:
-                item = json.loads(line)
-            except json.JSONDecodeError as exc:
-                raise ObservationFileError(f"invalid JSON: {exc.msg}", path=path, line=number) from None
+            item = load_json(line, path, ObservationFileError, line=number)
             moments.append(_moment(item, path, None, number))
         return moments
     if suffix not in (".json", ".yaml", ".yml"):
         raise ObservationFileError(
             f"unsupported file type {suffix or '(none)'!r}; use .jsonl, .json, .yaml or .yml", path=path
         )
-    try:
-        data = json.loads(text) if suffix == ".json" else yaml.safe_load(text)
-    except json.JSONDecodeError as exc:
-        raise ObservationFileError(f"invalid JSON: {exc.msg}", path=path, line=exc.lineno) from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        raise ObservationFileError(
-            "invalid YAML", path=path, line=None if mark is None else mark.line + 1
-        ) from None
+    if suffix == ".json":
+        data = load_json(text, path, ObservationFileError)
+    else:
+        data = load_yaml(text, path, ObservationFileError)
     if isinstance(data, dict) and set(data) == {"observations"}:
         data = data["observations"]
     if not isinstance(data, list):
@@ -75,13 +66,19 @@ def _moment(item: Any, path: Path, place: str | None, line: int | None) -> Momen
         if "events" not in item:
             raise ObservationFileError("missing required key 'events'", path=path, place=place, line=line)
         time = item.get("time")
-        if time is not None and (isinstance(time, bool) or not isinstance(time, int | float)):
-            raise ObservationFileError(
-                f"time must be a number, got {time!r}", path=path, place=place, line=line
-            )
+        if time is not None:
+            try:
+                check_number(time, "time", low=-MAX_SECONDS, high=MAX_SECONDS)
+            except ValueError as exc:
+                raise ObservationFileError(str(exc), path=path, place=place, line=line) from None
         item = item["events"]
     if not isinstance(item, list) or not all(isinstance(e, str) and e for e in item):
         raise ObservationFileError(
             "expected a list of contact events (non-empty strings)", path=path, place=place, line=line
         )
+    for event in item:
+        try:
+            check_id(event, what="a contact event")
+        except ValueError as exc:
+            raise ObservationFileError(str(exc), path=path, place=place, line=line) from None
     return frozenset(item), None if time is None else float(time)

@@ -19,6 +19,8 @@ from pydantic import (
     model_validator,
 )
 
+from supportive.io.values import ActionId, Coordinate, Ident, Seconds, Text
+
 __all__ = [
     "DEFAULT_EVENT_PROBABILITY",
     "ActionIn",
@@ -31,7 +33,8 @@ __all__ = [
     "TaskIn",
 ]
 
-Name = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1)]
+Name = Ident
+Sentence = Annotated[Text, StringConstraints(strip_whitespace=True, min_length=1)]
 
 
 def _wrap(key: str) -> Any:
@@ -55,16 +58,13 @@ def _keyframe_pair(value: Any) -> Any:
     return value
 
 
-Coordinate = Annotated[float, Field(allow_inf_nan=False)]
-
-
 class KeyframeIn(_Strict):
     """``{x, y, text, goal}`` or ``[x, y]``: a point the skill's end effector passes (workspace units, e.g.
     metres), what happens there, and whether it is a goal state of the skill."""
 
     x: Coordinate
     y: Coordinate
-    text: str | None = None
+    text: Text | None = None
     goal: bool = False
 
 
@@ -73,9 +73,9 @@ class ActionIn(_Strict):
     holding with probability 0.9 while the action runs) or a mapping from event to probability; keyframes are
     the points the skill's end effector passes, in order."""
 
-    id: Name
-    text: str | None = None
-    observations: list[Name] | dict[str, Annotated[float, Field(gt=0.0, lt=1.0)]] | None = None
+    id: ActionId
+    text: Text | None = None
+    observations: list[Name] | dict[Name, Annotated[float, Field(gt=0.0, lt=1.0)]] | None = None
     effects: list[Name] | None = None
     keyframes: list[Annotated[KeyframeIn, BeforeValidator(_keyframe_pair)]] | None = None
 
@@ -91,10 +91,10 @@ class ActionIn(_Strict):
 class StepIn(_Strict):
     """``{action, start, end, state}``: timing in seconds; ``state`` lists the fluents true after the step."""
 
-    action: Name
-    start: float | None = None
-    end: float | None = None
-    state: list[str] | None = None
+    action: ActionId
+    start: Seconds | None = None
+    end: Seconds | None = None
+    state: list[Name] | None = None
 
     @model_validator(mode="after")
     def _timing(self) -> StepIn:
@@ -107,8 +107,8 @@ class DemonstrationIn(_Strict):
     """``{id, agent, initial_state, steps}``."""
 
     id: Name | None = None
-    agent: str | None = None
-    initial_state: list[str] | None = None
+    agent: Name | None = None
+    initial_state: list[Name] | None = None
     steps: Annotated[list[Annotated[StepIn, _wrap("action")]], Field(min_length=1)]
 
 
@@ -116,11 +116,11 @@ class NodeIn(_Strict):
     """A structure node: exactly one of ``action``, ``chain``, ``clique`` or ``optional`` (a node that may be
     skipped whole: ``{optional: add_sugar}``); an optional ``name``."""
 
-    action: Name | None = None
+    action: ActionId | None = None
     chain: list[Annotated[NodeIn, _wrap("action")]] | None = None
     clique: list[Annotated[NodeIn, _wrap("action")]] | None = None
     optional: Annotated[NodeIn, _wrap("action")] | None = None
-    name: str | None = None
+    name: Name | None = None
 
     @model_validator(mode="after")
     def _one_kind(self) -> NodeIn:
@@ -144,8 +144,8 @@ class PredicateIn(_Strict):
 
     name: Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$")]
     params: list[Identifier | dict[Identifier, Identifier]] = []
-    text: Name
-    negative: str | None = None
+    text: Sentence
+    negative: Text | None = None
 
     @field_validator("params")
     @classmethod
@@ -164,7 +164,7 @@ class BehaviorIn(_Strict):
     """``{name, text, category, subtasks, initiation, termination}``; the two regions are formulas."""
 
     name: Name
-    text: Name
+    text: Sentence
     category: Literal[
         "materials stabilization",
         "materials retrieval",
@@ -173,8 +173,8 @@ class BehaviorIn(_Strict):
         "task progression guidance",
     ]
     subtasks: list[Name] = []
-    initiation: Name = "true"
-    termination: Name = "false"
+    initiation: Sentence = "true"
+    termination: Sentence = "false"
 
 
 class TaskIn(_Strict):

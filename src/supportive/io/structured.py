@@ -11,7 +11,6 @@ the field (``demonstrations[1].steps[3]``) and what was wrong.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, Literal
@@ -20,6 +19,7 @@ import yaml
 from pydantic import ValidationError
 
 from supportive.errors import FileFormatError
+from supportive.io.safe_load import compose_yaml, load_json, load_yaml
 
 __all__ = ["kind_of", "line_of", "load_structured", "place_of", "schema_error"]
 
@@ -27,21 +27,14 @@ __all__ = ["kind_of", "line_of", "load_structured", "place_of", "schema_error"]
 def load_structured(
     text: str, format: Literal["yaml", "json"], path: str | Path | None, error: type[FileFormatError]
 ) -> Any:
-    """The data in ``text`` (YAML or JSON).
+    """The data in ``text`` (YAML or JSON), read by the safe loader (:mod:`supportive.io.safe_load`).
 
     Raises:
-        error: for text that does not parse, with the line of the problem.
+        error: for text that does not parse or breaks a limit, with the line of the problem.
     """
-    try:
-        if format == "json":
-            return json.loads(text)
-        return yaml.safe_load(text)
-    except json.JSONDecodeError as exc:
-        raise error(f"invalid JSON: {exc.msg}", path=path, line=exc.lineno) from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-        raise error(f"invalid YAML: {problem}", path=path, line=None if mark is None else mark.line + 1) from None
+    if format == "json":
+        return load_json(text, path, error)
+    return load_yaml(text, path, error)
 
 
 def kind_of(value: object) -> str:
@@ -61,10 +54,7 @@ def place_of(loc: Sequence[str | int]) -> str:
 
 def line_of(text: str, loc: Sequence[str | int]) -> int | None:
     """The line of the deepest node along ``loc`` that exists in the text (YAML and most JSON)."""
-    try:
-        node = yaml.compose(text)
-    except yaml.YAMLError:
-        return None
+    node = compose_yaml(text)
     line = None
     for part in loc:
         if node is None:

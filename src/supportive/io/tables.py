@@ -19,6 +19,8 @@ from rich.console import Console, Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
+from supportive.io.terminal import plain
+
 __all__ = ["fitted_table"]
 
 
@@ -40,7 +42,7 @@ def fitted_table(
         rows: The cells, row by row.
         numeric: The indexes of the columns that hold numbers (right-aligned).
     """
-    table = Table(title=title, box=box.SIMPLE_HEAD, pad_edge=False, collapse_padding=True, title_justify="left")
+    table = Table(title=plain(title), box=box.SIMPLE_HEAD, pad_edge=False, collapse_padding=True, title_justify="left")
     for index, header in enumerate(headers):
         cells = [row[index] for row in rows]
         word = max((len(w) for w in header.split()), default=1)
@@ -51,13 +53,13 @@ def fitted_table(
             longest = max([word, *(len(w) for cell in cells for w in cell.split())])
             table.add_column(header, min_width=longest, overflow="fold")
     for row in rows:
-        table.add_row(*row)
+        table.add_row(*(plain(cell) for cell in row))  # cells are text, never markup
     if _words_whole(console, table, rows):
         return table
     records: list[RenderableType] = [Text(title, style="bold")]
     for row in rows:
         pairs = ", ".join(f"{header} {cell}" for header, cell in zip(headers[1:], row[1:], strict=True))
-        records.append(Text(f"{row[0]}: {pairs}"))
+        records.append(plain(f"{row[0]}: {pairs}"))
     return Group(*records)
 
 

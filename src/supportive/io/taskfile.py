@@ -18,9 +18,12 @@ import yaml
 from pydantic import ValidationError
 
 from supportive.errors import TaskFileError
+from supportive.io.atomic import atomic_write
+from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
+from supportive.io.safe_load import read_csv, read_text
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
-from supportive.io.text import read_text
+from supportive.io.values import check_id, check_number
 from supportive.tasks.behaviors import (
     DERIVED_PREDICATES,
     BehaviorCategory,
@@ -267,8 +270,7 @@ def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, se
 
 # ---------------------------------------------------------------------------------------------- CSV
 def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
-    reader = csv.DictReader(io.StringIO(text))
-    header = [h.strip() for h in reader.fieldnames or ()]
+    header, table = read_csv(text, path, TaskFileError)
     missing = [c for c in CSV_COLUMNS if c not in header]
     if missing:
         raise TaskFileError(
@@ -280,24 +282,29 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
     if unknown:
         raise TaskFileError(f"unknown column(s) {', '.join(unknown)}", path=path, line=1)
     rows: dict[str, list[tuple[int, Step, str | None]]] = {}
-    for row in reader:
-        line = reader.line_num
-        values = {k.strip(): (v or "").strip() for k, v in row.items() if k is not None}
-        if None in row:
+    for line, row in table:
+        if not any(field.strip() for field in row):
+            continue  # a blank line
+        if len(row) > len(header):
             raise TaskFileError("more values than columns", path=path, line=line)
-        demo, action = values["demonstration"], values["action"]
+        values = dict(zip(header, (field.strip() for field in row), strict=False))
+        demo, action = values.get("demonstration", ""), values.get("action", "")
         if not demo or not action:
             raise TaskFileError("'demonstration' and 'action' must not be empty", path=path, line=line)
         try:
-            number = int(values["step"])
-        except ValueError:
-            raise TaskFileError(
-                f"step must be an integer, got {values['step']!r}", path=path, line=line
-            ) from None
-        start, end = (_float(values.get(k, ""), k, path, line) for k in ("start", "end"))
+            check_id(demo, what="a demonstration id")
+            check_id(action, action=True, what="an action id")
+            if values.get("agent"):
+                check_id(values["agent"], what="an agent")
+        except ValueError as exc:
+            raise TaskFileError(str(exc), path=path, line=line) from None
+        step = values.get("step", "")
+        if not (step.isdigit() and len(step) <= 9):
+            raise TaskFileError(f"step must be an integer of at most 9 digits, got {step[:20]!r}", path=path, line=line)
+        start, end = (_seconds(values.get(k, ""), k, path, line) for k in ("start", "end"))
         if start is not None and end is not None and start > end:
             raise TaskFileError(f"start {start} is after end {end}", path=path, line=line)
-        rows.setdefault(demo, []).append((number, Step(action, start, end), values.get("agent") or None))
+        rows.setdefault(demo, []).append((int(step), Step(action, start, end), values.get("agent") or None))
     if not rows:
         raise TaskFileError("no demonstration rows after the header", path=path, line=2)
     demos = []
@@ -315,13 +322,19 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
     return TaskSpec(name, (), None, tuple(demos))
 
 
-def _float(value: str, column: str, path: str | Path | None, line: int) -> float | None:
+def _seconds(value: str, column: str, path: str | Path | None, line: int) -> float | None:
     if not value:
         return None
     try:
-        return float(value)
+        number = float(value) if len(value) <= MAX_NUMBER_CHARS else None
     except ValueError:
-        raise TaskFileError(f"{column} must be a number, got {value!r}", path=path, line=line) from None
+        number = None
+    if number is None:
+        raise TaskFileError(f"{column} must be a number, got {value[:20]!r}", path=path, line=line)
+    try:
+        return check_number(number, column, low=-MAX_SECONDS, high=MAX_SECONDS)
+    except ValueError as exc:
+        raise TaskFileError(str(exc), path=path, line=line) from None
 
 
 # ---------------------------------------------------------------------------------------------- writing
@@ -460,9 +473,11 @@ def _blank(value: float | None) -> object:
 
 
 def write_task_file(spec: TaskSpec, path: str | Path, format: Format | None = None) -> None:
-    """Write a task file; the text is produced before the file is opened, so a failure writes nothing."""
-    path = Path(path)
+    """Write a task file atomically (:func:`~supportive.io.atomic.atomic_write`: mode and symlinks kept); the
+    text is produced before the file is opened, so a failure writes nothing.
+
+    Raises:
+        TaskFileError: naming the file, when it cannot be written.
+    """
     text = dump_task(spec, format or format_of(path))
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    tmp.replace(path)
+    atomic_write(path, text, error=TaskFileError)

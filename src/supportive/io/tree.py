@@ -4,29 +4,34 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from rich.console import Console
+from rich.text import Text
 from rich.tree import Tree
 
+from supportive.io.terminal import plain, printable, terminal_console
 from supportive.tasks.htn import HTN, ActionNode, Node
 
 __all__ = ["htn_tree", "render_tree"]
 
-_KIND = {"chain": "[bold cyan]in order[/]", "clique": "[bold magenta]any order[/]"}
+_KIND = {"chain": ("in order", "bold cyan"), "clique": ("any order", "bold magenta")}
 
 
 def _add(parent: Tree, node: Node, texts: Mapping[str, str]) -> None:
-    optional = "[yellow]optional[/] " if node.optional else ""
+    """Labels are rich Text, never markup: ids and names are the user's (see :mod:`supportive.io.terminal`)."""
+    optional = Text("optional ", style="yellow") if node.optional else Text("")
     if isinstance(node, ActionNode):
         text = texts.get(node.action)
-        parent.add(f"{optional}{node.label}" + (f" [dim]— {text}[/]" if text and text != node.action else ""))
+        label = Text.assemble(optional, plain(node.label))
+        if text and text != node.action:
+            label.append(f" — {printable(text)}", style="dim")
+        parent.add(label)
         return
+    label = Text.assemble(optional, _KIND[node.kind])
+    if node.name:
+        label.append(f" {printable(node.name)}")
     support = node.support
-    inferred = (
-        f" [dim](inferred: {support.orders_seen} of {support.orders} orders seen)[/]"
-        if support is not None and not support.observed and node.kind == "clique"
-        else ""
-    )
-    branch = parent.add(f"{optional}{_KIND[node.kind]} {node.name or ''}".rstrip() + inferred)
+    if support is not None and not support.observed and node.kind == "clique":
+        label.append(f" (inferred: {support.orders_seen} of {support.orders} orders seen)", style="dim")
+    branch = parent.add(label)
     for child in node.children:
         _add(branch, child, texts)
 
@@ -35,10 +40,9 @@ def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
     """A rich Tree: chains read "in order", cliques "any order" (with how many of their orders were seen,
     when the clique was inferred); optional parts say so; leaves show their action text."""
     texts = texts or {}
-    if htn.complete:
-        label = f"[bold]{htn.task or 'task'}[/]"
-    else:
-        label = f"[bold]{htn.task or 'task'}[/] [yellow](partial: {len(htn.roots)} top-level parts)[/]"
+    label = plain(htn.task or "task", style="bold")
+    if not htn.complete:
+        label.append(f" (partial: {len(htn.roots)} top-level parts)", style="yellow")
     tree = Tree(label)
     for root in htn.roots:
         _add(tree, root, texts)
@@ -47,7 +51,7 @@ def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
 
 def render_tree(htn: HTN, texts: Mapping[str, str] | None = None, *, width: int = 100) -> str:
     """The tree as plain text."""
-    console = Console(width=width, record=True, color_system=None, force_terminal=False)
+    console = terminal_console(width=width, soft_wrap=False, record=True, color_system=None, force_terminal=False)
     with console.capture() as capture:
         console.print(htn_tree(htn, texts))
     return capture.get()

@@ -11,10 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
-
 from supportive.errors import FileFormatError
-from supportive.io.text import read_text
+from supportive.io.safe_load import load_yaml, read_text
 from supportive.language.grammar import ExplainSubtask, Preference, parse_utterance
 from supportive.language.grounding import Matcher
 
@@ -38,10 +36,7 @@ def read_utterance_set(path: str | Path) -> list[tuple[str, str]]:
             not pair up.
     """
     file = Path(path)
-    try:
-        data = yaml.safe_load(read_text(file, FileFormatError))
-    except yaml.YAMLError as exc:
-        raise FileFormatError(f"invalid YAML: {exc}", path=file) from None
+    data = load_yaml(read_text(file, FileFormatError), file, FileFormatError)
     pairs: list[tuple[str, str]] = []
     for i, item in enumerate((data or {}).get("utterances", [])):
         if "subtasks" not in item:

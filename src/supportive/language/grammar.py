@@ -43,6 +43,7 @@ from lark import Lark, Token, Tree
 from lark.exceptions import LarkError
 
 from supportive.errors import SupportiveError
+from supportive.io.limits import MAX_SENTENCE_CHARS
 from supportive.language.wording import EVERYDAY_VERBS
 
 __all__ = [
@@ -50,6 +51,7 @@ __all__ = [
     "ExplainBehavior",
     "ExplainSubtask",
     "Preference",
+    "SentenceTooLongError",
     "UnderstandingError",
     "Utterance",
     "normalise_text",
@@ -115,6 +117,26 @@ class UnderstandingError(SupportiveError, ValueError):
         else:
             message = f"I did not understand '{text.strip()}'; say {expected}"
         super().__init__(message)
+
+
+class SentenceTooLongError(UnderstandingError):
+    """An utterance longer than :data:`~supportive.io.limits.MAX_SENTENCE_CHARS` characters: refused before
+    parsing (the Earley parser's time grows faster than the sentence).
+
+    Args:
+        text: What the person said.
+    """
+
+    def __init__(self, text: str) -> None:
+        SupportiveError.__init__(
+            self,
+            f"That is {len(text):,} characters; I read sentences of at most {MAX_SENTENCE_CHARS}: "
+            "say it in shorter sentences, one at a time.",
+        )
+        self.text = text
+        self.understood = None
+        self.missing = "a shorter sentence"
+        self.expected = f"at most {MAX_SENTENCE_CHARS} characters"
 
 
 # The grammar reads the normalised text (lower-case words and commas, see `normalise_text`) with lark's
@@ -467,7 +489,8 @@ def parse_utterance(text: str) -> Utterance:
 
     Raises:
         UnderstandingError: when the utterance fits no form; the message quotes the part that was understood
-            and the form to use.
+            and the form to use. :class:`SentenceTooLongError` for one over
+            :data:`~supportive.io.limits.MAX_SENTENCE_CHARS` characters.
 
     >>> parse_utterance("please hold the seat steady while I'm screwing it down, robot")
     Preference(subtask_phrases=('screwing it down',), behavior_phrases=('hold the seat steady',), start=None, stop=None, negative=False)
@@ -480,6 +503,8 @@ def parse_utterance(text: str) -> Utterance:
     ...
     supportive.language.grammar.UnderstandingError: I understood 'When I am attaching the seat' but not what you want me to do; say: When I am …, I want you to …
     """
+    if len(text) > MAX_SENTENCE_CHARS:
+        raise SentenceTooLongError(text)
     words, spans = _tokens(text)
     if not words:
         raise UnderstandingError(text, None, "anything", _ANY_FORM)

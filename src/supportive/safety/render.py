@@ -34,6 +34,7 @@ from rich.text import Text
 
 from supportive.envs.household.grid_map import Cell, GridMap, Terrain
 from supportive.errors import ExportError, MissingExtraError
+from supportive.io.terminal import plain
 from supportive.safety.episode import THRESHOLD, EpisodeResult, Frame
 
 if TYPE_CHECKING:
@@ -240,7 +241,7 @@ def render_frame(grid: GridMap, frame: Frame, *, steps: int | None = None, top: 
     layout.add_column(no_wrap=True)
     layout.add_column()
     layout.add_row(_map_text(grid, frame), status)
-    return Panel(layout, title=grid.name, title_align="left", expand=False)
+    return Panel(layout, title=plain(grid.name), title_align="left", expand=False)
 
 
 def summary(result: EpisodeResult, *, threshold: int = THRESHOLD, steps: int | None = None) -> str:

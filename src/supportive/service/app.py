@@ -2,16 +2,20 @@
 
 ``create_app(settings)`` builds it: the JSON API under ``/api`` (agents authenticate with ``Authorization:
 Bearer <token>``; a WebSocket at ``/api/ws?token=…`` pushes every change), the web page at ``/``, OpenAPI docs
-at ``/docs`` and ``/redoc`` (their scripts served by the app itself, from the fastapi-offline package: no CDN). Errors are JSON ``{"detail": "…"}`` with a 4xx status: 400 malformed, 401 no or wrong token,
-403 not allowed for the agent's role, 404 unknown subtask, 409 in conflict with the board, 413 too large,
-422 a field out of range.
+at ``/docs`` and ``/redoc`` (their scripts served by the app itself, from the fastapi-offline package: no CDN).
+Errors are JSON ``{"detail": "…"}`` with a 4xx status: 400 malformed, 401 no or wrong token, 403 not allowed
+for the agent's role, 404 unknown subtask, 408 a body too slow, 409 in conflict with the board, 413 too large;
+422 (a field out of range or unknown) has FastAPI's ``{"detail": [{"loc", "msg", "type"}]}``, as the OpenAPI
+schema says.
 """
 
 from __future__ import annotations
 
+import asyncio
 import json
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
+from typing import Any
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -22,6 +26,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from supportive.service.hub import Hub
 from supportive.service.routes import board, insight, live, social
+from supportive.service.schemas import ErrorOut
 from supportive.service.settings import ServiceSettings
 from supportive.service.state import ServiceState
 from supportive.service.store import BoardStore
@@ -31,11 +36,14 @@ __all__ = ["create_app"]
 
 
 class _LimitBody:
-    """ASGI middleware: refuse a request body larger than ``limit`` bytes with 413, before it is read whole."""
+    """ASGI middleware: read a request's whole body first, refusing one larger than ``limit`` bytes with 413
+    (declared or chunked) and one that does not arrive within ``timeout`` seconds with 408; the app then gets
+    the body at once."""
 
-    def __init__(self, app: ASGIApp, limit: int) -> None:
+    def __init__(self, app: ASGIApp, limit: int, timeout: float) -> None:
         self.app = app
         self.limit = limit
+        self.timeout = timeout
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
@@ -43,36 +51,47 @@ class _LimitBody:
             return
         declared = dict(scope.get("headers", [])).get(b"content-length")
         if declared is not None and declared.isdigit() and int(declared) > self.limit:
-            await _too_large(send, self.limit)
+            await _refuse(send, 413, f"request body larger than {self.limit} bytes")
             return
-        seen = 0
-
-        async def limited() -> Message:
-            nonlocal seen
-            message = await receive()
-            if message["type"] == "http.request":
-                seen += len(message.get("body", b""))
-                if seen > self.limit:
-                    raise _TooLarge
-            return message
-
+        body = bytearray()
         try:
-            await self.app(scope, limited, send)
-        except _TooLarge:
-            await _too_large(send, self.limit)
+            async with asyncio.timeout(self.timeout):
+                while True:
+                    message = await receive()
+                    if message["type"] != "http.request":  # the client went away
+                        return
+                    body += message.get("body", b"")
+                    if len(body) > self.limit:
+                        await _refuse(send, 413, f"request body larger than {self.limit} bytes")
+                        return
+                    if not message.get("more_body", False):
+                        break
+        except TimeoutError:
+            await _refuse(send, 408, f"the request body did not arrive within {self.timeout:g} s")
+            return
+        delivered = False
+
+        async def replay() -> Message:
+            nonlocal delivered
+            if not delivered:
+                delivered = True
+                return {"type": "http.request", "body": bytes(body), "more_body": False}
+            return await receive()  # after the body: wait for the disconnect
+
+        await self.app(scope, replay, send)
 
 
-class _TooLarge(Exception):
-    pass
-
-
-async def _too_large(send: Send, limit: int) -> None:
-    body = json.dumps({"detail": f"request body larger than {limit} bytes"}).encode()
+async def _refuse(send: Send, status: int, detail: str) -> None:
+    body = json.dumps({"detail": detail}).encode()
     await send(
         {
             "type": "http.response.start",
-            "status": 413,
-            "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())],
+            "status": status,
+            "headers": [
+                (b"content-type", b"application/json"),
+                (b"content-length", str(len(body)).encode()),
+                (b"connection", b"close"),
+            ],
         }
     )
     await send({"type": "http.response.body", "body": body})
@@ -97,9 +116,21 @@ def create_app(settings: ServiceSettings) -> FastAPI:
         summary="A shared task tree that people and robots claim subtasks from (thesis §3.4.3).",
         version="1",
         lifespan=lifespan,
+        responses={
+            status: {"model": ErrorOut, "description": description}
+            for status, description in (
+                (400, "malformed request"),
+                (401, "missing or unknown token"),
+                (403, "not allowed for the agent's role"),
+                (404, "no such subtask"),
+                (408, "the request body was too slow"),
+                (409, "in conflict with the board"),
+                (413, "request body too large"),
+            )
+        },
     )
     app.state.service = ServiceState(settings, store, Hub())
-    app.add_middleware(_LimitBody, limit=settings.max_body)
+    app.add_middleware(_LimitBody, limit=settings.max_body, timeout=settings.client_timeout)
 
     @app.exception_handler(BoardError)
     async def _board_error(request: Request, exc: BoardError) -> JSONResponse:
@@ -107,7 +138,9 @@ def create_app(settings: ServiceSettings) -> FastAPI:
 
     @app.exception_handler(RequestValidationError)
     async def _invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
-        return JSONResponse({"detail": _validation_message(exc)}, status_code=_validation_status(exc))
+        if _validation_status(exc) == 400:
+            return JSONResponse({"detail": "the body is not valid JSON"}, status_code=400)
+        return JSONResponse({"detail": _validation_details(exc)}, status_code=422)
 
     app.include_router(board.router)
     app.include_router(live.router)
@@ -126,17 +159,18 @@ def _validation_status(exc: RequestValidationError) -> int:
     return 400 if any(error.get("type") == "json_invalid" for error in exc.errors()) else 422
 
 
-def _validation_message(exc: RequestValidationError) -> str:
-    parts: list[str] = []
-    for error in exc.errors()[:3]:
+def _validation_details(exc: RequestValidationError) -> list[dict[str, Any]]:
+    """FastAPI's 422 ``detail`` (the OpenAPI schema's array of ``{loc, msg, type}``), each ``msg`` one clear
+    sentence naming the field."""
+    details = []
+    for error in exc.errors():
         where = ".".join(str(p) for p in error.get("loc", ()) if p != "body")
-        kind = error.get("type")
-        if kind == "json_invalid":
-            parts.append("the body is not valid JSON")
-        elif kind == "extra_forbidden":
-            parts.append(f"unknown field {where!r}")
+        kind = str(error.get("type", "value_error"))
+        if kind == "extra_forbidden":
+            message = f"unknown field {where!r}"
         elif kind == "missing":
-            parts.append(f"missing field {where!r}")
+            message = f"missing field {where!r}"
         else:
-            parts.append(f"{where or 'body'}: {error.get('msg', 'invalid')}")
-    return "; ".join(parts)
+            message = f"{where or 'body'}: {error.get('msg', 'invalid')}"
+        details.append({"loc": [str(p) if not isinstance(p, int) else p for p in error.get("loc", ())], "msg": message, "type": kind})
+    return details

@@ -1,18 +1,19 @@
 """Starting a board service from a task file: the settings, the agents' tokens kept beside a SQLite
-database, the URL to open, uvicorn on 127.0.0.1."""
+database, the URL to open, the server on 127.0.0.1 (:mod:`supportive.service.serving`)."""
 
 from __future__ import annotations
 
 import json
-import os
 import socket
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from sqlalchemy.engine import make_url
 from sqlalchemy.exc import ArgumentError
 
+from supportive.errors import FileFormatError, SupportiveError
+from supportive.io.atomic import atomic_write
 from supportive.io.taskfile import parse_task_file
 from supportive.service.settings import DEFAULT_AGENTS, ServiceSettings, board_of, parse_agent
 from supportive.service.store import AgentSpec, StoreError
@@ -47,46 +48,65 @@ def prepare(
     port: int = 8000,
     agents: Sequence[str] = (),
     lead_only: Sequence[str] = (),
+    client_timeout: float = 10.0,
 ) -> Launch:
-    """Read the task, make the board and agents, and find the tokens to show.
+    """Read the task, make the board and agents, and find the tokens to show (nothing is written yet).
 
-    For a SQLite database the tokens of agents created on first use are written beside it
+    For a SQLite database the tokens of agents created on first use are kept beside it
     (``<database>.tokens.json``, readable by its owner only) and read back on later starts; for another
     database they are shown once, when created (or give them with ``name:kind:role:token``).
 
     Raises:
         TaskFileError: for a bad task file.
-        StoreError: for a database URL that cannot be used.
+        StoreError: for a database URL that cannot be used, or a tokens file that cannot be read.
+        SupportiveError: for an agent named twice, or two agents given one token.
     """
     spec = parse_task_file(task)
-    board = board_of(spec, lead_only)
-    specs = [parse_agent(text) for text in (agents or DEFAULT_AGENTS)]
+    try:
+        board = board_of(spec, lead_only)
+    except SupportiveError as exc:  # about the task file's contents: name the file
+        raise SupportiveError(f"{task}: {exc}") from None
+    texts = list(agents or DEFAULT_AGENTS)
+    specs = [parse_agent(text) for text in texts]
+    names = [agent.id for agent in specs]
+    twice = next((name for name in names if names.count(name) > 1), None)
+    if twice is not None:
+        raise SupportiveError(f"--agent: {twice!r} is named twice; give each agent once")
     tokens_file = _tokens_file(database)
     known = _read_tokens(tokens_file)
     resolved: list[AgentSpec] = []
-    for agent, text in zip(specs, agents or DEFAULT_AGENTS, strict=True):
+    for agent, text in zip(specs, texts, strict=True):
         explicit = len(text.split(":")) == 4
         token = agent.token if explicit or agent.id not in known else known[agent.id]
         resolved.append(AgentSpec(agent.id, agent.kind, agent.role, token))
-    settings = ServiceSettings(database, board, tuple(resolved), spec)
+    shared = [a.token for a in resolved]
+    if len(set(shared)) != len(shared):
+        raise SupportiveError("--agent: two agents have the same token; give each its own (or none)")
+    settings = ServiceSettings(database, board, tuple(resolved), spec, client_timeout=client_timeout)
     tokens = {a.id: a.token for a in resolved}
-    if tokens_file is not None:
-        _write_tokens(tokens_file, {**known, **tokens})
     return Launch(settings, host, port, tokens, tokens_file)
 
 
-def serve(launch: Launch) -> None:
-    """Run the service until interrupted (uvicorn; one process)."""
+def serve(launch: Launch, announce: Callable[[], None] = lambda: None) -> None:
+    """Open the database (checked before anything is said: a bad one fails here), keep the tokens beside a
+    SQLite database, call ``announce`` (the command prints the URL and tokens), then serve until SIGTERM or
+    Ctrl-C (:func:`supportive.service.serving.run`).
+
+    Raises:
+        StoreError: when the database cannot be used or the tokens cannot be kept.
+    """
     import gc
 
-    import uvicorn
-
     from supportive.service.app import create_app
+    from supportive.service.serving import run
 
     app = create_app(launch.settings)
+    if launch.tokens_file is not None:
+        _write_tokens(launch.tokens_file, {**_read_tokens(launch.tokens_file), **launch.tokens})
+    announce()
     gc.collect()
     gc.freeze()  # start-up objects never need collecting: full collections stay short under load
-    uvicorn.run(app, host=launch.host, port=launch.port, log_level="warning", timeout_graceful_shutdown=3)
+    run(app, launch.host, launch.port, timeout=launch.settings.client_timeout)
 
 
 def free_port() -> int:
@@ -119,10 +139,9 @@ def _read_tokens(path: Path | None) -> dict[str, str]:
 
 
 def _write_tokens(path: Path, tokens: dict[str, str]) -> None:
+    """The tokens, written atomically to a file readable by its owner only (whatever mode it had)."""
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        descriptor = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
-        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
-            json.dump(tokens, handle, indent=2)
-    except OSError as exc:
-        raise StoreError(f"{path}: cannot write the agents' tokens: {exc.strerror}") from None
+        atomic_write(path, json.dumps(tokens, indent=2), mode=0o600)
+    except (OSError, FileFormatError) as exc:
+        raise StoreError(f"{path}: cannot write the agents' tokens: {exc}") from None

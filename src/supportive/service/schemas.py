@@ -6,7 +6,9 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field
 
-__all__ = ["HandIn", "ObservationIn", "ProgressIn"]
+from supportive.io.values import Coordinate, Seconds
+
+__all__ = ["ErrorOut", "HandIn", "ObservationIn", "ProgressIn"]
 
 
 class _Strict(BaseModel):
@@ -21,14 +23,21 @@ class ProgressIn(_Strict):
 
 class HandIn(_Strict):
     """``{"x": 0.4, "y": 0.2, "t": 12.5}``: where the agent's hand (or end effector) is, metres on the
-    workbench; ``t`` in seconds (default: the server's clock)."""
+    workbench; ``t`` in seconds (default: the server's clock). Coordinates within ±10^6 and times within
+    ±10^11 s (:mod:`supportive.io.values`): the force computed from them stays finite."""
 
-    x: Annotated[float, Field(allow_inf_nan=False)]
-    y: Annotated[float, Field(allow_inf_nan=False)]
-    t: Annotated[float | None, Field(default=None, allow_inf_nan=False)] = None
+    x: Coordinate
+    y: Coordinate
+    t: Seconds | None = None
 
 
 class ObservationIn(_Strict):
     """``{"events": ["hand-seat"]}``: the contact events that hold at this moment (at most 64)."""
 
     events: Annotated[list[Annotated[str, Field(min_length=1, max_length=80)]], Field(max_length=64)]
+
+
+class ErrorOut(BaseModel):
+    """Every refusal but 422: ``{"detail": "what was wrong"}``."""
+
+    detail: str

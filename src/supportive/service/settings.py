@@ -9,13 +9,17 @@ from pathlib import Path
 from typing import cast
 
 from supportive.errors import SupportiveError
+from supportive.io.values import check_id
 from supportive.learning.learner import learn
 from supportive.service.store import AgentKind, AgentSpec
 from supportive.social.board import ROLES, TaskBoard
 from supportive.tasks.htn import CliqueNode
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["DEFAULT_AGENTS", "ServiceSettings", "board_of", "parse_agent"]
+__all__ = ["AGENT_NAME_LENGTH", "DEFAULT_AGENTS", "ServiceSettings", "board_of", "parse_agent"]
+
+AGENT_NAME_LENGTH = 64
+"""The longest agent name (the database's column)."""
 
 DEFAULT_AGENTS = ("alice:human:lead", "robot:robot:assistant", "screen:human:observer")
 """The agents a board starts with unless told otherwise: a human lead, a robot assistant, a screen."""
@@ -33,6 +37,8 @@ class ServiceSettings:
         max_body: The largest request body accepted, bytes.
         workspace: The workbench's width and depth (metres) that hand positions and the force field live in
             (default: the thesis's 1.83 m × 0.762 m Collaborative Workbench).
+        client_timeout: Seconds a client has to send a request's head, and then its body
+            (:mod:`supportive.service.serving`).
     """
 
     database: str
@@ -41,6 +47,7 @@ class ServiceSettings:
     spec: TaskSpec | None = None
     max_body: int = 64 * 1024
     workspace: tuple[float, float] = (1.83, 0.762)
+    client_timeout: float = 10.0
     static: Path = field(default_factory=lambda: Path(__file__).parent / "static")
 
 
@@ -78,5 +85,13 @@ def parse_agent(text: str) -> AgentSpec:
         raise SupportiveError(
             f"agent {text!r}: expected name:kind:role[:token], kind human or robot, role {', '.join(ROLES)}"
         )
+    try:
+        check_id(parts[0], what="an agent's name")
+        if len(parts[0]) > AGENT_NAME_LENGTH:
+            raise ValueError(f"an agent's name is at most {AGENT_NAME_LENGTH} characters, got {len(parts[0])}")
+        if len(parts) == 4 and parts[3]:
+            check_id(parts[3], what="a token")
+    except ValueError as exc:
+        raise SupportiveError(f"agent {parts[0][:AGENT_NAME_LENGTH]!r}: {exc}") from None
     token = parts[3] if len(parts) == 4 and parts[3] else secrets.token_urlsafe(18)
     return AgentSpec(parts[0], cast(AgentKind, parts[1]), parts[2], token)

@@ -4,13 +4,15 @@ One row holds the board's current state and version; every accepted operation is
 log in the same transaction, so the log is exactly what was acknowledged and replaying it on the initial
 board gives the current one. Writers are serialised per board: SQLite by ``BEGIN IMMEDIATE`` (WAL journal,
 ``synchronous=NORMAL``: a killed server loses nothing it acknowledged; only a power cut could lose the last
-transactions), PostgreSQL by ``SELECT … FOR UPDATE`` on the board's row. Tokens are stored as SHA-256 hashes.
+transactions), PostgreSQL by ``SELECT … FOR UPDATE`` on the board's row. Tokens are stored as SHA-256 hashes; a
+SQLite file the store creates is readable by its owner only (0600).
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import os
 import queue
 import threading
 import time
@@ -37,7 +39,7 @@ from sqlalchemy import (
     update,
 )
 from sqlalchemy.engine import Connection
-from sqlalchemy.exc import ArgumentError, OperationalError
+from sqlalchemy.exc import ArgumentError, DatabaseError, OperationalError
 
 from supportive.errors import SupportiveError
 from supportive.social.board import ROLES, BoardError, Role, TaskBoard
@@ -159,6 +161,7 @@ class BoardStore:
         self.url = url
         self.sqlite = self.engine.dialect.name == "sqlite"
         if self.sqlite:
+            _private_file(self.engine.url.database)
             _serialise_sqlite(self.engine)
         # One writer thread per store commits queued operations in groups; the database's own lock still
         # orders writers of other processes.
@@ -199,6 +202,8 @@ class BoardStore:
                         )
         except OperationalError as exc:
             raise StoreError(f"cannot reach database {self.url}: {exc.orig}") from None
+        except DatabaseError as exc:  # not a database, or one whose tables are not the board's
+            raise StoreError(f"cannot use database {self.url}: {exc.orig}") from None
         return created
 
     def board(self) -> tuple[TaskBoard, int]:
@@ -334,6 +339,19 @@ class BoardStore:
     def _write(self) -> Iterator[Connection]:
         with self.engine.connect().execution_options(supportive_write=True) as connection, connection.begin():
             yield connection
+
+
+def _private_file(database: str | None) -> None:
+    """Create a new SQLite database file readable and writable by its owner only (SQLite gives its -wal and
+    -shm files the database's mode); an existing file keeps the mode its owner gave it."""
+    if not database or database == ":memory:" or database.startswith("file:"):
+        return
+    try:
+        os.close(os.open(database, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+    except FileExistsError:
+        return
+    except OSError as exc:
+        raise StoreError(f"cannot create database file {database}: {exc.strerror}") from None
 
 
 def _engine_options(url: str) -> dict[str, Any]:

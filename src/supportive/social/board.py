@@ -7,8 +7,9 @@ progress on and complete — pure logic, no storage.
 * Only leaves (actions) are completed, by their owner (or the owner of an ancestor), and only once their
   prerequisites are done: every earlier sibling of every chain the leaf is in. A chain or clique is done
   when all its children are.
-* Authority is asymmetric (the thesis's lead/assistant): an assistant may not claim or complete a node the
-  board reserves for leads (``lead_only``), nor any node containing one; observers only read.
+* Authority is asymmetric (the thesis's lead/assistant): an assistant may not claim, complete or report progress
+  on a node the board reserves for leads (``lead_only``), nor on any node containing one or inside one (its
+  ancestors are checked as well as its subtree); observers only read.
 
 Every operation either returns the changed board or raises :class:`BoardError` with an HTTP-like status and
 a message; boards are immutable.
@@ -239,7 +240,7 @@ class TaskBoard:
         """``agent`` reports progress (0–1) on a leaf it owns.
 
         Raises:
-            BoardError: 400 for progress outside [0, 1] or an internal node; 403, 404, 409 as for complete.
+            BoardError: 400 for progress outside [0, 1]; 403, 404, 409 as for complete.
         """
         node = self._owned_leaf(ident, agent, role, "report progress on")
         if not 0.0 <= progress <= 1.0:
@@ -250,7 +251,7 @@ class TaskBoard:
         """``agent`` completes a leaf it owns whose prerequisites are done; finished parents complete too.
 
         Raises:
-            BoardError: 400 for an internal node; 403 not allowed; 404 unknown; 409 not owned by ``agent``,
+            BoardError: 403 not allowed; 404 unknown; 409 an internal node, not owned by ``agent``,
                 already done, or a prerequisite not done.
         """
         node = self._owned_leaf(ident, agent, role, "complete")
@@ -347,14 +348,21 @@ class TaskBoard:
     def _may_act(self, node: BoardNode, role: Role, verb: str, *, reserved: bool = True) -> None:
         if role == "observer":
             raise BoardError(403, f"observers may not {verb} subtasks")
-        if reserved and role == "assistant" and any(n.lead_only for n in self.subtree(node.id)):
+        if not reserved or role != "assistant":
+            return
+        if node.lead_only or any(n.lead_only for n in self.subtree(node.id)):
             raise BoardError(403, f"{node.name!r} is reserved for leads: an assistant may not {verb} it")
+        above = next((n for n in self.ancestors(node.id) if n.lead_only), None)
+        if above is not None:
+            raise BoardError(
+                403, f"{node.name!r} is part of {above.name!r}, reserved for leads: an assistant may not {verb} it"
+            )
 
     def _owned_leaf(self, ident: str, agent: str, role: Role, verb: str) -> BoardNode:
         node = self.node(ident)
         self._may_act(node, role, verb)
         if node.kind != "action":
-            raise BoardError(400, f"{node.name!r} is not a single action: {verb} its actions one by one")
+            raise BoardError(409, f"{node.name!r} is not a single action: {verb} its actions one by one")
         if node.owner != agent:
             raise BoardError(409, f"{node.name!r} is not claimed by {agent}")
         return node

@@ -37,8 +37,9 @@ from supportive.envs.tabletop.geometry import Rect
 from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.layout import TableLayout
 from supportive.errors import PlanningError, ScenarioFileError
+from supportive.io.safe_load import read_text
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
-from supportive.io.text import read_text
+from supportive.io.values import Coordinate
 from supportive.planning.selection import SupportPlanner
 from supportive.planning.weighting import WeightingScheme
 
@@ -68,7 +69,7 @@ with excess wires, a lamp and a resistor that allow worse but more obvious circu
 _EDGE = 4.0  # cm kept free along the table's edges when scattering
 _SCATTER_TRIES = 10_000
 Name = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1)]
-Positive = Annotated[float, Field(gt=0)]
+Positive = Annotated[float, Field(gt=0, le=10_000, allow_inf_nan=False)]  # cm: a table of at most 100 m
 
 
 class _Strict(BaseModel):
@@ -78,19 +79,19 @@ class _Strict(BaseModel):
 class TableIn(_Strict):
     width: Positive = 104.0
     depth: Positive = 70.0
-    tray: tuple[float, float, float, float] | None = None
+    tray: tuple[Coordinate, Coordinate, Coordinate, Coordinate] | None = None
 
 
 class BoardIn(_Strict):
     columns: Annotated[int, Field(ge=2, le=20)] = 6
     rows: Annotated[int, Field(ge=2, le=20)] = 5
     pitch: Positive = 4.0
-    at: tuple[float, float] | None = None
+    at: tuple[Coordinate, Coordinate] | None = None
 
 
 class GoalIn(_Strict):
     light: Literal["led", "lamp"] = "led"
-    batteries_in_series: Annotated[int, Field(ge=0)] = 2
+    batteries_in_series: Annotated[int, Field(ge=0, le=100)] = 2
     switch_controls: bool = True
     no_short: bool = True
 
@@ -98,24 +99,24 @@ class GoalIn(_Strict):
 class PieceIn(_Strict):
     id: Name
     kind: Name
-    at: tuple[float, float]
+    at: tuple[Coordinate, Coordinate]
     rotation: Annotated[int, Field(ge=0, le=3)] = 0
 
 
 class ScatterIn(_Strict):
-    seed: Annotated[int, Field(ge=0)] = 0
-    pieces: dict[Name, Annotated[int, Field(ge=1)]]
+    seed: Annotated[int, Field(ge=0, le=2**63 - 1)] = 0
+    pieces: dict[Name, Annotated[int, Field(ge=1, le=100)]]
 
 
 class ArmIn(_Strict):
-    speed: Annotated[float, Field(gt=0, le=1)] = 1.0
+    speed: Annotated[float, Field(gt=0, le=1, allow_inf_nan=False)] = 1.0
 
 
 class PlannerIn(_Strict):
     scheme: Literal["conservative", "greedy", "aggressive"] = "conservative"
-    environments: Annotated[int, Field(ge=1)] = 200
-    quickest: Annotated[int, Field(ge=1)] = 15
-    spread: Annotated[int, Field(ge=0)] = 15
+    environments: Annotated[int, Field(ge=1, le=100_000)] = 200
+    quickest: Annotated[int, Field(ge=1, le=100_000)] = 15
+    spread: Annotated[int, Field(ge=0, le=100_000)] = 15
     max_pieces: Annotated[int, Field(ge=4, le=8)] = 6
 
 

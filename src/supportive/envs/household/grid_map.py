@@ -34,7 +34,8 @@ from importlib import resources
 from pathlib import Path
 
 from supportive.errors import MapFileError
-from supportive.io.text import read_text
+from supportive.io.limits import MAX_MAP_CELLS, MAX_MAP_SIDE
+from supportive.io.safe_load import read_text
 
 __all__ = [
     "MOVES",
@@ -209,7 +210,8 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
     Raises:
         MapFileError: for an unknown character, rows of different widths, an empty map, a map without a toy
             bin or floor, more than one ``R``, or a toy bin (or ``R``) the play area does not reach; the message
-            gives the line and column.
+            gives the line and column. Also for a map over :data:`~supportive.io.limits.MAX_MAP_SIDE` cells a
+            side, or a play area of one cell or over :data:`~supportive.io.limits.MAX_MAP_CELLS`.
 
     >>> grid = parse_map("#####\\n#B.C#\\n#R.S#\\n#####\\n", "tiny")
     >>> grid.bins, grid.stairs, sorted(grid.candles), grid.caregiver_start
@@ -226,6 +228,10 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
             continue
         if not line:
             continue
+        if len(line) > MAX_MAP_SIDE or len(terrain) >= MAX_MAP_SIDE:
+            raise MapFileError(
+                f"the map is larger than {MAX_MAP_SIDE} × {MAX_MAP_SIDE} cells, the limit", path=path, line=number
+            )
         row: list[Terrain] = []
         for column, char in enumerate(line, start=1):
             kind = _SYMBOLS.get(char)
@@ -277,6 +283,16 @@ def parse_map(text: str, name: str = "map", path: str | Path | None = None) -> G
             path=path,
             line=lines[caregiver[0]],
             column=caregiver[1] + 1,
+        )
+    if len(area) > MAX_MAP_CELLS:
+        raise MapFileError(
+            f"the play area has {len(area):,} floor cells, more than {MAX_MAP_CELLS:,}, the limit (the caregiver's "
+            "model grows with the square of it)",
+            path=path,
+        )
+    if len(area) < 2:
+        raise MapFileError(
+            f"the play area has {len(area)} floor cell: the novice and the caregiver need at least two", path=path
         )
     return grid
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body, Depends, Path, Request, Response
+from fastapi import APIRouter, Body, Depends, Path, Query, Request, Response
 from starlette.concurrency import run_in_threadpool
 
 from supportive.service.schemas import ProgressIn
@@ -82,7 +82,12 @@ async def complete(request: Request, node: NodeId, me: Me) -> Response:
 
 
 @router.get("/events", summary="The acknowledged operations, oldest first")
-async def read_events(request: Request, me: Me, after: int = 0, limit: int = 1000) -> list[dict[str, Any]]:
+async def read_events(
+    request: Request,
+    me: Me,
+    after: Annotated[int, Query(ge=0, le=2**63 - 1, description="Sequence number to start after.")] = 0,
+    limit: Annotated[int, Query(ge=1, le=10_000, description="At most this many events.")] = 1000,
+) -> list[dict[str, Any]]:
     """Operations with a sequence number above ``after`` (at most ``limit``, up to 10,000)."""
-    events = await run_in_threadpool(service(request).store.events, max(0, after), max(1, min(limit, 10_000)))
+    events = await run_in_threadpool(service(request).store.events, after, limit)
     return [e.as_dict() for e in events]

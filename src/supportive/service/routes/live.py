@@ -8,6 +8,7 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, WebSocket, WebSocketDisconnect
 from starlette.concurrency import run_in_threadpool
+from starlette.websockets import WebSocketState
 
 from supportive.service.state import ServiceState, socket_agent
 from supportive.service.store import Agent
@@ -22,7 +23,8 @@ async def updates(websocket: WebSocket, agent: Annotated[Agent | None, Depends(s
     """``/api/ws?token=…``: first ``{"type": "snapshot", "board": …}``, then ``{"type": "event", "event": …,
     "board": …}`` for every change. An unknown token is refused (close code 4401). The socket ends when the
     client goes, or falls too far behind (1013: reconnect)."""
-    if agent is None:
+    if agent is None:  # accepted first, so the client sees the close code (refused before, it gets HTTP 403)
+        await websocket.accept()
         await websocket.close(code=4401, reason="missing or unknown token")
         return
     state: ServiceState = websocket.app.state.service
@@ -48,8 +50,9 @@ async def updates(websocket: WebSocket, agent: Annotated[Agent | None, Depends(s
     finally:
         gone.cancel()
         state.hub.unsubscribe(queue)
-        with contextlib.suppress(RuntimeError):
-            await websocket.close()
+        if websocket.client_state is WebSocketState.CONNECTED and websocket.application_state is WebSocketState.CONNECTED:
+            with contextlib.suppress(WebSocketDisconnect, RuntimeError):  # the client may go meanwhile
+                await websocket.close()
 
 
 async def _until_closed(websocket: WebSocket) -> None:

@@ -44,7 +44,9 @@ async function api(path, options = {}) {
   }
   const body = await response.json().catch(() => ({}));
   if (!response.ok) {
-    const error = new Error(typeof body.detail === "string" ? body.detail : `${response.status} ${response.statusText}`);
+    const error = new Error(typeof body.detail === "string" ? body.detail
+      : Array.isArray(body.detail) ? body.detail.map((item) => item.msg).join("; ")
+      : `${response.status} ${response.statusText}`);
     error.status = response.status;
     throw error;
   }

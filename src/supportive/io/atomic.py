@@ -1,0 +1,130 @@
+"""Writing a user's file so that nothing is lost: atomically, keeping its mode and its symlinks, one writer
+at a time.
+
+* :func:`atomic_write` writes the new text to a temporary file beside the target, flushes it to disk and
+  renames it over the target: a reader, a crash or a full disk sees the old file or the new one, never half
+  of one. A symlink is followed (the file it names is replaced, the link stays a link); the file's mode (and,
+  where allowed, its owner) is kept; a new file gets the mode ``open()`` would give it.
+* :func:`exclusive` holds a lock on the file while a read-change-write cycle runs, so a second ``supportive``
+  process editing the same file waits for the first instead of overwriting what it just saved. The lock is
+  ``flock`` on the file itself; a writer that waited checks it still holds the file that is there now (the
+  first one renamed a new file over it) and locks that one.
+
+>>> import tempfile, pathlib
+>>> folder = pathlib.Path(tempfile.mkdtemp())
+>>> target = atomic_write(folder / "notes.txt", "first\\n")
+>>> with exclusive(target):
+...     _ = atomic_write(target, target.read_text() + "second\\n")
+>>> target.read_text()
+'first\\nsecond\\n'
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import os
+import stat
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+from supportive.errors import FileFormatError
+
+__all__ = ["atomic_write", "exclusive", "real_path"]
+
+
+def real_path(path: str | Path) -> Path:
+    """The file ``path`` names, through any symlinks (the path itself when it does not exist yet)."""
+    return Path(os.path.realpath(path))
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def atomic_write(
+    path: str | Path, text: str, *, error: type[FileFormatError] = FileFormatError, mode: int | None = None
+) -> Path:
+    """Replace the file at ``path`` (through symlinks) with ``text``, atomically.
+
+    Args:
+        path: The file to write; its directory must exist.
+        text: The whole new content (UTF-8).
+        error: The kind of error to raise.
+        mode: The new file's permission bits (default: an existing file's, else ``0o666`` less the umask).
+
+    Returns:
+        The file written (the symlink's target when ``path`` is a symlink).
+
+    Raises:
+        error: naming the file, when it cannot be written (nothing is changed then).
+    """
+    target = real_path(path)
+    try:
+        current: os.stat_result | None = target.stat()
+    except FileNotFoundError:
+        current = None
+    except OSError as exc:
+        raise error(f"cannot write: {exc.strerror}", path=path) from None
+    if current is not None and not stat.S_ISREG(current.st_mode):
+        raise error("cannot write: not a regular file", path=path)
+    if mode is None:
+        mode = stat.S_IMODE(current.st_mode) if current is not None else 0o666 & ~_umask()
+    try:
+        descriptor, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    except OSError as exc:
+        raise error(f"cannot write: {exc.strerror}", path=path) from None
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8", newline="") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fchmod(handle.fileno(), mode)
+            if current is not None:
+                with contextlib.suppress(PermissionError):  # only root may give a file away
+                    os.fchown(handle.fileno(), current.st_uid, current.st_gid)
+            os.fsync(handle.fileno())
+        os.replace(temporary, target)
+    except OSError as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+        raise error(f"cannot write: {exc.strerror}", path=path) from None
+    with contextlib.suppress(OSError):  # the rename itself reaches the disk
+        folder = os.open(target.parent, os.O_RDONLY)
+        try:
+            os.fsync(folder)
+        finally:
+            os.close(folder)
+    return target
+
+
+@contextlib.contextmanager
+def exclusive(path: str | Path, *, error: type[FileFormatError] = FileFormatError) -> Iterator[Path]:
+    """Hold the write lock of the existing file at ``path`` (through symlinks) until the block ends; another
+    process asking for it meanwhile waits. Yields the file locked.
+
+    Raises:
+        error: naming the file, when it does not exist or cannot be opened.
+    """
+    target = real_path(path)
+    while True:
+        try:
+            descriptor = os.open(target, os.O_RDONLY | os.O_NONBLOCK)
+        except FileNotFoundError:
+            raise error("no such file", path=path) from None
+        except OSError as exc:
+            raise error(f"cannot open: {exc.strerror}", path=path) from None
+        try:
+            fcntl.flock(descriptor, fcntl.LOCK_EX)
+            try:
+                same = os.fstat(descriptor).st_ino == os.stat(target).st_ino
+            except FileNotFoundError:
+                same = False
+            if same:
+                yield target
+                return
+        finally:
+            os.close(descriptor)  # closing releases the lock
+        # another writer replaced the file while we waited: lock the one that is there now

@@ -1,0 +1,105 @@
+"""Running the board service under uvicorn with what uvicorn leaves out: client timeouts and a clean stop.
+
+* **Slow or idle clients.** uvicorn closes a kept-alive connection that stays idle (5 s) but waits forever for
+  a request that never completes: a connection that sends nothing, or its request head a byte at a time, holds
+  a slot for good. Here every request head must arrive within ``timeout`` seconds of the connection opening
+  (or of the previous response), the body within ``timeout`` seconds of the head (:mod:`supportive.service.app`
+  answers 408 otherwise), and a client that stops reading its response for ``3 × timeout`` seconds is cut off.
+  WebSockets are pinged every 20 s and closed when a ping is not answered in 20 s (uvicorn's own).
+* **SIGTERM** stops the service gracefully: no new connections, requests in flight finish (3 s at most),
+  WebSockets are closed with 1012 (service restart), the store's writer commits what it was given, and the
+  process exits with status 0 — a stop that was asked for is not a failure. Ctrl-C (SIGINT) does the same and
+  ends with the usual 130.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import signal
+from types import FrameType
+from typing import Any
+
+import uvicorn
+from uvicorn.protocols.http.httptools_impl import HttpToolsProtocol
+
+__all__ = ["run"]
+
+
+class _TimedHttp(HttpToolsProtocol):
+    """uvicorn's HTTP protocol with a deadline for each request head and for a stalled reader."""
+
+    head_timeout = 10.0
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._head_timer: asyncio.TimerHandle | None = None
+        self._write_timer: asyncio.TimerHandle | None = None
+
+    def _arm(self) -> None:
+        self._disarm()
+        self._head_timer = self.loop.call_later(self.head_timeout, self._too_slow)
+
+    def _disarm(self) -> None:
+        if self._head_timer is not None:
+            self._head_timer.cancel()
+            self._head_timer = None
+
+    def _too_slow(self) -> None:
+        self._head_timer = None
+        if not self.transport.is_closing() and (self.cycle is None or self.cycle.response_complete):
+            self.transport.close()
+
+    def connection_made(self, transport: asyncio.Transport) -> None:  # type: ignore[override]
+        super().connection_made(transport)
+        self._arm()
+
+    def on_headers_complete(self) -> None:
+        self._disarm()
+        super().on_headers_complete()
+
+    def on_response_complete(self) -> None:
+        super().on_response_complete()
+        if not self.transport.is_closing():
+            self._arm()  # the next request's head has the same deadline
+
+    def pause_writing(self) -> None:
+        super().pause_writing()
+        if self._write_timer is None:
+            self._write_timer = self.loop.call_later(3 * self.head_timeout, self.transport.abort)
+
+    def resume_writing(self) -> None:
+        super().resume_writing()
+        if self._write_timer is not None:
+            self._write_timer.cancel()
+            self._write_timer = None
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self._disarm()
+        if self._write_timer is not None:
+            self._write_timer.cancel()
+        super().connection_lost(exc)
+
+
+class _Server(uvicorn.Server):
+    """uvicorn's server, except that a SIGTERM it shut down for gracefully ends the process with status 0
+    (uvicorn re-raises the signal after the shutdown, which ends it with 143)."""
+
+    def handle_exit(self, sig: int, frame: FrameType | None) -> None:
+        super().handle_exit(sig, frame)
+        if sig == signal.SIGTERM:
+            self._captured_signals.remove(sig)
+
+
+def run(app: Any, host: str, port: int, *, timeout: float = 10.0) -> None:
+    """Serve ``app`` on ``host:port`` until SIGTERM or Ctrl-C, with client deadlines of ``timeout`` seconds."""
+    protocol = type("TimedHttp", (_TimedHttp,), {"head_timeout": timeout})
+    config = uvicorn.Config(
+        app,
+        host=host,
+        port=port,
+        http=protocol,
+        log_level="warning",
+        timeout_graceful_shutdown=3,
+        timeout_keep_alive=5,
+    )
+    _Server(config).run()

@@ -1,0 +1,172 @@
+"""The service under hostile and careless clients (issue 15): extreme numbers, oversize chunked bodies, bad
+WebSocket tokens, idle and slow connections, SIGTERM, file modes, and `serve` refusing bad set-ups before it
+prints anything."""
+
+from __future__ import annotations
+
+import signal
+import socket
+import stat
+import subprocess
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import httpx
+import pytest
+from fastapi.testclient import TestClient
+from starlette.websockets import WebSocketDisconnect
+from websockets.sync.client import connect
+
+from supportive.io.limits import MAX_SECONDS
+
+from .conftest import TOKENS, Server, auth
+
+Headers = Callable[[str], dict[str, str]]
+
+
+@pytest.fixture
+def sqlite_client(tmp_path: Path) -> Iterator[TestClient]:
+    from supportive.service.app import create_app
+
+    from .conftest import chair_settings
+
+    with TestClient(create_app(chair_settings(f"sqlite:///{tmp_path / 'board.db'}"))) as client:
+        yield client
+
+
+def test_events_after_beyond_any_sequence_number_is_a_422_not_a_500(sqlite_client: TestClient) -> None:
+    ok = sqlite_client.get(f"/api/events?after={2**63 - 1}", headers=auth("screen"))
+    assert ok.status_code == 200 and ok.json() == []
+    for after in (2**63, 10**30, -1):
+        refused = sqlite_client.get(f"/api/events?after={after}", headers=auth("screen"))
+        assert refused.status_code == 422, refused.text
+        assert refused.json()["detail"][0]["loc"] == ["query", "after"]
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        {"x": 1e308, "y": 1e308},
+        {"x": -1e308, "y": 0.2},
+        {"x": 0.4, "y": 0.2, "t": 1e300},
+        {"x": 0.4, "y": 0.2, "t": -1e300},
+        {"x": 0.4, "y": 0.2, "t": 2e11},
+    ],
+)
+def test_hands_beyond_the_limits_are_refused_and_social_keeps_answering(sqlite_client: TestClient, body: dict[str, float]) -> None:
+    assert sqlite_client.post("/api/hands", headers=auth("alice"), json={"x": 0.4, "y": 0.2, "t": 1.0}).status_code == 200
+    before = sqlite_client.get("/api/social", headers=auth("robot")).json()
+    for agent in ("alice", "robot"):
+        assert sqlite_client.post("/api/hands", headers=auth(agent), json=body).status_code == 422
+    assert sqlite_client.get("/api/social", headers=auth("robot")).json() == before
+
+
+def test_hands_at_the_limits_keep_the_force_finite(sqlite_client: TestClient) -> None:
+    for t, (x, y) in enumerate([(1e6, 1e6), (-1e6, -1e6), (1e6, -1e6)], start=1):
+        body = {"x": x, "y": y, "t": MAX_SECONDS - 10 + t}
+        assert sqlite_client.post("/api/hands", headers=auth("alice"), json=body).status_code == 200
+    social = sqlite_client.get("/api/social", headers=auth("robot"))
+    assert social.status_code == 200 and all(0 <= v <= 1 for v in social.json()["field"]["values"])
+
+
+def test_422_details_follow_the_openapi_schema(sqlite_client: TestClient) -> None:
+    schema = sqlite_client.get("/openapi.json").json()
+    error = schema["components"]["schemas"]["HTTPValidationError"]
+    assert error["properties"]["detail"]["type"] == "array"
+    response = sqlite_client.post("/api/nodes/n5/progress", headers=auth("alice"), json={"progress": 2, "x": 1})
+    assert response.status_code == 422
+    details = response.json()["detail"]
+    assert [d["type"] for d in details] == ["less_than_equal", "extra_forbidden"]
+    assert all(isinstance(d["loc"], list) and isinstance(d["msg"], str) for d in details)
+    assert details[1]["msg"] == "unknown field 'x'"
+
+
+def test_a_bad_websocket_token_gets_close_code_4401(sqlite_client: TestClient) -> None:
+    for url in ("/api/ws?token=nope", "/api/ws"):
+        with pytest.raises(WebSocketDisconnect) as closed, sqlite_client.websocket_connect(url) as ws:
+            ws.receive_json()
+        assert closed.value.code == 4401
+
+
+@pytest.fixture
+def sqlite_server(tmp_path: Path, server_factory: Callable[..., Server]) -> Server:
+    return server_factory(f"sqlite:///{tmp_path / 'board.db'}", extra=("--client-timeout", "1"))
+
+
+def test_a_chunked_body_over_the_limit_gets_413(sqlite_server: Server) -> None:
+    def chunks() -> Iterator[bytes]:
+        for _ in range(70):
+            yield b" " * 1024
+
+    response = httpx.post(f"{sqlite_server.url}/api/nodes/n5/progress", headers=auth("alice"), content=chunks())
+    assert response.status_code == 413 and "larger than 65536 bytes" in response.json()["detail"]
+
+
+def raw(server: Server) -> socket.socket:
+    connection = socket.create_connection(("127.0.0.1", server.port), timeout=30)
+    return connection
+
+
+def test_idle_and_slow_clients_are_timed_out(sqlite_server: Server) -> None:
+    """With --client-timeout 1: a connection that sends nothing, or only half a request head, is closed; a
+    body that stops halfway gets 408. (The socket's own 30 s timeout would fail the test, not pass it.)"""
+    with raw(sqlite_server) as idle:
+        assert idle.recv(1024) == b""  # closed by the server
+    with raw(sqlite_server) as slow:
+        slow.sendall(b"GET /api/me HTTP/1.1\r\nHost: x\r\n")
+        assert slow.recv(1024) == b""
+    with raw(sqlite_server) as stalled:
+        head = f"POST /api/nodes/n5/progress HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer {TOKENS['alice']}\r\n"
+        stalled.sendall((head + "Content-Type: application/json\r\nContent-Length: 40\r\n\r\n{\"pro").encode())
+        answer = b""
+        while chunk := stalled.recv(4096):
+            answer += chunk
+        assert answer.startswith(b"HTTP/1.1 408") and b"did not arrive within 1 s" in answer
+    assert httpx.get(f"{sqlite_server.url}/api/me", headers=auth("alice")).status_code == 200  # still serving
+
+
+def test_sigterm_drains_and_exits_0_with_no_traceback_after_websocket_closes(sqlite_server: Server) -> None:
+    url = f"ws://127.0.0.1:{sqlite_server.port}/api/ws?token={TOKENS['screen']}"
+    for _ in range(5):  # the sync client: an earlier test may leave an event loop running in this thread
+        with connect(url) as ws:  # closed normally on leaving
+            assert "snapshot" in ws.recv()
+    with httpx.Client(base_url=sqlite_server.url) as client:
+        assert client.post("/api/nodes/n1/claim", headers=auth("alice")).status_code == 200
+    sqlite_server.process.send_signal(signal.SIGTERM)
+    _, stderr = sqlite_server.process.communicate(timeout=30)
+    assert sqlite_server.process.returncode == 0
+    log = stderr.decode()
+    assert "Traceback" not in log and "ERROR" not in log, log
+
+
+def test_database_and_tokens_files_are_private(sqlite_server: Server, tmp_path: Path) -> None:
+    with httpx.Client(base_url=sqlite_server.url) as client:
+        assert client.post("/api/nodes/n1/claim", headers=auth("alice")).status_code == 200
+    files = [tmp_path / name for name in ("board.db", "board.db-wal", "board.db-shm", "board.db.tokens.json")]
+    assert {f.name: stat.filemode(f.stat().st_mode) for f in files} == {f.name: "-rw-------" for f in files}
+
+
+def serve(tmp_path: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    command = [sys.executable, "-m", "supportive.cli", "serve", "--port", "1", *args]
+    return subprocess.run(command, capture_output=True, text=True, timeout=120, cwd=tmp_path, check=False)
+
+
+@pytest.mark.parametrize(
+    ("args", "problem"),
+    [
+        (("--agent", "a:human:lead", "--agent", "a:robot:assistant"), "'a' is named twice"),
+        (("--agent", "a:human:lead:same", "--agent", "b:robot:assistant:same"), "two agents have the same token"),
+        (("--agent", "x" * 65 + ":human:lead"), "an agent's name is at most 64 characters"),
+        (("--agent", "a\x1b[2J:human:lead"), "control character"),
+        (("--db", "sqlite:///corrupt.db"), "cannot use database sqlite:///corrupt.db: file is not a database"),
+    ],
+)
+def test_serve_refuses_a_bad_set_up_before_printing_url_or_tokens(tmp_path: Path, args: tuple[str, ...], problem: str) -> None:
+    (tmp_path / "corrupt.db").write_bytes(b"this is not a database\n" * 100)
+    database = () if "--db" in args else ("--db", "sqlite:///board.db")
+    result = serve(tmp_path, *database, *args)
+    assert result.returncode == 2 and result.stdout == "", result.stdout
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("supportive: error: ") and problem in lines[0], result.stderr
+    assert not list(tmp_path.glob("*.tokens.json"))
