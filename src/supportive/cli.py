@@ -530,16 +530,24 @@ def reproduce(
         Path | None,
         typer.Option("--output", "-o", help="Directory to write (default: out/reproduce/<name>)."),
     ] = None,
+    reading: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--reading",
+            "-r",
+            help="Run only this reading of the experiment (repeatable; default: every reading side by side).",
+        ),
+    ] = None,
 ) -> None:
     """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
-    this run's."""
+    this run's (for 'all', also summary.md: every experiment's findings in one table)."""
     from rich.table import Table
 
     from supportive.experiments import reproduce as run_reproduce
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
-    results = run_reproduce(name, trials, seed, workers or 1, scheduler, output)
+    results = run_reproduce(name, trials, seed, workers or 1, scheduler, output, readings=reading or None)
     for result in results:
         files = ", ".join(path.name for path in result.files)
         out.print(
@@ -551,6 +559,10 @@ def reproduce(
         for row in result.headline:
             table.add_row(*row)
         out.print(table)
+    if name == "all" and results and results[0].output is not None:
+        out.print(
+            f"findings of every experiment, beside the thesis: {results[0].output.parent / 'summary.md'}"
+        )
 
 
 def main() -> None:

@@ -49,6 +49,8 @@ ACTIVE_LEARNING = register(
         report=food.report,
         plots=food_plots,
         headline=food.headline,
+        readings=food.READINGS,
+        findings=food.findings,
     )
 )
 """The registered Figure 2.11 experiment."""
