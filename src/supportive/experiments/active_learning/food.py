@@ -404,7 +404,7 @@ def _gap(metrics: Mapping[str, Any], name: str, condition: str, strategy: str) -
     """The largest distance from the thesis's curve over the three iterations, percentage points."""
     ours = metrics["by_reading"][name]["comprehension"][condition][strategy]
     theirs = metrics["thesis"]["comprehension_percent"][condition][strategy]
-    return max(abs(o["mean"] - t) for o, t in zip(ours, theirs, strict=True))
+    return max(abs(float(o["mean"]) - float(t)) for o, t in zip(ours, theirs, strict=True))
 
 
 def _curve_verdict(metrics: Mapping[str, Any], condition: str, strategy: str) -> str:
