@@ -32,6 +32,7 @@ ACTIVE_LEARNING_BLOCKS = register(
         report=blocks.report,
         plots=blocks_plots,
         headline=blocks.headline,
+        findings=blocks.findings,
     )
 )
 """The registered Figure 2.10 experiment."""
