@@ -176,7 +176,7 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     """The summary row: F1 at each recipe's own number of recordings, passive and each query strategy."""
     own = metrics["at_own_k"]
-    values = tuple((c, f"{own[c]['f1']['mean']:.3f}") for c in CONDITIONS)
+    values = (("", " · ".join(f"{c} {own[c]['f1']['mean']:.3f}" for c in CONDITIONS)),)
     passive = own["passive"]["f1"]["mean"]
     below = [c for c in CONDITIONS[1:] if own[c]["f1"]["mean"] < passive]
     verdict = (

@@ -71,10 +71,14 @@ def run_trial(trial: Trial) -> dict[str, Any]:
     steps = int(trial.params.get("steps", EPISODE_STEPS))
     threshold = int(trial.params.get("threshold", THRESHOLD))
     readings = trial.params.get("readings", reading_names(READINGS))
-    seeds = trial.seed.spawn(len(NOVICE_TYPES))
+    seeds = trial.children(len(NOVICE_TYPES))
 
     def episode(epsilon: float, seed: np.random.SeedSequence, memory: float | None) -> dict[str, Any]:
-        rng = np.random.default_rng(seed)
+        # A fresh copy of the novice type's seed for every episode: a SeedSequence counts the children it
+        # spawned, so reusing one object would give each episode other streams (no common random numbers).
+        rng = np.random.default_rng(
+            np.random.SeedSequence(seed.entropy, spawn_key=seed.spawn_key, pool_size=seed.pool_size)
+        )
         result = (
             run_episode(grid, epsilon, caregiver=False, steps=steps, threshold=threshold, seed=rng)
             if memory is None

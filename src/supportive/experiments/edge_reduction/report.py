@@ -280,13 +280,13 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
         Finding(
             "mean depth of a primitive (min–max)",
             f"{depth['mean']:.2f} ({depth['min']:.2f}–{depth['max']:.2f})",
-            tuple((_SHORT[m], _depth(models[m])) for m in shown),
+            (("", " · ".join(f"{_SHORT[m]} {_depth(models[m])}" for m in shown)),),
             depth_verdict,
         ),
         Finding(
             "flat ÷ CC-HTN edges",
             "\"a dramatic reduction\" (no values)",
-            tuple((_SHORT[m], _f(models[m]["flat_per_htn"], 2)) for m in shown),
+            (("", " · ".join(f"{_SHORT[m]} {_f(models[m]['flat_per_htn'], 2)}" for m in shown)),),
             edges_verdict,
         ),
     ]
