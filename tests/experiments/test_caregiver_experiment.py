@@ -9,7 +9,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.experiments import get, names, run_experiment
-from supportive.experiments.caregiver import DEFAULT_EPISODES, FILES, MEMORIES, READINGS, THESIS, make_trials, run_trial
+from supportive.experiments.caregiver import (
+    DEFAULT_EPISODES,
+    FILES,
+    MEMORIES,
+    READINGS,
+    THESIS,
+    make_trials,
+    run_trial,
+)
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.experiments.statistics import ratio_ci
 

@@ -61,6 +61,6 @@ def test_a_reading_is_chosen_by_name(tmp_path: Path, cli) -> None:
     assert code == 2 and err.count("\n") == 1 and "unknown reading 'sideways'" in err and "any-order" in err
     code, _, err = cli(["reproduce", "all", "--reading", "any-order", "-o", str(tmp_path)])
     assert code == 2 and "not for 'all'" in err
-    code, out, _ = cli(["reproduce", "caregiver", "-r", "per-step", "-n", "1", "-o", str(tmp_path / "cg")])
+    code, _, _ = cli(["reproduce", "caregiver", "-r", "per-step", "-n", "1", "-o", str(tmp_path / "cg")])
     assert code == 0
     assert json.loads((tmp_path / "cg" / "metrics.json").read_text())["readings"] == ["per-step"]

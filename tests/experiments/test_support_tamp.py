@@ -6,6 +6,7 @@ from pathlib import Path
 import pytest
 
 from supportive.envs.circuits.scenario import thesis_scenario
+from supportive.envs.tabletop.leads import PlanFollowingLead
 from supportive.envs.tabletop.team import run_team
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.plotting import PNG_SIGNATURE
@@ -20,7 +21,6 @@ from supportive.experiments.support_tamp import (
     run_trial,
     staged_floor,
 )
-from supportive.envs.tabletop.leads import PlanFollowingLead
 
 
 @pytest.fixture(scope="module")

@@ -58,10 +58,11 @@ def reachable_demonstrations(
     instructor.begin_demonstration()  # as run_session does; the first next_action begins again
     memo: dict[tuple[object, ...], frozenset[tuple[str, ...]]] = {}
     found: set[tuple[str, ...]] = set()
+    shared = {id(node): node for node in _nodes(instructor.structure)}  # the task itself is never changed
     for query in _queries(instructor, schedule, demonstration, (), 0, actions):
         # At the start she draws her path for the day, so each branch gets a full copy of her (the same
         # draws in each); later steps draw nothing, and a shallow copy is a snapshot.
-        person = copy.deepcopy(instructor)
+        person = copy.deepcopy(instructor, dict(shared))
         first = person.next_action((), query)
         if first is None:
             found.add(())
@@ -84,7 +85,10 @@ def _rest(
     memo: dict[tuple[object, ...], frozenset[tuple[str, ...]]],
 ) -> frozenset[tuple[str, ...]]:
     """Every way the demonstration can go on from ``done`` while the instructor follows ``target``."""
-    key = (frozenset(Counter(done).items()), target, asked)
+    limited = schedule.max_per_demonstration is not None and schedule.max_per_demonstration < len(
+        schedule.after_steps
+    )
+    key = (frozenset(Counter(done).items()), target, asked if limited else 0)  # asked matters only if limited
     cached = memo.get(key)
     if cached is not None:
         return cached
@@ -105,6 +109,13 @@ def _rest(
         out.update((action, *tail) for tail in tails)
     memo[key] = result = frozenset(out)
     return result
+
+
+def _nodes(structure: object) -> Iterable[object]:
+    """Every node of a chain/clique structure (a partial order has none to share)."""
+    yield structure
+    for child in getattr(structure, "children", ()):
+        yield from _nodes(child)
 
 
 def _target_after(query: str | None, done: tuple[str, ...], action: str) -> tuple[str, int] | None:
