@@ -289,9 +289,16 @@ def verdict(metrics: Mapping[str, Any]) -> list[str]:
     return lines
 
 
+def _signed(value: float) -> str:
+    """``+1.5`` / ``−1.5`` (a true minus sign; never ``−0.0``)."""
+    text = f"{round(value, 1) + 0.0:+.1f}"
+    return text.replace("-", "−")
+
+
 def _gain_cell(entry: Mapping[str, Any], reading: str) -> str:
+    """Both readings of the gain: the makespan's change (−: shorter) and the speed's (+: faster)."""
     gain = entry["supported"][reading]["gain"]
-    return f"−{gain['reduction']:.1f} % time (+{gain['speed-up']:.1f} % speed)"
+    return f"makespan {_signed(-gain['reduction'])} %, speed {_signed(gain['speed-up'])} %"
 
 
 def _gain_verdict(entry: Mapping[str, Any], reading: str, thesis: float) -> str:
