@@ -330,13 +330,14 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
         ours = " / ".join(format_ci(gains[s]["paths"], 1) for s in ("distance", "connectivity"))
         theirs = thesis.get(number)
         above = [s for s in ("distance", "connectivity") if above_zero(gains[s]["paths"])]
+        below = [s for s in ("distance", "connectivity") if below_zero(gains[s]["paths"])]
         if theirs is None:
             claim = "no significant difference"
-            verdict = (
-                "reproduced (no strategy beats random)"
-                if not above
-                else f"not as in the thesis: {' and '.join(above)} beat random"
-            )
+            if above or below:
+                parts = [f"{' and '.join(x)} {word} random" for x, word in ((above, "beat"), (below, "below")) if x]
+                verdict = "not reproduced: " + "; ".join(parts) + " (95% CIs)"
+            else:
+                verdict = "reproduced (no difference from random)"
         else:
             claim = f"+{theirs['distance']:g} / +{theirs['connectivity']:g}"
             inside = [
