@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test lint bench serve system clean
+.PHONY: demo test lint bench serve system clean example-bags
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -13,8 +13,13 @@ $(VENV)/.core: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.dev: pyproject.toml | $(BIN)/python
-	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server]'
-	touch $(VENV)/.core $@
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[dev,planning,distributed,plot,bench,envs,language,espresso,embeddings,server,ros]'
+	touch $(VENV)/.core $(VENV)/.demo $(VENV)/.server $@
+
+# Every extra a README command needs: all but the sentence-embedding one (torch).
+$(VENV)/.demo: pyproject.toml | $(BIN)/python
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[language,planning,distributed,plot,envs,espresso,server,ros]'
+	touch $(VENV)/.core $(VENV)/.server $@
 
 $(VENV)/.server: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[language,server]'
@@ -25,7 +30,7 @@ system:
 	@command -v chromium >/dev/null 2>&1 || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null)
 	@ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq postgresql >/dev/null)
 
-demo: $(VENV)/.core
+demo: $(VENV)/.demo
 	$(BIN)/supportive demo
 
 test: $(VENV)/.dev system
@@ -48,6 +53,12 @@ bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_support.py
 	$(BIN)/python benchmarks/bench_service.py
 	$(BIN)/python benchmarks/bench_social.py
+	$(BIN)/python benchmarks/bench_rosbag.py
+
+# The example bags in examples/bags/, made again from the bundled task files (the same messages every time).
+example-bags: $(VENV)/.dev
+	rm -rf examples/bags/ikea-chair examples/bags/workbench-blocks
+	$(BIN)/python -m supportive.example_bags examples/bags
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache .hypothesis

@@ -40,11 +40,13 @@ CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
 @pytest.fixture
 def cli(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> CliRunner:
-    """Run ``supportive ARGS`` in process: returns (exit status, stdout, stderr)."""
+    """Run ``supportive ARGS`` in process: returns (exit status, stdout, stderr). The terminal is 200 columns
+    wide, so a sentence stays on one line (wrapping to the terminal is tested on its own, test_cli_output.py)."""
     from supportive.cli import main
 
     def run(args: list[str]) -> tuple[int, str, str]:
         monkeypatch.setattr(sys, "argv", ["supportive", *args])
+        monkeypatch.setenv("COLUMNS", "200")
         try:
             main()
             code = 0

@@ -158,3 +158,51 @@ def test_without_the_language_extra_chat_and_demo_say_so_in_one_line(tmp_path: P
             "supportive: error: understanding what people say needs scikit-learn, which is not installed: "
             "pip install 'supportive[language]'"
         ]
+
+
+def test_chat_claims_no_understanding_it_does_not_have_and_help_helps(tmp_path: Path) -> None:
+    """Issue 16.7: "stop" and "help" were answered "I understood 'stop' …", and help gave no help."""
+    path = tmp_path / "chair.yaml"
+    shutil.copy(examples.path("ikea-chair"), path)
+    shown: list[str] = []
+    _console(path, ["stop", "help", "I want you to juggle", "thanks"], shown).run()
+    assert not any(line.startswith("I understood") for line in shown)
+    assert any(line.startswith("Stop what?") for line in shown)
+    helped = shown[shown.index("You can tell me how to help, or ask what I will do:") :]
+    assert any('"When I am screwing seat, I want you to give me screws"' in line for line in helped)
+    assert any(line.startswith("Parts of the task I know: Assemble chair, Build frame") for line in helped)
+    assert shown[-1].startswith("I did not understand 'thanks'")
+
+
+def test_a_request_with_no_verb_of_help_is_not_made_up_as_a_behavior(tmp_path: Path) -> None:
+    """Issue 16.7: "I want you to juggle" used to become a new behavior: "OK. I will now juggle."."""
+    path = tmp_path / "chair.yaml"
+    shutil.copy(examples.path("ikea-chair"), path)
+    before = path.read_text()
+    shown: list[str] = []
+    _console(path, ["When I am screwing the seat, I want you to juggle"], shown).run()
+    assert path.read_text() == before
+    assert not any("I will now juggle" in line for line in shown)
+    assert any(line.startswith("I don't know how to juggle. I can help by doing what I already do (give you screws") for line in shown)
+    _console(path, ["When I am screwing the seat, I want you to fetch the glue"], shown).run()  # a verb of help
+    assert any(b.text == "fetch the glue" for b in parse_task_file(path).behaviors)
+
+
+def test_chat_on_a_bundled_example_saves_into_a_copy_not_the_package(tmp_path: Path) -> None:
+    """Issue 16.2: the README's chat line used to rewrite the package's own chair (comments gone)."""
+    bundled = examples.path("ikea-chair")
+    before = bundled.read_bytes()
+    script = Path(sys.executable).parent / "supportive"
+    result = subprocess.run(
+        [str(script), "chat", "ikea-chair"],
+        cwd=tmp_path,
+        input="When I am tightening the bolts, I want you to shine a light on the bolt\nyes\nquit\n",
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("Saving to ikea-chair.edited.yaml, a new copy of ")
+    assert bundled.read_bytes() == before
+    copy = tmp_path / "ikea-chair.edited.yaml"
+    assert any(b.text == "shine a light on the bolt" for b in parse_task_file(copy).behaviors)

@@ -3,6 +3,7 @@ from __future__ import annotations
 import shutil
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 from supportive import examples
@@ -83,10 +84,124 @@ def test_teach_command_reads_stdin(tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr
     assert "robot: Can you place the" in result.stdout
     assert "unknown action 'nonsense'" in result.stdout
-    assert parse_task_file(path).demonstrations[-1].actions == tuple(order)
+    copy = tmp_path / "towers.edited.yaml"  # the file given is read, never changed
+    assert result.stdout.startswith(f"Saving to {copy}, a new copy of {path} (which is not changed).")
+    assert parse_task_file(copy).demonstrations[-1].actions == tuple(order)
+    assert path.read_bytes() == examples.path("blocks-towers").read_bytes()
     bad = subprocess.run(
         [script, "teach", str(path), "--strategy", "psychic"], capture_output=True, text=True, check=False
     )
     assert bad.returncode == 2 and bad.stderr.strip().startswith(
         "supportive: error: --strategy: unknown strategy 'psychic'"
+    )
+
+
+TOWER = ["red", "yellow", "green", "white", "orange", "purple", "black", "blue"]
+
+
+def _tower(tmp_path: Path) -> Path:
+    path = tmp_path / "tower.yaml"
+    shutil.copy(examples.path("blocks-tower"), path)
+    return path
+
+
+def test_a_repeated_action_is_refused_and_the_demonstration_is_whole(tmp_path: Path) -> None:
+    """Issue 16.1: a repeat used to be recorded, and the demonstration then ended one action short."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+    _console(path, ["red", "red", *TOWER[1:]], shown).run(demonstrations=1)
+    assert parse_task_file(path).demonstrations[-1].actions == tuple(TOWER)  # blue placed, red once
+    assert "  red is already done (once) in this demonstration; type another action" in shown
+
+
+def test_done_before_every_action_says_what_is_left(tmp_path: Path) -> None:
+    """Issue 16.1: `done` after one step used to save a one-step demonstration."""
+    path = _tower(tmp_path)
+    before = parse_task_file(path).demonstrations
+    shown: list[str] = []
+    _console(path, ["blue", "done", "quit"], shown).run()
+    assert parse_task_file(path).demonstrations == before
+    assert any(
+        line.startswith("  not finished: still to do red, yellow, green, white, orange, purple, black")
+        for line in shown
+    )
+
+
+def test_yes_performs_what_the_robot_asked_and_no_declines(tmp_path: Path) -> None:
+    """Issue 16.1: the robot asks yes/no questions; "no" used to be read as an unknown action."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+
+    def asked() -> str:
+        question = [line for line in shown if "robot: Can you" in line][-1]
+        return next(a for a in TOWER if f"place the {a} block" in question)
+
+    def script() -> Iterator[str]:
+        yield "no"
+        yield "red"
+        second = asked()  # the question after the first step
+        yield "yes"
+        yield from (a for a in TOWER if a not in ("red", second))
+
+    feed = script()
+    console = TeachingConsole(path, lambda: next(feed), shown.append, "distance", QuerySchedule(after_steps=(0, 1)))
+    console.run(demonstrations=1)
+    assert "  all right: type the action you do instead" in shown
+    assert not any("unknown action" in line for line in shown)
+    steps = parse_task_file(path).demonstrations[-1].actions
+    assert steps[0] == "red" and sorted(steps) == sorted(TOWER)
+    assert f"place the {steps[1]} block" in [line for line in shown if "robot: Can you" in line][-1]
+
+
+def test_typos_get_a_did_you_mean_and_case_does_not_matter(tmp_path: Path) -> None:
+    """Issue 16.1: names were case-sensitive and a typo got no suggestion."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+    lines = ["RED", "gren", "Place the Yellow Block", "3", *TOWER[3:]]
+    _console(path, lines, shown).run(demonstrations=1)
+    assert "  unknown action 'gren'; did you mean 'green'? ('help' lists them)" in shown
+    assert parse_task_file(path).demonstrations[-1].actions == tuple(TOWER)
+
+
+def test_an_action_the_task_repeats_may_be_repeated(tmp_path: Path) -> None:
+    path = tmp_path / "soup.yaml"
+    path.write_text("name: soup\nactions: [pour, stir, taste]\ndemonstrations:\n  - {id: d1, steps: [pour, stir, taste, stir]}\n")
+    shown: list[str] = []
+    _console(path, ["pour", "stir", "stir", "stir", "taste"], shown).run(demonstrations=1)
+    assert parse_task_file(path).demonstrations[-1].actions == ("pour", "stir", "stir", "taste")
+    assert "  stir is already done (2 times) in this demonstration; type another action" in shown
+
+
+def _teach(args: list[str], cwd: Path, lines: list[str]) -> subprocess.CompletedProcess[str]:
+    script = Path(sys.executable).parent / "supportive"
+    return subprocess.run(
+        [str(script), "teach", *args], cwd=cwd, input="\n".join(lines) + "\n", capture_output=True, text=True, check=False
+    )
+
+
+def test_teaching_a_bundled_example_never_writes_into_the_package(tmp_path: Path) -> None:
+    """Issue 16.2: the README's teach line used to rewrite the package's own example."""
+    bundled = examples.path("blocks-tower")
+    before = bundled.read_bytes()
+    result = _teach(["blocks-tower"], tmp_path, [*TOWER, "quit"])  # by name: the bundled file
+    assert result.returncode == 0, result.stderr
+    copy = tmp_path / "blocks-tower.edited.yaml"
+    assert bundled.read_bytes() == before
+    assert len(parse_task_file(copy).demonstrations) == len(parse_task_file(bundled).demonstrations) + 1
+    again = _teach(["blocks-tower"], tmp_path, [*reversed(TOWER[1:-1]), "quit"])
+    assert again.stdout.startswith(f"Carrying on in {copy.name}")  # a second session adds to the first
+    into = _teach(["blocks-tower", "--save", str(bundled)], tmp_path, ["quit"])
+    assert into.returncode == 2 and "inside the installed supportive package" in into.stderr
+    assert bundled.read_bytes() == before
+
+
+def test_save_names_the_copy_and_refuses_another_tasks_file(tmp_path: Path) -> None:
+    mine = tmp_path / "mine.yaml"
+    result = _teach(["blocks-tower", "--save", str(mine)], tmp_path, [*TOWER, "quit"])
+    assert result.returncode == 0 and parse_task_file(mine).demonstrations[-1].actions == tuple(TOWER)
+    other = _teach(["knife-carrots-celery", "--save", str(mine)], tmp_path, ["quit"])
+    assert other.returncode == 2
+    assert other.stderr.strip() == (
+        f"supportive: error: {mine}: it holds task 'blocks-tower', not 'knife-carrots-celery': choose another "
+        "file with --save PATH"
     )

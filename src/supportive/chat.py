@@ -10,9 +10,12 @@ The person types sentences; the robot answers:
   :mod:`supportive.language.preferences` changes the behavior; the robot says truthfully what changed, then
   what it will do (Algorithm 7, so implied constraints become explicit), and saves the task file;
 * "How will you help me …?" and "When will you …?" are answered with Algorithm 7;
-* ``behaviors`` lists the behaviors, ``quit`` (or the end of input) stops.
+* ``behaviors`` lists the behaviors, ``help`` says what one can say (with the task's own subtasks and
+  behaviors), ``quit`` (or the end of input) stops.
 
-Anything it cannot read is answered with what it understood and the form to use, never with a crash.
+Anything it cannot read is answered with the form to use (and the part it understood, when it understood
+more than a word or two), never with a crash; a request for help it has no verb for ("juggle") is refused,
+not made up as a new behavior.
 """
 
 from __future__ import annotations
@@ -41,6 +44,7 @@ from supportive.tasks.spec import TaskSpec
 __all__ = ["ChatConsole"]
 
 QUIT = {"quit", "exit", "bye", "done"}
+HELP = {"help", "?", "what can you do", "what can i say", "what can i do"}
 YES = {"yes", "y", "yeah", "yep", "correct", "right", "ok"}
 NO = {"no", "n", "nope", "nah", "wrong", "neither", "none", "cancel", ""}
 SHORT_ANSWER = 3
@@ -85,7 +89,7 @@ class ChatConsole:
         self.write(
             f"{self.spec.name}: {len(self.states.subtasks)} subtasks, {len(self.spec.behaviors)} supportive "
             "behaviors. Tell me how to help (\"When I am …, I want you to …\"), ask \"How will you help me …?\" "
-            "or \"When will you …?\"; 'behaviors' lists them, 'quit' ends."
+            "or \"When will you …?\"; 'behaviors' lists them, 'help' says more, 'quit' ends."
         )
         while True:
             try:
@@ -100,8 +104,31 @@ class ChatConsole:
             if line.lower() == "behaviors":
                 self._list()
                 continue
+            if line.lower().strip("?!. ") in HELP:
+                self._help()
+                continue
+            if line.lower().strip("?!. ") == "stop":
+                self.write(
+                    "Stop what? To stop one of my behaviors, say \"Don't …, when I am …\" "
+                    "('behaviors' lists them); 'quit' ends the conversation."
+                )
+                continue
             self.respond(line)
         return self.spec
+
+    def _help(self) -> None:
+        """What the person can say, with this task's own subtasks and behaviors as examples."""
+        subtasks = _outermost_first(self.states)
+        first = self.spec.behaviors[0] if self.spec.behaviors else None
+        during = [s for s in (first.subtasks if first else ()) if s in subtasks] or subtasks[-1:] or ["…"]
+        doing = self.states.activity(during[0]) if subtasks else "…"
+        asked = " ".join({"you": "me", "your": "my"}.get(w, w) for w in (first.text if first else "hold it").split())
+        self.write("You can tell me how to help, or ask what I will do:")
+        self.write(f'- "When I am {doing}, I want you to {asked}" (add "until …" to say when to stop)')
+        self.write(f'- "Don\'t {asked} when I am {doing}"')
+        self.write(f'- "How will you help me {during[0].lower()}?" or "When will you {asked}?"')
+        self.write("- 'behaviors' lists what I do, 'help' shows this, 'quit' ends.")
+        self.write(f"Parts of the task I know: {', '.join(subtasks[:KNOWN_SHOWN])}.")
 
     def _list(self) -> None:
         for behavior in self.spec.behaviors:

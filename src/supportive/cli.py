@@ -10,11 +10,12 @@ import json
 import sys
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
 
+from supportive.bag_cli import bag_app
 from supportive.errors import ExperimentError, SupportiveError, TaskFileError
 
 __all__ = ["app", "main"]
@@ -25,8 +26,9 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
-out = Console(highlight=False, soft_wrap=True)
-err = Console(stderr=True, highlight=False, soft_wrap=True)
+app.add_typer(bag_app, name="bag")
+out = Console(highlight=False)  # wraps at words to the terminal's width (COLUMNS when set)
+err = Console(stderr=True, highlight=False, soft_wrap=True)  # an error is one line, whatever its length
 
 
 class LearnFormat(StrEnum):
@@ -57,20 +59,23 @@ def _write_text(text: str, output: Path | None) -> None:
 
 @app.command()
 def learn(
-    file: Annotated[Path, typer.Argument(help="Task file: .yaml, .yml, .json or .csv.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
+    ],
     format: Annotated[LearnFormat, typer.Option("--format", "-f", help="What to print.")] = LearnFormat.tree,
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
     ] = None,
 ) -> None:
     """Learn the CC-HTN of a task from its demonstrations and print or write it."""
+    from supportive.examples import task_path
     from supportive.io.dot import htn_to_dot
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.taskfile import parse_task_file
     from supportive.io.tree import render_tree
     from supportive.learning.learner import learn as learn_htn
 
-    spec = parse_task_file(file)
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     learner = learn_htn(spec)
@@ -87,7 +92,7 @@ def learn(
     elif format is LearnFormat.dot:
         text = htn_to_dot(learner.htn_)
     else:
-        text = render_tree(learner.htn_, spec.texts(), width=120)
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
     _write_text(text, output)
 
 
@@ -100,10 +105,14 @@ class InferenceModel(StrEnum):
 
 @app.command()
 def infer(
-    file: Annotated[Path, typer.Argument(help="Task file whose actions declare their 'observations'.")],
-    observations: Annotated[
-        Path, typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml.")
+    file: Annotated[
+        Path,
+        typer.Argument(help="Task file whose actions declare their 'observations', or a bundled example's name."),
     ],
+    observations: Annotated[
+        Path | None,
+        typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml."),
+    ] = None,
     model: Annotated[
         InferenceModel, typer.Option("--model", help="Which HMM.")
     ] = InferenceModel.hierarchical,
@@ -111,26 +120,63 @@ def infer(
     mean_duration: Annotated[
         float, typer.Option("--mean-duration", min=1.0, help="Mean observations per subgoal.")
     ] = 5.0,
+    bag: Annotated[
+        Path | None, typer.Option("--bag", help="Read contact events from a ROS bag instead (ros extra).")
+    ] = None,
+    contacts_topic: Annotated[
+        str, typer.Option("--contacts-topic", help="The bag's contacts topic (see docs/ros.md).")
+    ] = "/contacts",
+    write_bag: Annotated[
+        Path | None,
+        typer.Option("--write-bag", help="Also write the beliefs as a new MCAP bag (with --bag)."),
+    ] = None,
+    types: Annotated[
+        list[Path] | None,
+        typer.Option(
+            "--types", help="A .msg/.idl file or folder of message types the bag lacks; repeatable."
+        ),
+    ] = None,
 ) -> None:
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation (one JSON line
     each: top subgoals, enclosing subtasks and next subgoals, with probabilities)."""
+    from supportive.bag_inference import belief_record, infer_bag
+    from supportive.examples import task_path
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
+    from supportive.io.htn_json import htn_to_dict
     from supportive.io.observation_file import parse_observation_file
     from supportive.io.taskfile import parse_task_file
     from supportive.learning.learner import learn as learn_htn
 
-    spec = parse_task_file(file)
+    if (observations is None) == (bag is None):
+        raise SupportiveError("give the observations: --observations FILE or --bag BAG (not both)")
+    if write_bag is not None and bag is None:
+        raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
+    spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
-    stream = parse_observation_file(observations)
+    stream = parse_observation_file(observations) if observations is not None else []
     events = ObservationModel.from_spec(spec)
     kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
-    running = kind(learn_htn(spec).htn_, events, mean_duration=mean_duration).filter()
-    for moment, time in stream:
-        record = running.summary(running.update(moment), top)
-        if time is not None:
-            record["time"] = time
+    learner = learn_htn(spec)
+    running = kind(learner.htn_, events, mean_duration=mean_duration).filter()
+
+    def emit(record: dict[str, object]) -> None:
         sys.stdout.write(json.dumps(record) + "\n")
+
+    if bag is not None:
+        hierarchy = htn_to_dict(learner.htn_, learner.stats_.as_dict())
+        infer_bag(
+            running,
+            bag,
+            contacts_topic,
+            top=top,
+            emit=emit,
+            write_bag=write_bag,
+            hierarchy=hierarchy,
+            definitions=types or (),
+        )
+    for moment, time in stream:
+        emit(belief_record(running, running.update(moment), top, time))
 
 
 @app.command()
@@ -165,9 +211,8 @@ def captaincook(
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph."""
-    from rich.table import Table
-
     from supportive.io.captaincook import load_captaincook
+    from supportive.io.tables import fitted_table
     from supportive.learning.precedence import captaincook_report
 
     reports = captaincook_report(load_captaincook(data))
@@ -175,13 +220,9 @@ def captaincook(
         rows = [r.as_dict() for r in reports]
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
-    table = Table(title="CaptainCook4D: implied precedences vs the published task graphs")
-    for column in ("recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"):
-        table.add_column(
-            column, justify="left" if column == "recipe" else "right", no_wrap=column == "recipe"
-        )
-    for r in reports:
-        table.add_row(
+    headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
+    cells = [
+        [
             r.recipe,
             str(r.demonstrations),
             str(r.actions),
@@ -190,8 +231,11 @@ def captaincook(
             f"{r.score.precision:.3f}",
             f"{r.score.recall:.3f}",
             f"{r.score.f1:.3f}",
-        )
-    out.print(table)
+        ]
+        for r in reports
+    ]
+    title = "CaptainCook4D: implied precedences vs the published task graphs"
+    out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
     mean = {
         k: sum(getattr(r.score, k) for r in reports) / len(reports) for k in ("precision", "recall", "f1")
     }
@@ -204,7 +248,17 @@ def captaincook(
 
 @app.command()
 def teach(
-    file: Annotated[Path, typer.Argument(help="Task file (.yaml or .json); demonstrations are saved to it.")],
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml or .json) or a bundled example's name; it is not changed.")
+    ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy your demonstrations are saved to (default: NAME.edited.yaml beside FILE, or here for "
+            "a bundled example); when it exists, teaching carries on in it.",
+        ),
+    ] = None,
     strategy: Annotated[
         str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
     ] = "distance",
@@ -219,6 +273,8 @@ def teach(
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.learning.active import QuerySchedule, strategy_names
     from supportive.teach import TeachingConsole
 
@@ -235,15 +291,26 @@ def teach(
     def read() -> str:
         return input("> ")
 
-    console = TeachingConsole(file, read, out.print, strategy, schedule, seed)
+    copy = working_copy(task_path(file), save)
+    console = TeachingConsole(copy.start(), read, out.print, strategy, schedule, seed)
+    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
     console.run(demonstrations)
 
 
 @app.command()
 def chat(
     file: Annotated[
-        Path, typer.Argument(help="Task file with a structure; changed behaviors are saved to it.")
+        Path,
+        typer.Argument(help="Task file with a structure, or a bundled example's name; it is not changed."),
     ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy changed behaviors are saved to (default: NAME.edited.yaml beside FILE, or here for a "
+            "bundled example); when it exists, the conversation carries on in it.",
+        ),
+    ] = None,
     matcher: Annotated[
         str,
         typer.Option(
@@ -254,6 +321,8 @@ def chat(
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
     from supportive.chat import ChatConsole
     from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
     from supportive.language.understand import MATCHERS
 
     if matcher not in MATCHERS:
@@ -262,7 +331,11 @@ def chat(
     def read() -> str:
         return input("> ")
 
-    ChatConsole(file, read, lambda line: out.print(line, markup=False), matcher).run()
+    copy = working_copy(task_path(file), save)
+    console = ChatConsole(copy.reads(), read, lambda line: out.print(line, markup=False), matcher)
+    console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+    out.print(copy.describe(), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+    console.run()
 
 
 @app.command()
@@ -433,7 +506,9 @@ def serve(
     task: Annotated[
         Path | None,
         typer.Option(
-            "--task", help="Task file whose structure (or learned HTN) is the board (default: the chair)."
+            "--task",
+            help="Task file (or a bundled example's name) whose structure or learned HTN is the board "
+            "(default: the chair).",
         ),
     ] = None,
     db: Annotated[
@@ -458,12 +533,12 @@ def serve(
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
     subtasks through."""
-    from supportive.examples import path as example_path
+    from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
 
     launch = prepare(
-        task or example_path("ikea-chair"),
+        task_path(task or "ikea-chair"),
         db,
         host=host,
         port=port,
@@ -541,9 +616,8 @@ def reproduce(
 ) -> None:
     """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
     this run's (for 'all', also summary.md: every experiment's findings in one table)."""
-    from rich.table import Table
-
     from supportive.experiments import reproduce as run_reproduce
+    from supportive.io.tables import fitted_table
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
@@ -553,24 +627,72 @@ def reproduce(
         out.print(
             f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}"
         )
-        table = Table(title=f"{result.experiment}: this run beside the thesis")
-        for column in ("quantity", "this run", "thesis"):
-            table.add_column(column, justify="left")
-        for row in result.headline:
-            table.add_row(*row)
-        out.print(table)
+        rows = [list(row) for row in result.headline]
+        title = f"{result.experiment}: this run beside the thesis"
+        out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
     if name == "all" and results and results[0].output is not None:
         out.print(
             f"findings of every experiment, beside the thesis: {results[0].output.parent / 'summary.md'}"
         )
 
 
+def _print_version(wanted: bool) -> None:
+    if wanted:
+        from importlib.metadata import version
+
+        out.print(f"supportive {version('supportive')}", markup=False)
+        raise typer.Exit
+
+
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", is_eager=True, callback=_print_version, help="Print the version and exit."),
+    ] = False,
+) -> None:
+    """Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more."""
+
+
+def _plain_placeholders(command: Any) -> None:
+    """Help without typer's ``<bool>``/``<str>``/``<path>`` placeholders (typer ≥ 0.2x shows every parameter's
+    Python type): a flag shows none, a value its kind in capitals (``TEXT``, ``INTEGER``, ``NUMBER``,
+    ``PATH``), a choice its choices, an argument its name (``FILE``) and no type. A typer without them has no
+    ``display_type`` and is left alone."""
+    kinds = {"str": "TEXT", "int": "INTEGER", "float": "NUMBER", "path": "PATH", "file": "PATH"}
+    helper = command.get_help_option(command.context_class(command))
+    for param in [*command.params, *([helper] if helper is not None else [])]:
+        if param.metavar is not None or not hasattr(param, "display_type"):
+            continue
+        if param.param_type_name == "argument":
+            param.metavar = str(param.name).upper()
+            param.display_type_rich = lambda ctx: None  # the name says it; no type column
+        elif getattr(param, "is_flag", False):
+            param.metavar = ""
+        else:
+            label = str(param.display_type(None)).strip("<>").removesuffix(" range")
+            param.metavar = kinds.get(label, label)
+    for sub in getattr(command, "commands", {}).values():
+        _plain_placeholders(sub)
+
+
 def main() -> None:
-    """Entry point: run the app, turning library errors into one line and exit status 2."""
+    """Entry point: run the app, turning library errors into one line and exit status 2 (a missing optional
+    dependency too: the line names the extra that installs it)."""
+    from supportive.extras import missing_extra
+
+    command = typer.main.get_command(app)
+    _plain_placeholders(command)
     try:
-        app()
+        command()
     except SupportiveError as exc:
         err.print(f"supportive: error: {exc}", markup=False)
+        sys.exit(2)
+    except ModuleNotFoundError as exc:
+        problem = missing_extra(exc, " ".join(sys.argv[1:2]) or "this command")
+        if problem is None:
+            raise
+        err.print(f"supportive: error: {problem}", markup=False)
         sys.exit(2)
 
 

@@ -16,6 +16,7 @@ from supportive import examples
 from supportive.envs.household import Collision, load_map
 from supportive.errors import LearningError
 from supportive.inference import HierarchicalHMM, ObservationModel
+from supportive.io.tables import fitted_table
 from supportive.io.tree import htn_tree
 from supportive.learning.active import QuerySchedule, TeachingSession, run_session
 from supportive.learning.instructors import SimulatedInstructor
@@ -274,21 +275,24 @@ def watch_held_out(console: Console, spec: TaskSpec) -> None:
         "of learning and is replayed as contact events (which objects touch). After each action, the hierarchical "
         "HMM's belief about the current action, the subtask it belongs to, and what comes next:"
     )
-    table = Table(show_lines=False)
-    for column in ("truth", "believed action", "subtask", "expected next"):
-        table.add_column(column)
     hits = 0
+    rows = []
     for step in steps:
         right = step.subgoal[0] == step.truth
         hits += right
-        colour = "green" if right else "yellow"
-        table.add_row(
-            step.truth,
-            f"[{colour}]{step.subgoal[0]}[/] {step.subgoal[1]:.2f}",
-            f"{step.subtask[0]} {step.subtask[1]:.2f}",
-            f"{step.next_subgoal[0]} {step.next_subgoal[1]:.2f}",
+        rows.append(
+            [
+                step.truth,
+                f"{step.subgoal[0]}{'' if right else ' (!)'}",
+                f"{step.subgoal[1]:.2f}",
+                step.subtask[0],
+                f"{step.subtask[1]:.2f}",
+                step.next_subgoal[0],
+                f"{step.next_subgoal[1]:.2f}",
+            ]
         )
-    console.print(table)
+    headers = ["truth", "believed action", "p", "subtask", "p", "expected next", "p"]
+    console.print(fitted_table(console, "", headers, rows, numeric={2, 4, 6}))
     console.print(
         f"  right action at the end of {hits} of {len(steps)} actions; pegs, bolts and nuts look alike, so the "
         "subtask column is where the hierarchy earns its keep."

@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 __all__ = [
+    "BagError",
     "CircuitError",
     "DatasetError",
     "ExperimentError",
@@ -77,6 +78,11 @@ class TaskFileError(FileFormatError):
 
 class ObservationFileError(FileFormatError):
     """An observation stream (contact events per moment) is unreadable or malformed."""
+
+
+class BagError(FileFormatError):
+    """A ROS bag is missing, unreadable or corrupt, or a topic in it is missing, empty or of the wrong type;
+    the message names the bag and the topic."""
 
 
 class MapFileError(FileFormatError):

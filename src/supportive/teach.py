@@ -1,14 +1,19 @@
 """``supportive teach``: a person teaches a task at the terminal while the learner asks for actions (§2.2).
 
-The person types the actions they perform, one per line (an id or its number in the list). At scheduled moments
-the learner asks in words ("Can you place the purple block next?"); performing that action honours the query,
-performing another refuses it. After every demonstration the learner is updated and the task file is saved with
-the new demonstration, so nothing is lost if the person stops.
+The person types the actions they perform, one per line: an id, its text or its number in the list, in any
+case; a typo is answered with what it is close to ("did you mean 'green'?"). At scheduled moments the learner
+asks in words ("Can you place the purple block next?"); "yes" performs that action, "no" (then another action)
+or performing another refuses it. A demonstration is a whole execution: an action is performed as often as
+the task has it (once, unless its structure or demonstrations repeat it), never more, and ``done`` before every
+action is in says what is still to do. After every demonstration the learner is updated and the task file is
+saved with the new demonstration, so nothing is lost if the person stops.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import difflib
+from collections import Counter
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -16,11 +21,77 @@ from supportive.io.taskfile import parse_task_file, write_task_file
 from supportive.learning.active import QuerySchedule, TeachingSession
 from supportive.learning.learner import HTNLearner
 from supportive.learning.naming import known_names
+from supportive.tasks.htn import leaf_actions
 from supportive.tasks.spec import Demonstration, TaskSpec
 
-__all__ = ["TeachingConsole", "ask_in_words"]
+__all__ = ["Repertoire", "TeachingConsole", "ask_in_words"]
 
 DONE, QUIT = "done", "quit"
+YES = frozenset({"yes", "y", "yeah", "yep", "ok", "okay", "sure"})
+NO = frozenset({"no", "n", "nope", "nah"})
+HELP = frozenset({"help", "?"})
+CLOSE = 0.6
+"""How alike (difflib's ratio) a typo must be to an action's id or text to be suggested."""
+
+
+@dataclass(frozen=True)
+class Repertoire:
+    """The actions a person may type and how often each belongs in one demonstration.
+
+    Attributes:
+        actions: The action ids, in the task's order.
+        texts: Each action's text.
+        required: How often each action is performed in a whole demonstration (its count in the structure,
+            else the fewest times a recorded demonstration has it, else once).
+        allowed: How often it may be performed (at least ``required``; more when a demonstration repeats it).
+    """
+
+    actions: tuple[str, ...]
+    texts: Mapping[str, str]
+    required: Mapping[str, int]
+    allowed: Mapping[str, int]
+
+    @classmethod
+    def of(cls, spec: TaskSpec) -> Repertoire:
+        """The repertoire of a task file."""
+        actions = spec.action_ids()
+        counts = [Counter(steps) for steps in spec.action_sequences()]
+        if spec.structure is not None:
+            required = Counter(leaf_actions(spec.structure))
+        elif counts:
+            required = Counter({a: min(c[a] for c in counts) for a in actions})
+        else:
+            required = Counter(dict.fromkeys(actions, 1))
+        allowed = {a: max([required[a], 1, *(c[a] for c in counts)]) for a in actions}
+        return cls(actions, spec.texts(), {a: required[a] for a in actions}, allowed)
+
+    def named(self, line: str) -> str | None:
+        """The action a typed line names (id, text or number, any case), or None."""
+        if line.isdigit():
+            number = int(line)
+            return self.actions[number - 1] if 1 <= number <= len(self.actions) else None
+        wanted = line.casefold()
+        for action in self.actions:
+            if wanted in (action.casefold(), self.texts.get(action, action).casefold()):
+                return action
+        return None
+
+    def close_to(self, line: str) -> list[str]:
+        """The actions whose id or text a mistyped line is close to, closest first."""
+        names = {action.casefold(): action for action in self.actions}
+        names |= {self.texts.get(a, a).casefold(): a for a in self.actions}
+        close = difflib.get_close_matches(line.casefold(), list(names), n=3, cutoff=CLOSE)
+        return list(dict.fromkeys(names[c] for c in close))
+
+    def missing(self, done: tuple[str, ...]) -> list[str]:
+        """The actions a demonstration still needs before it is whole."""
+        counts = Counter(done)
+        return [a for a in self.actions if counts[a] < self.required[a]]
+
+    def exhausted(self, done: tuple[str, ...]) -> bool:
+        """True when every action has been performed as often as it may be: nothing more can come."""
+        counts = Counter(done)
+        return all(counts[a] >= self.allowed[a] for a in self.actions)
 
 
 def ask_in_words(action: str, texts: dict[str, str]) -> str:
@@ -66,6 +137,7 @@ class TeachingConsole:
         spec = parse_task_file(self.path)
         actions = spec.action_ids()
         texts = spec.texts()
+        repertoire = Repertoire.of(spec)
         learner = HTNLearner(names=known_names(spec.structure))
         if spec.demonstrations:
             learner.fit(spec)
@@ -74,16 +146,14 @@ class TeachingConsole:
             f"Teaching {spec.name}: {len(actions)} actions, {len(spec.demonstrations)} demonstrations so far."
         )
         for number, action in enumerate(actions, start=1):
-            self.write(
-                f"  {number:2d}. {action}"
-                + (f" — {texts[action]}" if texts.get(action, action) != action else "")
-            )
+            self.write(f"  {number:2d}. {action}" + _text_of(action, texts))
         self.write(
-            f"Type each action you perform (id or number); '{DONE}' ends a demonstration, '{QUIT}' stops."
+            f"Type each action you perform (id, text or number); '{DONE}' ends a demonstration, '{QUIT}' stops, "
+            "'help' shows the actions again."
         )
         recorded = 0
         while demonstrations is None or recorded < demonstrations:
-            finished = self._demonstration(session, actions, texts)
+            finished = self._demonstration(session, repertoire)
             if finished is None:
                 break
             taken = {d.id for d in spec.demonstrations}
@@ -106,9 +176,7 @@ class TeachingConsole:
             )
         return spec
 
-    def _demonstration(
-        self, session: TeachingSession, actions: tuple[str, ...], texts: dict[str, str]
-    ) -> Demonstration | None:
+    def _demonstration(self, session: TeachingSession, repertoire: Repertoire) -> Demonstration | None:
         """One demonstration; None when the person quits (an unfinished demonstration is dropped: a partial
         execution is not a valid demonstration)."""
         session.begin()
@@ -118,27 +186,68 @@ class TeachingConsole:
             question = session.query()
             if question is not None and asked_at != len(session.done):
                 asked_at = len(session.done)
-                self.write("  robot: " + ask_in_words(question, texts))
+                self.write("  robot: " + ask_in_words(question, dict(repertoire.texts)))
             try:
                 line = self.read().strip()
             except EOFError:
                 line = QUIT
-            if line == QUIT:
+            word = line.casefold().strip(".!")
+            if word == QUIT:
                 if session.done:
-                    self.write(f"  dropped the unfinished demonstration ({len(session.done)} steps)")
+                    steps = len(session.done)
+                    self.write(f"  dropped the unfinished demonstration ({steps} step{'s' if steps > 1 else ''})")
                 return None
-            if line == DONE:
+            if word == DONE:
+                missing = repertoire.missing(session.done)
                 if not session.done:
                     self.write("  nothing performed yet: type an action first")
-                    continue
-                return session.end()
-            if not line:
-                self.write(f"  (empty line) type an action id or number, '{DONE}' or '{QUIT}'")
+                elif missing:
+                    self.write(
+                        f"  not finished: still to do {', '.join(missing)}; type them, or '{QUIT}' to drop it"
+                    )
+                else:
+                    return session.end()
                 continue
-            action = actions[int(line) - 1] if line.isdigit() and 1 <= int(line) <= len(actions) else line
-            if action not in actions:
-                self.write(f"  unknown action {line!r}; choose one of: {', '.join(actions)}")
+            action = self._action(line, word, question, session, repertoire)
+            if action is None:
                 continue
             session.observe(action)
-            if len(session.done) == len(actions):
+            if repertoire.exhausted(session.done):
                 return session.end()
+
+    def _action(
+        self, line: str, word: str, question: str | None, session: TeachingSession, repertoire: Repertoire
+    ) -> str | None:
+        """The action a typed line performs, or None after saying why it performs none."""
+        if not line:
+            self.write(f"  (empty line) type an action id, text or number, '{DONE}' or '{QUIT}'")
+            return None
+        if word in HELP:
+            for number, known in enumerate(repertoire.actions, start=1):
+                self.write(f"  {number:2d}. {known}" + _text_of(known, repertoire.texts))
+            return None
+        if word in YES | NO:
+            if question is None:
+                self.write(f"  no question is waiting: type the action you perform, '{DONE}' or '{QUIT}'")
+                return None
+            if word in YES:
+                return question
+            self.write("  all right: type the action you do instead")
+            return None
+        action = repertoire.named(line)
+        if action is None:
+            close = repertoire.close_to(line)
+            hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+            self.write(f"  unknown action {line!r}{hint} ('help' lists them)")
+            return None
+        performed = session.done.count(action)
+        if performed >= repertoire.allowed[action]:
+            times = "once" if performed == 1 else f"{performed} times"
+            self.write(f"  {action} is already done ({times}) in this demonstration; type another action")
+            return None
+        return action
+
+
+def _text_of(action: str, texts: Mapping[str, str]) -> str:
+    text = texts.get(action, action)
+    return f" — {text}" if text != action else ""

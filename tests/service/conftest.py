@@ -2,12 +2,14 @@
 
 PostgreSQL is a throwaway cluster made for the session with Debian's binaries (``make test`` installs
 them): ``initdb`` in a temporary directory (as the ``postgres`` user when the tests run as root), listening
-on 127.0.0.1 only, on a free port. Missing binaries fail the tests rather than skip them.
+on 127.0.0.1 only, on a free port. The page is driven in Debian's chromium with Playwright (no browser
+download); screenshots go to test-artifacts/. Missing binaries fail the tests rather than skip them.
 """
 
 from __future__ import annotations
 
 import glob
+import io
 import os
 import shutil
 import signal
@@ -22,6 +24,8 @@ from pathlib import Path
 import httpx
 import pytest
 from fastapi.testclient import TestClient
+from PIL import Image
+from playwright.sync_api import Browser, Page, expect, sync_playwright
 
 from supportive.examples import path as example_path
 from supportive.io.taskfile import parse_task_file
@@ -202,3 +206,66 @@ def server_factory() -> Iterator[Callable[..., Server]]:
 def headers() -> Callable[[str], dict[str, str]]:
     """``headers("alice")``: the Authorization header of an agent."""
     return auth
+
+
+CHROMIUM = "/usr/bin/chromium"
+FLAGS = [
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--force-color-profile=srgb",
+]
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts"
+SCREEN = {"width": 1920, "height": 1080}
+"""The workcell's monitor the page is designed for (the other size tested is a 1280 × 800 laptop)."""
+
+
+@pytest.fixture(scope="session")
+def browser() -> Iterator[Browser]:
+    if not Path(CHROMIUM).exists():
+        raise RuntimeError("Debian's chromium is not installed: run `make test` (it installs it)")
+    with sync_playwright() as playwright:
+        launched = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        yield launched
+        launched.close()
+
+
+@pytest.fixture
+def board_server(tmp_path: Path, server_factory: Callable[..., Server]) -> Server:
+    """A `supportive serve` of the chair (``Attach seat`` lead-only) on SQLite."""
+    return server_factory(f"sqlite:///{tmp_path / 'board.db'}")
+
+
+@pytest.fixture
+def open_page(browser: Browser) -> Iterator[Callable[..., Page]]:
+    """``open_page(url, token, viewport=None)``: the page signed in with the token given in its address (as
+    ``serve`` prints it), once it is live; closed after the test."""
+    pages: list[Page] = []
+
+    def make(url: str, token: str, viewport: dict[str, int] | None = None) -> Page:
+        page = browser.new_page(viewport=viewport or SCREEN)
+        pages.append(page)
+        page.goto(f"{url}/#token={token}")
+        expect(page.get_by_test_id("live")).to_have_text("live", timeout=15_000)
+        return page
+
+    yield make
+    for page in pages:
+        page.close()
+
+
+@pytest.fixture(scope="session")
+def snap() -> Callable[[Page, str], Image.Image]:
+    """``snap(page, name)``: the viewport written to test-artifacts/NAME.png, and the picture."""
+
+    def take(page: Page, name: str) -> Image.Image:
+        ARTIFACTS.mkdir(exist_ok=True)
+        data = page.screenshot(path=str(ARTIFACTS / f"{name}.png"))
+        return Image.open(io.BytesIO(data)).convert("RGB")
+
+    return take

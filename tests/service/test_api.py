@@ -3,11 +3,15 @@ a refused request leaves the board as it was."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
+
+from supportive.examples import load
+from supportive.service.insight import Insight
 
 Headers = Callable[[str], dict[str, str]]
 
@@ -222,7 +226,12 @@ def test_websockets_need_a_token(client: TestClient) -> None:
 
 def test_docs_and_page_are_served(client: TestClient) -> None:
     schema = client.get("/openapi.json").json()
-    assert "/api/nodes/{node}/claim" in schema["paths"] and client.get("/docs").status_code == 200
+    assert "/api/nodes/{node}/claim" in schema["paths"]
+    for docs in ("/docs", "/redoc"):  # their scripts are served here: nothing from a CDN
+        html = client.get(docs)
+        assert html.status_code == 200 and "cdn" not in html.text.lower() and "http" not in html.text.lower()
+        scripts = re.findall(r'src="([^"]+\.js)"', html.text)
+        assert scripts and all(client.get(src).status_code == 200 for src in scripts)
     page = client.get("/")
     assert page.status_code == 200 and "task board" in page.text
     assert client.get("/static/app.js").status_code == 200
@@ -240,6 +249,42 @@ def test_insight_suggests_behaviors_and_follows_observations(client: TestClient,
     assert (
         client.post("/api/observations", headers=headers("alice"), json={"events": [""]}).status_code == 422
     )
+
+
+def test_insight_tells_the_belief_in_words(client: TestClient, headers: Headers) -> None:
+    """The goal view: likely subtasks by name, current and next actions by their text (never a bare id)."""
+    assert client.get("/api/insight", headers=headers("screen")).json()["goal"] is None
+    for events in (["hand-left_frame"], ["hand-left_frame", "left_frame-table"]):
+        client.post("/api/observations", headers=headers("alice"), json={"events": events})
+    insight = client.get("/api/insight", headers=headers("screen")).json()
+    goal, belief = insight["goal"], insight["belief"]
+    texts = load("ikea-chair").texts()
+    assert goal["step"] == 2
+    assert [e["action"] for e in goal["current"]] == [b["name"] for b in belief]
+    for entry in goal["current"] + goal["next"]:
+        assert entry["text"] == texts[entry["action"]] and 0 <= entry["probability"] <= 1
+    assert goal["current"][0]["text"] == "stand the left side frame on the table"
+    assert goal["subtasks"][0]["name"] == "Prepare left frame"
+    assert [step["step"] for step in goal["recent"]] == [1, 2]
+    assert goal["recent"][-1]["text"] == "stand the left side frame on the table"
+
+
+def test_the_goal_view_flags_what_the_model_calls_off_script() -> None:
+    """Whatever the filter's summary reports (a flag, a surprise, or neither) reaches the page as
+    ``off_script`` (True, False, None); repeated actions keep their occurrence in words."""
+    insight = Insight(load("ikea-chair"))
+    base = {"step": 3, "subgoals": [["get_seat#2", 0.5]], "subtasks": [], "next": []}
+    for extra, flagged in (
+        ({}, None),
+        ({"surprise": 0.8}, True),
+        ({"surprise": 0.2}, False),
+        ({"surprise": 0.9, "off_script": False}, False),
+        ({"off_script": True}, True),
+    ):
+        insight.latest = {**base, **extra}
+        goal = insight.goal()
+        assert goal is not None and goal["off_script"] is flagged and goal["surprise"] == extra.get("surprise")
+        assert goal["current"][0]["text"] == "pick up the seat (#2)"
 
 
 def test_suggestions_follow_the_board(client: TestClient, headers: Headers) -> None:

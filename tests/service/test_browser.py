@@ -1,115 +1,92 @@
-"""The web page in Debian's chromium, driven by Playwright (no browser download): sign in, claim and release,
-see another agent's claim arrive live, see completion propagate. Screenshots go to test-artifacts/."""
+"""The page's controls in Debian's chromium, driven by Playwright: sign in, claim and release, another agent's
+claim arriving live, completion propagating and folding the finished subtree, observers without buttons, a
+wrong token, the token leaving the address. Screenshots go to test-artifacts/."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from pathlib import Path
+import re
+from collections.abc import Callable
 from typing import Any
 
 import httpx
-import pytest
-from playwright.sync_api import Browser, Page, expect, sync_playwright
+from playwright.sync_api import Browser, Page, expect
 
-CHROMIUM = "/usr/bin/chromium"
-FLAGS = [
-    "--headless=new",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts"
+Headers = Callable[[str], dict[str, str]]
 
 
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Browser]:
-    if not Path(CHROMIUM).exists():
-        raise RuntimeError("Debian's chromium is not installed: run `make test` (it installs it)")
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        yield launched
-        launched.close()
+def nodes(url: str, headers: Headers) -> list[dict[str, Any]]:
+    data: list[dict[str, Any]] = httpx.get(f"{url}/api/board", headers=headers("screen")).json()["nodes"]
+    return data
 
 
-@pytest.fixture
-def board_server(tmp_path: Path, server_factory: Callable[..., Any]) -> Any:
-    return server_factory(f"sqlite:///{tmp_path / 'board.db'}")
+def named(url: str, headers: Headers, name: str) -> dict[str, Any]:
+    return next(n for n in nodes(url, headers) if n["name"] == name)
 
 
-def open_page(browser: Browser, url: str, token: str) -> Page:
-    page = browser.new_page(viewport={"width": 1280, "height": 900})
-    page.goto(f"{url}/#token={token}")
-    expect(page.get_by_test_id("live")).to_have_text("live", timeout=15_000)
-    return page
-
-
-def snap(page: Page, name: str) -> None:
-    ARTIFACTS.mkdir(exist_ok=True)
-    page.screenshot(path=str(ARTIFACTS / f"{name}.png"), full_page=True)
-
-
-def node_id(url: str, headers: Callable[[str], dict[str, str]], name: str) -> str:
-    nodes = httpx.get(f"{url}/api/board", headers=headers("screen")).json()["nodes"]
-    return str(next(n["id"] for n in nodes if n["name"] == name))
-
-
-def test_claim_and_release_with_the_buttons(browser: Browser, board_server: Any) -> None:
-    page = open_page(browser, board_server.url, "tok-alice")
+def test_claim_and_release_with_the_buttons(
+    open_page: Callable[..., Page], board_server: Any, headers: Headers, snap: Callable[..., Any]
+) -> None:
+    page = open_page(board_server.url, "tok-alice")
     expect(page.get_by_test_id("me")).to_have_text("alice (human, lead)")
-    page.get_by_test_id("claim-n1").click()
-    expect(page.get_by_test_id("status-n1")).to_have_text("claimed by alice")
-    expect(page.get_by_test_id("release-n1")).to_be_visible()
+    frame = named(board_server.url, headers, "Prepare left frame")["id"]
+    page.get_by_test_id(f"claim-{frame}").click()  # an ordinary subtask: no question asked
+    expect(page.get_by_test_id(f"node-{frame}")).to_have_attribute("data-owner", "alice")
+    expect(page.get_by_test_id(f"owner-{frame}")).to_have_text("alice")
+    expect(page.get_by_test_id(f"release-{frame}")).to_be_visible()
+    expect(page.get_by_test_id("now-alice-doing")).to_have_text("pick up the left side frame")
+    assert named(board_server.url, headers, "Prepare left frame")["owner"] == "alice"
     snap(page, "claimed")
-    page.get_by_test_id("release-n1").click()
-    expect(page.get_by_test_id("status-n1")).to_have_text("free")
-    page.close()
+    page.get_by_test_id(f"release-{frame}").click()
+    expect(page.get_by_test_id(f"node-{frame}")).to_have_attribute("data-status", "free")
+    expect(page.get_by_test_id("now-alice-doing")).to_have_text("no subtask claimed")
+    assert named(board_server.url, headers, "Prepare left frame")["owner"] is None
 
 
 def test_another_agents_claim_appears_live(
-    browser: Browser, board_server: Any, headers: Callable[[str], dict[str, str]]
+    open_page: Callable[..., Page], board_server: Any, headers: Headers, snap: Callable[..., Any]
 ) -> None:
-    page = open_page(browser, board_server.url, "tok-alice")
+    page = open_page(board_server.url, "tok-alice")
     version = page.get_by_test_id("version").text_content()
-    response = httpx.post(f"{board_server.url}/api/nodes/n22/claim", headers=headers("robot"))
+    rails = named(board_server.url, headers, "Mount front support")["id"]
+    response = httpx.post(f"{board_server.url}/api/nodes/{rails}/claim", headers=headers("robot"))
     assert response.status_code == 200
-    expect(page.get_by_test_id("status-n22")).to_have_text("claimed by robot")
+    expect(page.get_by_test_id(f"node-{rails}")).to_have_attribute("data-owner", "robot")
     assert page.get_by_test_id("version").text_content() != version
-    expect(page.get_by_test_id("claim-n22")).to_have_count(0)  # no button to take it from the robot
+    expect(page.get_by_test_id(f"claim-{rails}")).to_have_count(0)  # no button to take it from the robot
+    expect(page.get_by_test_id("claim-n0")).to_have_count(0)  # nor the whole task, which contains it
+    expect(page.get_by_test_id("now-robot-doing")).to_have_text("Mount front support")
+    expect(page.get_by_test_id("now-robot-next")).to_have_text("waiting for Prepare side frames")
     snap(page, "robot-claim-live")
-    refused = page.get_by_test_id("claim-n0")
-    refused.click()  # the root contains the robot's subtask: the page shows why it was refused
-    expect(page.get_by_test_id("message")).to_contain_text("claimed by robot")
-    page.close()
 
 
-def test_completion_propagates_up_the_tree(
-    browser: Browser, board_server: Any, headers: Callable[[str], dict[str, str]]
+def test_completion_propagates_and_the_done_subtree_folds(
+    open_page: Callable[..., Page], board_server: Any, headers: Headers, snap: Callable[..., Any]
 ) -> None:
     url = board_server.url
-    left = httpx.get(f"{url}/api/board", headers=headers("screen")).json()["nodes"]
-    pegs = next(n for n in left if n["name"] == "Add left pegs")
+    pegs = named(url, headers, "Add left pegs")
     chain = pegs["parent"]
-    steps = [n for n in left if n["parent"] == chain]
+    steps = [n for n in nodes(url, headers) if n["parent"] == chain]
     leaves = [s["id"] for s in steps if s["kind"] == "action"] + list(pegs["children"])
-    page = open_page(browser, url, "tok-bob")
+    page = open_page(url, "tok-bob")
     page.get_by_test_id(f"claim-{chain}").click()
-    expect(page.get_by_test_id(f"status-{chain}")).to_have_text("claimed by bob")
-    watcher = open_page(browser, url, "tok-screen")
-    expect(watcher.get_by_test_id(f"claim-{chain}")).to_have_count(0)  # an observer only reads
-    for leaf in leaves:
+    expect(page.get_by_test_id(f"node-{chain}")).to_have_attribute("data-owner", "bob")
+    watcher = open_page(url, "tok-screen")
+    expect(watcher.get_by_test_id(f"node-{chain}")).to_have_attribute("data-owner", "bob")
+    expect(watcher.locator("button.op")).to_have_count(0)  # an observer only reads
+    for leaf in leaves[:-1]:
         page.get_by_test_id(f"complete-{leaf}").click()
-        expect(page.get_by_test_id(f"status-{leaf}")).to_have_text("done")
-    expect(page.get_by_test_id(f"status-{pegs['id']}")).to_have_text("done")
-    expect(page.get_by_test_id(f"status-{chain}")).to_have_text("done")
-    expect(watcher.get_by_test_id(f"status-{chain}")).to_have_text("done")
+        expect(page.get_by_test_id(f"node-{leaf}")).to_have_attribute("data-status", "done")
+    expect(page.get_by_test_id("now-bob-count")).to_have_text(f"{len(leaves) - 1}/{len(leaves)} steps")
+    page.get_by_test_id(f"complete-{leaves[-1]}").click()
+    for view in (page, watcher):
+        expect(view.get_by_test_id(f"node-{chain}")).to_have_attribute("data-status", "done")
+        expect(view.get_by_test_id(f"node-{chain}")).to_have_class(re.compile(r"\bfolded\b"))
+        for leaf in leaves:  # folded: the finished subtree is one line
+            expect(view.get_by_test_id(f"node-{leaf}")).to_have_count(0)
+    assert all(n["done"] for n in nodes(url, headers) if n["id"] in {chain, pegs["id"], *leaves})
+    expect(watcher.get_by_test_id("overall-label")).to_have_text("4 of 24 steps done · 17 %")
     snap(page, "completion")
     snap(watcher, "observer")
-    page.close()
-    watcher.close()
 
 
 def test_a_wrong_token_asks_to_sign_in(browser: Browser, board_server: Any) -> None:
@@ -120,3 +97,11 @@ def test_a_wrong_token_asks_to_sign_in(browser: Browser, board_server: Any) -> N
     page.get_by_role("button", name="Sign in").click()
     expect(page.get_by_test_id("me")).to_have_text("robot (robot, assistant)")
     page.close()
+
+
+def test_the_token_leaves_the_address_after_sign_in(open_page: Callable[..., Page], board_server: Any) -> None:
+    page = open_page(board_server.url, "tok-alice")
+    assert "token" not in page.url and "tok-alice" not in page.url
+    page.reload()  # kept for this tab only, so a reload stays signed in
+    expect(page.get_by_test_id("me")).to_have_text("alice (human, lead)")
+    assert "tok-alice" not in page.url

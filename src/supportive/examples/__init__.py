@@ -14,7 +14,7 @@ from supportive.errors import ScenarioFileError, TaskFileError
 from supportive.io.taskfile import parse_task_file
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["circuit_names", "circuit_path", "load", "names", "path"]
+__all__ = ["circuit_names", "circuit_path", "load", "names", "path", "task_path"]
 
 
 def _folder() -> Path:
@@ -36,6 +36,19 @@ def path(name: str) -> Path:
     if not file.is_file():
         raise TaskFileError(f"no bundled example {name!r}; known: {', '.join(names())}")
     return file
+
+
+def task_path(file: str | Path) -> Path:
+    """A task file the user named: the file when it exists (or has a suffix), else the bundled example of that
+    name, else the path as given (reading it then says it is missing).
+
+    >>> task_path("ikea-chair").name, str(task_path("my-task.yaml"))
+    ('ikea-chair.yaml', 'my-task.yaml')
+    """
+    given = Path(file)
+    if not given.suffix and not given.exists() and str(file) in names():
+        return path(str(file))
+    return given
 
 
 def load(name: str) -> TaskSpec:

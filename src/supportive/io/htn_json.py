@@ -43,7 +43,7 @@ def node_from_dict(data: Any, place: str = "node") -> Node:
 
 
 def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The JSON form of DESIGN.md; ``top_level`` is added for a partial hierarchy (how its roots may follow
+    """The JSON form of docs/exports.md; ``top_level`` is added for a partial hierarchy (how its roots may follow
     one another: ``edges`` are ``[from state, root index, to state]``)."""
     data: dict[str, Any] = {
         "task": htn.task,

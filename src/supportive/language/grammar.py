@@ -270,6 +270,10 @@ _EMPTY_WORDS = (
     "i we you me us it to want would like need please could can will robot the a an and or then also just"
 )
 _EMPTY = frozenset(_EMPTY_WORDS.split())
+_UNDERSTOOD_WORDS = 2
+"""Words beyond the empty ones a bare request must have before the robot says it understood it ("stop",
+"help" or "I want you to juggle" fit the start of a request, but the robot understood nothing of them)."""
+_REQUEST_ONLY = "when you want it"
 
 # What each partial analysis lacks, and the form to ask for (tried in this order; ties go to the earlier).
 _PARTIALS = (
@@ -278,7 +282,7 @@ _PARTIALS = (
     ("partial_when", "which of my behaviors you mean", _BEHAVIOR_FORM),
     ("partial_condition", "what you want me to do", "When …, I want you to …"),
     ("partial_subject", "what you are doing", _PREFERENCE_FORM),
-    ("partial_request", "when you want it", _PREFERENCE_FORM),
+    ("partial_request", _REQUEST_ONLY, _PREFERENCE_FORM),
 )
 _ANY_FORM = f"one of: '{_PREFERENCE_FORM}', '{_SUBTASK_FORM}', '{_BEHAVIOR_FORM}'"
 
@@ -518,8 +522,8 @@ def _diagnose(text: str, words: list[str], spans: list[tuple[int, int]]) -> Unde
             count -= 1
         if count and (best is None or count > best[0]):
             best = (count, missing, expected)
-    if best is None:
-        return UnderstandingError(text, None, "anything", _ANY_FORM)
+    if best is None or (best[1] == _REQUEST_ONLY and len(set(words[: best[0]]) - _EMPTY) < _UNDERSTOOD_WORDS):
+        return UnderstandingError(text, None, "anything", _ANY_FORM)  # one verb alone is not a request
     count, missing, expected = best
     understood = text[spans[0][0] : spans[count - 1][1]].strip()
     return UnderstandingError(text, understood, missing, expected)

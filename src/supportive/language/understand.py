@@ -6,7 +6,8 @@
   and negatively, :meth:`TaskStates.say`): the exact words first, then the best bag-of-words overlap.
 * A subtask phrase is grounded with Algorithm 6 (:class:`~supportive.language.grounding.PhraseMatcher`).
 * A behavior phrase is matched against the task's behaviors; an unknown one becomes a new behavior whose
-  category is guessed from its verb.
+  category is told by its verb of help ("give", "hold", "point", …); one with no such verb ("juggle") is
+  refused, not made up.
 
 :class:`Understanding` turns a :class:`~supportive.language.grammar.Preference` into the updated behavior (by the
 rule of :mod:`supportive.language.preferences`: do it during the named subtasks, or, for "don't …", not there),
@@ -28,7 +29,15 @@ from supportive.language.states import TaskStates
 from supportive.tasks.behaviors import BehaviorCategory, SupportiveBehavior
 from supportive.tasks.formula import DNF, Conjunction, Literal
 
-__all__ = ["MATCHERS", "ConditionReader", "Understanding", "Understood", "guess_category"]
+__all__ = [
+    "MATCHERS",
+    "ConditionReader",
+    "Understanding",
+    "Understood",
+    "UnknownHelpError",
+    "category_of",
+    "guess_category",
+]
 
 MATCHERS = ("bow", "embeddings")
 """The subtask matchers: bag of words (Algorithm 6 as in the thesis) or sentence embeddings."""
@@ -42,11 +51,14 @@ _CATEGORY_VERBS: dict[BehaviorCategory, tuple[str, ...]] = {
 }
 
 
-def guess_category(phrase: str) -> BehaviorCategory:
-    """The taxonomy category (§3.1) a behavior phrase most likely belongs to, from its verbs.
+def category_of(phrase: str) -> BehaviorCategory | None:
+    """The taxonomy category (§3.1) of a behavior phrase, from its verbs; None when no word of it is a verb of
+    help the robot knows (the phrase asks for something it cannot do).
 
-    >>> guess_category("hold the rear frame steady").value, guess_category("give me screws").value
+    >>> category_of("hold the rear frame steady").value, category_of("give me screws").value
     ('materials stabilization', 'materials retrieval')
+    >>> category_of("juggle") is None
+    True
     """
     words = phrase.lower().split()
     for category, verbs in _CATEGORY_VERBS.items():
@@ -55,7 +67,35 @@ def guess_category(phrase: str) -> BehaviorCategory:
     for category, verbs in _CATEGORY_VERBS.items():
         if any(w in verbs for w in words):
             return category
-    return BehaviorCategory.MATERIALS_RETRIEVAL
+    return None
+
+
+def guess_category(phrase: str) -> BehaviorCategory:
+    """:func:`category_of`, materials retrieval when no verb tells.
+
+    >>> guess_category("hold the rear frame steady").value, guess_category("give me screws").value
+    ('materials stabilization', 'materials retrieval')
+    """
+    return category_of(phrase) or BehaviorCategory.MATERIALS_RETRIEVAL
+
+
+class UnknownHelpError(UnderstandingError):
+    """A request for help the robot has no behavior for and no verb of help it knows ("juggle"): it is not
+    made up as a new behavior.
+
+    Args:
+        phrase: The behavior phrase.
+        known: The texts of the task's behaviors.
+    """
+
+    def __init__(self, phrase: str, known: Sequence[str]) -> None:
+        super().__init__(phrase, None, "a kind of help", "")
+        kinds = ", ".join(verbs[0] for verbs in _CATEGORY_VERBS.values())
+        have = "; ".join(known) or "nothing yet"
+        self.args = (
+            f"I don't know how to {_second_person(phrase)}. I can help by doing what I already do ({have}), or "
+            f"something new that starts with a verb of help ({kinds}, …).",
+        )
 
 
 def _content(text: str) -> frozenset[str]:
@@ -240,10 +280,13 @@ class Understanding:
                 )
             updated = refuse(self.states, existing, chosen, start)
         elif existing is None:
+            category = category_of(phrase)
+            if category is None:
+                raise UnknownHelpError(phrase, [b.text for b in self.states.spec.behaviors])
             updated = SupportiveBehavior(
                 name=_slug(phrase),
                 text=_second_person(phrase),
-                category=guess_category(phrase),
+                category=category,
                 subtasks=chosen,
                 initiation="true" if start is None else str(start),
                 termination="false" if stop is None else str(stop),

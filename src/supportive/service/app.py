@@ -2,7 +2,7 @@
 
 ``create_app(settings)`` builds it: the JSON API under ``/api`` (agents authenticate with ``Authorization:
 Bearer <token>``; a WebSocket at ``/api/ws?token=…`` pushes every change), the web page at ``/``, OpenAPI docs
-at ``/docs``. Errors are JSON ``{"detail": "…"}`` with a 4xx status: 400 malformed, 401 no or wrong token,
+at ``/docs`` and ``/redoc`` (their scripts served by the app itself, from the fastapi-offline package: no CDN). Errors are JSON ``{"detail": "…"}`` with a 4xx status: 400 malformed, 401 no or wrong token,
 403 not allowed for the agent's role, 404 unknown subtask, 409 in conflict with the board, 413 too large,
 422 a field out of range.
 """
@@ -17,6 +17,7 @@ from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
+from fastapi_offline import FastAPIOffline
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from supportive.service.hub import Hub
@@ -91,7 +92,7 @@ def create_app(settings: ServiceSettings) -> FastAPI:
         yield
         store.close()
 
-    app = FastAPI(
+    app = FastAPIOffline(
         title="supportive task board",
         summary="A shared task tree that people and robots claim subtasks from (thesis §3.4.3).",
         version="1",

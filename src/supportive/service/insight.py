@@ -4,8 +4,10 @@ declare contact-event observations and it has demonstrations to learn from) and 
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass, field
 from functools import cached_property
+from numbers import Real
 from typing import Any
 
 from supportive.errors import SupportiveError
@@ -18,6 +20,11 @@ from supportive.tasks.spec import TaskSpec
 
 __all__ = ["Insight"]
 
+RECENT = 6
+"""How many of the latest observed steps the goal view lists."""
+OFF_SCRIPT = 0.5
+"""A numeric ``surprise`` at or above this marks a step off-script (when the model gives no flag itself)."""
+
 
 @dataclass
 class Insight:
@@ -26,6 +33,7 @@ class Insight:
     spec: TaskSpec | None
     filter: GoalFilter | None = field(default=None, init=False)
     latest: dict[str, Any] | None = field(default=None, init=False)
+    recent: deque[dict[str, Any]] = field(default_factory=lambda: deque(maxlen=RECENT), init=False)
 
     @cached_property
     def states(self) -> TaskStates | None:
@@ -59,7 +67,18 @@ class Insight:
             )
         if self.filter is None:
             self.filter = self.model.filter()
-        self.latest = self.filter.summary(self.filter.update(set(events)))
+        belief = self.filter.update(set(events))
+        summary = self.filter.summary(belief)
+        surprise = getattr(belief, "surprise", None)  # reported by filters that model off-script steps
+        if "surprise" not in summary and surprise is not None:
+            summary["surprise"] = surprise
+        self.latest = summary
+        goal = self.goal()
+        if goal is not None and goal["current"]:
+            top = goal["current"][0]
+            self.recent.append(
+                {"step": goal["step"], "action": top["action"], "text": top["text"], "off_script": goal["off_script"]}
+            )
         return self.latest
 
     def suggestions(self, board: TaskBoard) -> list[dict[str, str]]:
@@ -84,6 +103,42 @@ class Insight:
                     {"name": behavior.name, "text": behavior.text, "category": behavior.category.value}
                 )
         return out
+
+    def goal(self) -> dict[str, Any] | None:
+        """The latest belief for people: the likely enclosing subtasks, current and next actions with their
+        text, the filter's ``surprise`` (None when the model does not report one) and whether the step was
+        off-script (the model's own ``off_script`` flag, else a ``surprise`` of :data:`OFF_SCRIPT` or more),
+        and the latest steps' most likely actions; None before any observation."""
+        latest = self.latest
+        if latest is None:
+            return None
+        texts = self.spec.texts() if self.spec is not None else {}
+
+        def actions(pairs: list[list[Any]]) -> list[dict[str, Any]]:
+            out = []
+            for label, p in pairs:
+                action, _, occurrence = str(label).rpartition("#")
+                if not (action and occurrence.isdigit()):
+                    action, occurrence = str(label), ""
+                text = texts.get(action, action) + (f" (#{occurrence})" if occurrence else "")
+                out.append({"action": str(label), "text": text, "probability": float(p)})
+            return out
+
+        surprise = latest.get("surprise")
+        if isinstance(surprise, Real) and not isinstance(surprise, bool):
+            surprise = float(surprise)  # plain JSON, whatever number type the filter gives
+        flagged = latest.get("off_script")
+        if flagged is None and isinstance(surprise, float):
+            flagged = surprise >= OFF_SCRIPT
+        return {
+            "step": latest.get("step"),
+            "subtasks": [{"name": str(n), "probability": float(p)} for n, p in latest.get("subtasks", [])],
+            "current": actions(latest.get("subgoals", [])),
+            "next": actions(latest.get("next", [])),
+            "surprise": surprise,
+            "off_script": None if flagged is None else bool(flagged),
+            "recent": list(self.recent),
+        }
 
     def belief(self) -> list[dict[str, Any]] | None:
         """The latest belief's most likely subgoals as ``{"name", "probability"}``, None before any observation

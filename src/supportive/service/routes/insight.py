@@ -20,12 +20,20 @@ Me = Annotated[Agent, Depends(current_agent)]
 
 @router.get("/insight", summary="The goal-inference belief and the supportive behaviors that may run now")
 async def read_insight(request: Request, me: Me) -> dict[str, Any]:
-    """``belief``: the most likely current actions (None before any observation, or without inference);
-    ``behaviors``: the task's supportive behaviors whose start condition holds and stop condition does not."""
+    """``inference``: whether the task has goal inference; ``belief``: the most likely current actions (None
+    before any observation, or without inference); ``goal``: the same belief for people (likely subtasks,
+    current and next actions with their text, ``surprise`` and ``off_script`` when the model reports them, the
+    latest steps); ``behaviors``: the task's supportive behaviors whose start condition holds and stop
+    condition does not."""
     state = service(request)
     board, _ = await run_in_threadpool(state.store.board)
     suggestions = await run_in_threadpool(state.insight.suggestions, board)
-    return {"inference": state.insight.inference, "belief": state.insight.belief(), "behaviors": suggestions}
+    return {
+        "inference": state.insight.inference,
+        "belief": state.insight.belief(),
+        "goal": state.insight.goal(),
+        "behaviors": suggestions,
+    }
 
 
 @router.post("/observations", summary="Report what touches what now (contact events), for goal inference")

@@ -1,0 +1,77 @@
+"""Goal inference over a ROS bag: a contacts topic streamed through a goal filter, each frame's belief printed
+as ``supportive infer`` prints it and, optionally, written back as a new bag beside the recording.
+
+:func:`belief_record` is the one place a belief becomes a message: the JSON record ``infer`` prints for
+``--observations`` and for ``--bag`` alike, and the bag's topics are made from it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from contextlib import AbstractContextManager, nullcontext
+from pathlib import Path
+from typing import Any
+
+from supportive.inference.hmm import Belief, GoalFilter
+
+__all__ = ["belief_record", "infer_bag"]
+
+
+def belief_record(running: GoalFilter, belief: Belief, top: int, time: float | None) -> dict[str, Any]:
+    """A belief as plain data: the filter's summary (the ``top`` most probable current subgoals, enclosing
+    subtasks and next subgoals, the step and the log-likelihood), the frame's ``time`` in seconds when known,
+    and ``surprise`` when the belief has such an attribute (a filter that measures how unexpected each
+    observation was; without one the key is left out).
+
+    >>> from supportive.learning import HTNLearner
+    >>> from supportive.inference import HierarchicalHMM, ObservationModel
+    >>> htn = HTNLearner().fit([["a", "b"]]).htn_
+    >>> running = HierarchicalHMM(htn, ObservationModel({"a": {"x": .9}, "b": {"y": .9}})).filter()
+    >>> record = belief_record(running, running.update({"x"}), 1, 12.5)
+    >>> record["subgoals"], record["time"], "surprise" in record
+    ([['a', 1.0]], 12.5, False)
+    """
+    record: dict[str, Any] = running.summary(belief, top)
+    surprise = getattr(belief, "surprise", None)
+    if surprise is not None:
+        record["surprise"] = float(surprise)
+    if time is not None:
+        record["time"] = time
+    return record
+
+
+def infer_bag(
+    running: GoalFilter,
+    bag: Path,
+    topic: str,
+    *,
+    top: int,
+    emit: Callable[[dict[str, Any]], None],
+    write_bag: Path | None = None,
+    hierarchy: Mapping[str, Any] | None = None,
+    definitions: Sequence[Path] = (),
+) -> int:
+    """Run the filter over a bag's contact frames (streamed, never all in memory); ``emit`` each frame's
+    record and, with ``write_bag``, write the beliefs to a new MCAP bag at the frames' times (the hierarchy
+    as a latched topic). How many frames there were.
+
+    Raises:
+        BagError: for a missing, empty or wrongly typed topic, a damaged bag, or an output that exists;
+            a bag being written is removed when anything fails.
+    """
+    from supportive.io.rosbag import BeliefBag, read_contact_frames
+    from supportive.io.rosbag.bags import seconds
+
+    frames = read_contact_frames(bag, topic, definitions)
+    sink: AbstractContextManager[BeliefBag | None] = (
+        nullcontext() if write_bag is None else BeliefBag(write_bag, hierarchy or {})
+    )
+    count = 0
+    with sink as out:
+        for events, time in frames:
+            record = belief_record(running, running.update(events), top, seconds(time))
+            if out is not None:
+                out.write(time, record)
+            emit(record)
+            count += 1
+    return count

@@ -1,0 +1,130 @@
+"""Where ``teach`` and ``chat`` save: a copy of the task file that the user names, never the file they read
+and never the installed package's own data.
+
+:func:`working_copy` picks the copy (``--save PATH``; by default ``NAME.edited.yaml`` beside the user's file,
+or in the current directory for a bundled example); :meth:`WorkingCopy.start` makes it from the task file
+byte for byte (comments and layout kept) when it does not exist yet, and otherwise the session carries on in
+it, so a second session adds to the first. A file whose name already ends in ``.edited`` is its own working
+copy.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from supportive.errors import TaskFileError
+from supportive.io.taskfile import dump_task, format_of, parse_task_file
+
+__all__ = ["EDITED", "WorkingCopy", "package_folder", "working_copy"]
+
+EDITED = ".edited"
+"""What the default working copy's name adds before the suffix (``chair.yaml`` → ``chair.edited.yaml``)."""
+
+
+@dataclass
+class WorkingCopy:
+    """The file a session works on.
+
+    Attributes:
+        path: The working copy (saved to after every change).
+        source: The task file it is made from.
+        made: True once :meth:`start` made it now; False while it is not made yet, or when it existed and the
+            session carries on in it.
+    """
+
+    path: Path
+    source: Path
+    made: bool = False
+
+    @property
+    def exists(self) -> bool:
+        """Whether the copy is there already (made earlier, or by :meth:`start`)."""
+        return self.path.exists()
+
+    def reads(self) -> Path:
+        """The file the session's task comes from: the copy when it exists, else the source (nothing is written
+        yet, so a command that fails before :meth:`start` leaves no file behind)."""
+        return self.path if self.exists else self.source
+
+    def start(self) -> Path:
+        """Make the copy (the source's text, byte for byte; converted when the suffixes name different formats)
+        unless it exists; its path.
+
+        Raises:
+            TaskFileError: when it cannot be written.
+        """
+        if self.exists:
+            return self.path
+        same_format = format_of(self.source) == format_of(self.path)
+        text = (
+            self.source.read_text(encoding="utf-8")
+            if same_format
+            else dump_task(parse_task_file(self.source), format_of(self.path))
+        )
+        try:
+            descriptor = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+            with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
+                handle.write(text)
+        except OSError as exc:
+            raise TaskFileError(f"cannot make the working copy: {exc.strerror}", path=self.path) from None
+        self.made = True
+        return self.path
+
+    def describe(self) -> str:
+        """One line for the person: where their work is saved, and what stays untouched."""
+        if self.path.resolve() == self.source.resolve():
+            return f"Saving to {self.path} (the file you named)."
+        if self.made:
+            return f"Saving to {self.path}, a new copy of {self.source} (which is not changed)."
+        return f"Carrying on in {self.path} (saved there before; {self.source} is not changed)."
+
+
+def package_folder() -> Path:
+    """The installed ``supportive`` package's folder (its examples and pages are its own data)."""
+    return Path(__file__).resolve().parents[1]
+
+
+def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingCopy:
+    """The working copy of the task file ``source`` (not made yet: :meth:`WorkingCopy.start` makes it).
+
+    Args:
+        source: The task file the session starts from.
+        save: The copy to work on (default: ``NAME.edited.SUFFIX`` beside ``source``, or in the current
+            directory when ``source`` is inside the installed package; ``source`` itself when its name already
+            ends in ``.edited``).
+
+    Raises:
+        TaskFileError: for a copy inside the installed package, in a folder that does not exist, or holding
+            another task; and for a source that cannot be read.
+    """
+    source = Path(source)
+    inside = _inside_package(source)
+    if save is None:
+        if source.stem.endswith(EDITED) and not inside:
+            target = source
+        else:
+            name = f"{source.stem}{EDITED}{source.suffix}"
+            target = Path(name) if inside else source.parent / name  # a bundled one: in the current folder
+    else:
+        target = Path(save)
+    if _inside_package(target):
+        raise TaskFileError(
+            f"{target} is inside the installed supportive package, whose examples are its own data: "
+            "save your copy elsewhere with --save PATH"
+        )
+    spec = parse_task_file(source)
+    if target.exists():
+        kept = parse_task_file(target)
+        if kept.name != spec.name:
+            raise TaskFileError(
+                f"it holds task {kept.name!r}, not {spec.name!r}: choose another file with --save PATH", path=target
+            )
+    elif not target.parent.is_dir():
+        raise TaskFileError(f"folder {target.parent} does not exist", path=target)
+    return WorkingCopy(target, source)
+
+
+def _inside_package(path: Path) -> bool:
+    return path.resolve().is_relative_to(package_folder())

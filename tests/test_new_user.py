@@ -1,0 +1,215 @@
+"""A new user's first hour: every command the README shows, run as written after `make demo`'s setup (this
+venv holds every extra), each checked for exit status 0 and output that makes sense — and the package's own
+examples unchanged at the end.
+
+The commands are read from README.md itself (and `make serve` from the Makefile), so a line added there without
+a check here fails the test. Three adjustments, all said here: commands run in a fresh folder holding the
+repository's `examples` (so what they write lands there); `reproduce` gets `--trials 2` (a full support-tamp
+run takes minutes; the full runs are the experiments' own tests); the PostgreSQL URL of `serve`, which names
+the reader's own database, becomes SQLite (serving on PostgreSQL is tested in tests/service), and a server runs
+until it answers, then is stopped.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import shlex
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import httpx
+import pytest
+
+from supportive.examples import load
+from supportive.io.taskfile import parse_task_file
+from supportive.service.launch import free_port
+
+REPO = Path(__file__).resolve().parents[1]
+SCRIPT = Path(sys.executable).parent / "supportive"
+EXAMPLES = REPO / "src" / "supportive" / "examples"
+TOWER = ["red", "yellow", "green", "white", "orange", "purple", "black", "blue"]
+
+
+def readme_commands() -> list[list[str]]:
+    """Every command of the README's shell blocks, as argument lists (``make demo`` and ``make serve`` as the
+    Makefile runs them; ``make test`` is this suite)."""
+    text = (REPO / "README.md").read_text(encoding="utf-8")
+    recipe = re.search(r"^serve:.*\n\t\$\(BIN\)/(supportive .+)$", (REPO / "Makefile").read_text(), re.M)
+    assert recipe is not None
+    commands = []
+    for block in re.findall(r"```sh\n(.*?)```", text, re.S):
+        for line in block.splitlines():
+            words = shlex.split(line, comments=True)
+            if words[:2] == ["make", "demo"]:
+                commands.append(["demo"])
+            elif words[:2] == ["make", "serve"]:
+                commands.append(shlex.split(recipe.group(1))[1:])
+            elif words and words[0] == ".venv/bin/supportive":
+                commands.append(words[1:])
+    return commands
+
+
+COMMANDS = readme_commands()
+
+
+def digest(folder: Path) -> str:
+    """A hash of every file under a folder (names and bytes)."""
+    sha = hashlib.sha256()
+    for path in sorted(p for p in folder.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
+        sha.update(str(path.relative_to(folder)).encode() + b"\0" + path.read_bytes())
+    return sha.hexdigest()
+
+
+def run(args: list[str], cwd: Path, stdin: str = "") -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "COLUMNS": "100"}
+    return subprocess.run(
+        [str(SCRIPT), *args], cwd=cwd, input=stdin, capture_output=True, text=True, env=env, timeout=600, check=False
+    )
+
+
+def serves(args: list[str], cwd: Path) -> str:
+    """Start `supportive serve`, wait until its page and board answer, stop it; what it printed."""
+    port = free_port()
+    args = [*args, "--port", str(port)] if "--port" not in args else [
+        str(port) if i and args[i - 1] == "--port" else a for i, a in enumerate(args)
+    ]
+    process = subprocess.Popen(
+        [str(SCRIPT), *args], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            assert process.poll() is None, process.communicate()
+            try:
+                page = httpx.get(f"http://127.0.0.1:{port}/", timeout=1)
+                break
+            except httpx.HTTPError:
+                time.sleep(0.2)
+        assert page.status_code == 200 and "task board" in page.text
+    finally:
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=30)
+    token = re.search(r"#token=(\S+)", out)
+    assert token is not None, out + err
+    return out
+
+
+Check = Callable[[subprocess.CompletedProcess[str], Path], None]
+
+
+def check_learn(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    args = result.args[1:]
+    if "json" in args:
+        assert "roots" in json.loads(result.stdout)
+    elif "dot" in args:
+        assert (folder / args[args.index("-o") + 1]).read_text().startswith("digraph")
+    elif "hddl" in args:
+        assert "(define (domain" in (folder / args[args.index("-o") + 1] / "domain.hddl").read_text()
+    else:
+        assert "in order" in result.stdout or "any order" in result.stdout
+
+
+def check_generate(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert len(parse_task_file(folder / "task.yaml").actions) == 200
+
+
+def check_captaincook(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert "mean over 24 recipes" in result.stdout and "…" not in result.stdout
+
+
+def check_infer(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    records = [json.loads(line) for line in result.stdout.splitlines()]
+    assert records and all("subgoals" in r for r in records)
+    if "--write-bag" in result.args:
+        assert (folder / "beliefs").exists()
+
+
+def check_bag(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert parse_task_file(folder / "chair.yaml").demonstrations
+
+
+def check_reproduce(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    name = result.args[2]
+    assert (folder / "out" / "reproduce" / name / "metrics.json").is_file()
+    assert "this run beside the thesis" in result.stdout
+
+
+def check_teach(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    saved = parse_task_file(folder / "my-tower.yaml")
+    assert saved.demonstrations[-1].actions == tuple(TOWER)
+    assert len(saved.demonstrations) == len(load("blocks-tower").demonstrations) + 1
+    assert "Saving to my-tower.yaml, a new copy of" in result.stdout
+
+
+def check_caregiver(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert "with the caregiver:" in result.stdout
+
+
+def check_chat(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert (folder / "my-chair.yaml").is_file() and "I can" in result.stdout
+
+
+def check_support(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert (folder / "table.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and "Simulated" in result.stdout
+
+
+def check_workbench(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert "the robot as peer" in result.stdout
+
+
+def check_demo(result: subprocess.CompletedProcess[str], folder: Path) -> None:
+    assert "What the demonstrations pinned down" in result.stdout
+
+
+CHECKS: dict[str, Check] = {
+    "learn": check_learn,
+    "generate": check_generate,
+    "captaincook": check_captaincook,
+    "infer": check_infer,
+    "bag": check_bag,
+    "reproduce": check_reproduce,
+    "teach": check_teach,
+    "caregiver": check_caregiver,
+    "chat": check_chat,
+    "support": check_support,
+    "workbench-sim": check_workbench,
+    "demo": check_demo,
+}
+INPUT = {
+    "teach": "\n".join([*TOWER, "quit"]) + "\n",
+    "chat": "How will you help me attach the seat?\nquit\n",
+}
+
+
+def test_the_readme_shows_the_commands_this_script_checks() -> None:
+    named = {args[0] for args in COMMANDS}
+    assert named - {"serve"} <= set(CHECKS), named - set(CHECKS)
+    assert {"demo", "learn", "teach", "chat", "infer", "serve", "reproduce"} <= named
+
+
+@pytest.mark.slow
+def test_every_readme_command_works_after_the_demo_setup(tmp_path: Path) -> None:
+    (tmp_path / "examples").symlink_to(REPO / "examples")
+    before = digest(EXAMPLES)
+    failures = []
+    for args in COMMANDS:
+        if args[0] == "serve":
+            args = [a if not a.startswith("postgresql") else "sqlite:///board.db" for a in args]
+            serves(args, tmp_path)
+            continue
+        if args[0] == "reproduce":
+            args = [*args, "--trials", "2"]
+        result = run(args, tmp_path, INPUT.get(args[0], ""))
+        if result.returncode != 0 or "Traceback" in result.stderr:
+            failures.append(f"{shlex.join(args)}: exit {result.returncode}: {result.stderr[-400:]}")
+            continue
+        CHECKS[args[0]](result, tmp_path)
+    assert failures == []
+    assert digest(EXAMPLES) == before  # the package's own data is never written
