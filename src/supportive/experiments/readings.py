@@ -27,7 +27,7 @@ from typing import Any
 
 from supportive.errors import ExperimentError
 
-__all__ = ["Finding", "Reading", "findings_table", "reading_names", "select_readings"]
+__all__ = ["Finding", "Reading", "findings_table", "reading_names", "readings_table", "select_readings"]
 
 _NAME = re.compile(r"^[a-z0-9]+(?:-[a-z0-9]+)*$")
 
@@ -120,6 +120,34 @@ def select_readings(
     return tuple(n for n in names if n in wanted)
 
 
+def readings_table(
+    known: Sequence[Reading],
+    run: Sequence[str],
+    column: str,
+    extra: tuple[str, Mapping[str, str]] | None = None,
+) -> list[str]:
+    """The lines of a report's markdown table of the readings a run covered (``run``, names of ``known``):
+    name (the default marked), an optional ``extra`` column (title, value per reading), what the reading does
+    under the title ``column``, and the thesis's text.
+
+    >>> readings_table([Reading("a", "asks early", "the text")], ["a"], "schedule")[2]
+    '| `a` (default) | asks early | the text |'
+    """
+    titles = ["reading", *([extra[0]] if extra else []), column, "the thesis's text"]
+    lines = ["| " + " | ".join(_escape(t) for t in titles) + " |", "|" + "---|" * len(titles)]
+    for name in run:
+        reading = next(r for r in known if r.name == name)
+        default = " (default)" if name == known[0].name else ""
+        cells = [f"`{name}`{default}", *([extra[1][name]] if extra else []), reading.summary, reading.why]
+        lines.append("| " + " | ".join(_escape(c) for c in cells) + " |")
+    return lines
+
+
+def _escape(text: str) -> str:
+    """``text`` for a markdown table cell: a bare ``|`` escaped (``P(safe | τ)`` -> ``P(safe \\| τ)``)."""
+    return re.sub(r"(?<!\\)\|", r"\\|", text)
+
+
 def _cell(finding: Finding) -> str:
     parts = []
     for i, (reading, value) in enumerate(finding.values):
@@ -138,10 +166,8 @@ def findings_table(rows: Iterable[tuple[str, str, Sequence[Finding | Mapping[str
     for experiment, figure, findings in rows:
         for item in findings:
             finding = item if isinstance(item, Finding) else _from_json(item)
-            lines.append(
-                f"| {experiment} | {figure} | {finding.quantity} | {finding.thesis} | {_cell(finding)} | "
-                f"{finding.verdict} |"
-            )
+            cells = (experiment, figure, finding.quantity, finding.thesis, _cell(finding), finding.verdict)
+            lines.append("| " + " | ".join(_escape(c) for c in cells) + " |")
     return "\n".join(lines)
 
 

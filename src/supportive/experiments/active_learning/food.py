@@ -25,7 +25,7 @@ from typing import Any
 from supportive.examples import food
 from supportive.experiments.active_learning.ceiling import ceiling_paths, reachable_demonstrations
 from supportive.experiments.active_learning.common import STRATEGIES, known_paths, make_instructor, teach
-from supportive.experiments.readings import Finding, Reading, reading_names
+from supportive.experiments.readings import Finding, Reading, reading_names, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
@@ -301,10 +301,6 @@ def _readings(metrics: Mapping[str, Any]) -> list[str]:
     return list(metrics["by_reading"])
 
 
-def _describe(name: str) -> Reading:
-    return next(r for r in READINGS if r.name == name)
-
-
 def report(metrics: Mapping[str, Any]) -> str:
     """The markdown report: comprehension per reading, strategy and iteration beside the thesis's, the
     instructors' ceiling, pooled vs solo, and per task."""
@@ -336,13 +332,8 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "## Readings: when the learner asks",
         "",
-        "| reading | schedule | the thesis's text |",
-        "|---|---|---|",
+        *readings_table(READINGS, readings, "schedule"),
     ]
-    for name in readings:
-        r = _describe(name)
-        default = " (default)" if name == READINGS[0].name else ""
-        lines.append(f"| `{name}`{default} | {r.summary} | {r.why} |")
     for condition in CONDITIONS:
         lines += [
             "",

@@ -7,7 +7,7 @@ from typing import Any
 
 from supportive.envs.household.novice import NOVICE_TYPES
 from supportive.experiments.caregiver.measure import MEMORIES, READINGS
-from supportive.experiments.readings import Finding
+from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, format_sd, mean_sd, ratio_ci
 
@@ -198,13 +198,10 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "## Readings: how much of the trajectory P(safe | τ) weighs",
         "",
-        "| reading | memory γ | P(safe \\| τ) | the thesis's text |",
-        "|---|---:|---|---|",
+        *readings_table(
+            READINGS, readings, "P(safe | τ)", ("memory γ", {n: f"{metrics['memory'][n]:g}" for n in readings})
+        ),
     ]
-    for name in readings:
-        r = next(x for x in READINGS if x.name == name)
-        default = " (default)" if name == READINGS[0].name else ""
-        lines.append(f"| `{name}`{default} | {metrics['memory'][name]:g} | {r.summary} | {r.why} |")
     for key, title in MEASURES.items():
         digits = _DIGITS[key]
         lines += [

@@ -14,7 +14,7 @@ import statistics
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.experiments.readings import Finding
+from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, mean_ci
 from supportive.experiments.support_tamp.measure import PAIRINGS, READINGS, SCENARIOS, SEARCH_WEIGHT
@@ -153,10 +153,6 @@ def _readings(metrics: Mapping[str, Any]) -> list[str]:
     return list(metrics["readings"])
 
 
-def _reading(name: str) -> Any:
-    return next(r for r in READINGS if r.name == name)
-
-
 def report(metrics: Mapping[str, Any]) -> str:
     """Markdown: makespan (Figure 3.5) and the lead's planning effort (Figure 3.6) per scenario, pairing and
     reading, both readings of the gain, the motion model's ceiling, the thesis's gains beside."""
@@ -173,14 +169,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "What the support agent minimises (each reading is a run):",
         "",
-        "| reading | the support agent minimises | the thesis's text |",
-        "|---|---|---|",
-    ]
-    for name in readings:
-        r = _reading(name)
-        default = " (default)" if name == READINGS[0].name else ""
-        lines.append(f"| `{name}`{default} | {r.summary} | {r.why} |")
-    lines += [
+        *readings_table(READINGS, readings, "the support agent minimises"),
         "",
         "What the thesis's percentages measure (both computed from every run): **reduction** (default) = "
         "1 − mean supported makespan / mean alone — §3.2.9.3 calls two of its numbers \"average time "

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.experiments.readings import Finding
+from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import below_zero, format_ci, mean_ci
 from supportive.experiments.transfer.explore import (
@@ -214,14 +214,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "## Readings: what a CC-HTN macro performs",
         "",
-        "| reading | a macro performs | the thesis's text |",
-        "|---|---|---|",
-    ]
-    for name in readings:
-        r = next(x for x in READINGS if x.name == name)
-        default = " (default)" if name == READINGS[0].name else ""
-        lines.append(f"| `{name}`{default} | {r.summary} | {r.why} |")
-    lines += [
+        *readings_table(READINGS, readings, "a macro performs"),
         "",
         "## Episodes to full comprehension",
         "",
