@@ -765,22 +765,34 @@ def reproduce(
         Path | None,
         typer.Option("--output", "-o", help="Directory to write (default: out/reproduce/<name>)."),
     ] = None,
+    reading: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--reading",
+            "-r",
+            help="Run only this reading of the experiment (repeatable; default: every reading side by side).",
+        ),
+    ] = None,
 ) -> None:
     """Reproduce a thesis experiment: write metrics.json, report.md and PNG plots, the thesis's numbers beside
-    this run's."""
+    this run's (for 'all', also summary.md: every experiment's findings in one table)."""
     from supportive.experiments import reproduce as run_reproduce
     from supportive.io.tables import fitted_table
 
     if workers is not None and scheduler is not None:
         raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
     require_extra("plotting experiment results", "matplotlib", "plot")
-    results = run_reproduce(name, trials, seed, workers or 1, scheduler, output)
+    results = run_reproduce(name, trials, seed, workers or 1, scheduler, output, readings=reading or None)
     for result in results:
         files = ", ".join(path.name for path in result.files)
         say(f"{result.experiment}: {result.trials} trials ({result.backend}) -> {result.output}/: {files}")
         rows = [list(row) for row in result.headline]
         title = f"{result.experiment}: this run beside the thesis"
         out.print(fitted_table(out, title, ["quantity", "this run", "thesis"], rows))
+    if name == "all" and results and results[0].output is not None:
+        out.print(
+            f"findings of every experiment, beside the thesis: {results[0].output.parent / 'summary.md'}"
+        )
 
 
 def _print_version(wanted: bool) -> None:

@@ -5,9 +5,17 @@ from pathlib import Path
 
 import pytest
 
+from supportive.examples import food as food_examples
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.active_learning import blocks, food
-from supportive.experiments.active_learning.common import anova, known_paths, teach
+from supportive.experiments.active_learning.ceiling import ceiling_paths, reachable_demonstrations
+from supportive.experiments.active_learning.common import (
+    STRATEGIES,
+    anova,
+    known_paths,
+    make_instructor,
+    teach,
+)
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.experiments.statistics import mean_ci
 from supportive.learning.active import QuerySchedule
@@ -47,48 +55,65 @@ def test_food_run_is_deterministic_and_writes_files(food_runs: tuple[Path, Path]
 def test_food_comprehension_percentages(food_runs: tuple[Path, Path]) -> None:
     metrics = json.loads((food_runs[0] / "metrics.json").read_text())
     assert metrics["trials"] == 2 and metrics["task_count"] == 12 and metrics["iterations"] == [4, 8, 12]
-    comprehension = metrics["comprehension"]
-    for condition in ("solo", "multi"):
-        for strategy in ("random", "distance", "connectivity"):
-            means = [v["mean"] for v in comprehension[condition][strategy]]
-            assert all(0.0 <= m <= 100.0 for m in means)
-            if condition == "multi":
-                assert means == sorted(means)
-    for strategy in ("random", "distance", "connectivity"):
-        # iteration 4 is instructor 1's learner in both conditions
-        assert comprehension["solo"][strategy][0] == comprehension["multi"][strategy][0]
-    for task in metrics["tasks"].values():
+    assert metrics["readings"] == list(metrics["by_reading"]) == ["pilot", "start-2-4", "start-4-8"]
+    assert metrics["schedules"]["start-4-8"]["after_steps"] == [0, 4, 8]
+    for name, reading in metrics["by_reading"].items():
+        comprehension = reading["comprehension"]
         for condition in ("solo", "multi"):
-            for values in task[condition].values():
-                assert all(0.0 <= v <= 100.0 for v in values)
-                if condition == "multi":
-                    assert values == sorted(values)
+            for row in ("random", "distance", "connectivity", "ceiling"):
+                means = [v["mean"] for v in comprehension[condition][row]]
+                assert all(0.0 <= m <= 100.0 for m in means)
+                if condition == "multi" or row == "ceiling":
+                    assert means == sorted(means)
+        for row in ("random", "distance", "connectivity", "ceiling"):
+            # iteration 4 is instructor 1's learner in both conditions
+            assert comprehension["solo"][row][0] == comprehension["multi"][row][0], name
+        for task in reading["tasks"].values():
+            for condition in ("solo", "multi"):
+                for values in task[condition].values():
+                    assert all(0.0 <= v <= 100.0 for v in values)
+                # no strategy passes the instructors' ceiling, task by task
+                for strategy in ("random", "distance", "connectivity"):
+                    assert all(
+                        v <= c for v, c in zip(task[condition][strategy], task[condition]["ceiling"], strict=True)
+                    )
 
 
 def test_food_instructors_differ_so_pooling_beats_one_instructor(food_runs: tuple[Path, Path]) -> None:
     metrics = json.loads((food_runs[0] / "metrics.json").read_text())
     assert metrics["base"] == "own"
     for strategy in ("random", "distance", "connectivity"):
-        assert metrics["pooled_minus_solo"][strategy]["12"]["trials_better"] == 2
+        assert metrics["by_reading"]["pilot"]["pooled_minus_solo"][strategy]["12"]["trials_better"] == 2
 
 
-def test_food_trial_counts_never_exceed_orderings() -> None:
-    (trial,) = food.make_trials(1, 5)
+def test_food_trial_counts_never_exceed_orderings_or_the_ceiling() -> None:
+    (trial,) = food.make_trials(1, 5, readings=["start-4-8"])
     result = food.run_trial(trial)
-    for task in result["tasks"].values():
+    assert list(result["readings"]) == ["start-4-8"]
+    for task in result["readings"]["start-4-8"]["tasks"].values():
         for strategy in ("random", "distance", "connectivity"):
             multi, solo = task[strategy]["multi"], task[strategy]["solo"]
             assert multi == sorted(multi) and solo == sorted(solo) and multi[0] == solo[0]
             assert 1 <= max(multi + solo) <= task["orderings"]
+            for condition in ("solo", "multi"):
+                assert all(v <= c for v, c in zip(task[strategy][condition], task["ceiling"][condition], strict=True))
 
 
-def test_food_report_has_thesis_numbers(food_runs: tuple[Path, Path]) -> None:
+def test_food_readings_do_not_interact() -> None:
+    (one,) = food.make_trials(1, 7, readings=["start-2-4"])
+    (every,) = food.make_trials(1, 7)
+    assert food.run_trial(one)["readings"]["start-2-4"] == food.run_trial(every)["readings"]["start-2-4"]
+
+
+def test_food_report_has_thesis_numbers_and_every_reading(food_runs: tuple[Path, Path]) -> None:
     text = (food_runs[0] / "report.md").read_text()
     for number in ("25.9", "35.4", "42.9", "36.5", "54.1", "65.0", "54.6", "61.5", "65.4"):
         assert number in text
     for number in ("46.6", "61.2", "36.6", "52.0", "63.1", "76.6", "85.8"):
         assert number in text
     assert "Pooled instructors vs a solo instructor" in text
+    for name in ("`pilot` (default)", "`start-2-4`", "`start-4-8`", "Ceiling"):
+        assert name in text
 
 
 def test_blocks_run_is_deterministic_and_reports(block_runs: tuple[Path, Path]) -> None:
@@ -142,3 +167,67 @@ def test_helpers() -> None:
     assert mean_ci([2.0, 2.0]) == {"mean": 2.0, "low": 2.0, "high": 2.0, "n": 2}
     assert anova([[1, 1], [1, 1]])["F"] is None
     assert anova([[1, 2], [5, 6], [9, 9]])["p"] < 0.05
+
+
+def _every_query_sequence(instructor, schedule, demonstration, actions):  # type: ignore[no-untyped-def]
+    """The oracle for the ceiling: replay the demonstration for every sequence of answers the learner could
+    give at the scheduled steps (nothing, or any action), each from a fresh copy of the instructor."""
+    import copy
+    import itertools
+
+    instructor.begin_demonstration()
+    start = copy.deepcopy(instructor)
+    found = set()
+    slots = len(schedule.after_steps)
+    for answers in itertools.product([None, *actions], repeat=slots):
+        person = copy.deepcopy(start)
+        done: tuple[str, ...] = ()
+        asked = 0
+        pending = list(answers)
+        while True:
+            query = None
+            if schedule.should_query(demonstration=demonstration, step=len(done), asked=asked):
+                query = pending.pop(0) if pending else None
+                asked += query is not None
+            action = person.next_action(done, query)
+            if action is None:
+                break
+            done = (*done, action)
+        found.add(done)
+    instructor.next_action((), None)
+    return found
+
+
+@pytest.mark.parametrize(("after_steps", "most"), [((1, 3), 2), ((0, 2), 2), ((0, 1, 2), 3), ((0, 1, 3), 1)])
+def test_reachable_demonstrations_match_every_query_sequence(after_steps: tuple[int, ...], most: int) -> None:
+    structure = ChainNode(
+        (
+            ActionNode("a"),
+            CliqueNode((ActionNode("b"), ChainNode((ActionNode("c"), ActionNode("d"))), ActionNode("e"))),
+            CliqueNode((ActionNode("f"), ActionNode("g"))),
+        )
+    )
+    actions = ["a", "b", "c", "d", "e", "f", "g"]
+    schedule = QuerySchedule(after_steps, max_per_demonstration=most, skip_first_demonstrations=1)
+    for seed in range(3):
+        fast = make_instructor(structure, instructor_seed=seed, task=1, own_base=True)
+        slow = make_instructor(structure, instructor_seed=seed, task=1, own_base=True)
+        for d in range(3):
+            assert reachable_demonstrations(fast, schedule, d, actions) == _every_query_sequence(
+                slow, schedule, d, actions
+            )
+
+
+def test_the_ceiling_bounds_every_strategy_and_holds_what_they_showed() -> None:
+    spec = food_examples.load("tea")
+    assert spec.structure is not None
+    schedule = food.SCHEDULES["start-4-8"]
+    person = make_instructor(spec.structure, instructor_seed=11, task=3, own_base=True)
+    sets = [reachable_demonstrations(person, schedule, d, spec.action_ids()) for d in range(6)]
+    for index, strategy in enumerate(STRATEGIES):
+        taught = teach(
+            spec.structure, spec.action_ids(), instructor_seed=11, task=3, strategy=strategy,
+            strategy_index=index, schedule=schedule, demonstrations=6, own_base=True,
+        )  # fmt: skip
+        assert all(demo in sets[d] for d, demo in enumerate(taught.demonstrations))
+        assert taught.paths[-1] <= ceiling_paths(sets)

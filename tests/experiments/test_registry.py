@@ -3,11 +3,23 @@ from __future__ import annotations
 import json
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from supportive.errors import ExperimentError
-from supportive.experiments import ALL, Experiment, get, names, register, run_experiment, unregister
+from supportive.experiments import (
+    ALL,
+    Experiment,
+    Finding,
+    Reading,
+    findings_table,
+    get,
+    names,
+    register,
+    run_experiment,
+    unregister,
+)
 
 Toy = Callable[..., Experiment]
 
@@ -153,3 +165,74 @@ def test_timings_must_be_plain_json(toy: Toy, tmp_path: Path) -> None:
     finally:
         unregister(experiment.name)
     assert not (tmp_path / "metrics.json").exists()  # refused before anything is written
+
+
+def _reading_trials(trials: int, seed: int, readings: tuple[str, ...] = ("plain", "doubled")) -> tuple[Any, ...]:
+    from supportive.experiments import spawn_trials
+
+    return spawn_trials(seed, [{"scale": 10, "readings": list(readings)} for _ in range(trials)])
+
+
+def _reading_trial(trial: Any) -> dict[str, Any]:
+    draw = int(trial.rng().integers(1000))
+    return {"index": trial.index, "by": {r: draw * (2 if r == "doubled" else 1) for r in trial.params["readings"]}}
+
+
+def _reading_summary(results: Any) -> dict[str, Any]:
+    return {"by": {r: [x["by"][r] for x in results] for r in results[0]["by"]}}
+
+
+def _reading_findings(metrics: Any) -> list[Finding]:
+    return [Finding("first draw", "42", tuple((r, str(metrics["by"][r][0])) for r in metrics["readings"]), "ok")]
+
+
+@pytest.fixture
+def with_readings(toy: Toy) -> Iterator[str]:
+    experiment = register(
+        toy(
+            "toy-readings",
+            make_trials=_reading_trials,
+            run_trial=_reading_trial,
+            summarize=_reading_summary,
+            report=lambda metrics: f"# toy\n\n{metrics['by']}\n",
+            headline=lambda metrics: [("readings", ", ".join(metrics["readings"]), "–")],
+            readings=(Reading("plain", "as drawn", "the default"), Reading("doubled", "twice", "another")),
+            findings=_reading_findings,
+        )
+    )
+    yield experiment.name
+    unregister(experiment.name)
+
+
+def test_every_reading_runs_side_by_side_unless_some_are_chosen(with_readings: str) -> None:
+    every = run_experiment(with_readings, trials=3, seed=1, progress=False)
+    assert every.readings == ("plain", "doubled") and every.metrics["readings"] == ["plain", "doubled"]
+    assert get(with_readings).default_reading == "plain"
+    assert every.metrics["by"]["doubled"] == [2 * x for x in every.metrics["by"]["plain"]]
+    one = run_experiment(with_readings, trials=3, seed=1, progress=False, readings=["doubled"])
+    assert one.readings == ("doubled",) and one.metrics["by"] == {"doubled": every.metrics["by"]["doubled"]}
+    assert [f.values for f in one.findings] == [(("doubled", str(every.metrics["by"]["doubled"][0])),)]
+    assert every.findings[0].value("plain") == str(every.metrics["by"]["plain"][0])
+    with pytest.raises(ExperimentError, match="no value under reading 'nope'"):
+        every.findings[0].value("nope")
+
+
+def test_bad_readings_are_refused(with_readings: str, registered: str, toy: Toy) -> None:
+    with pytest.raises(ExperimentError, match="unknown reading 'x'; its readings are plain, doubled"):
+        run_experiment(with_readings, trials=1, readings=["x"], progress=False)
+    with pytest.raises(ExperimentError, match="at least one reading"):
+        run_experiment(with_readings, trials=1, readings=[], progress=False)
+    with pytest.raises(ExperimentError, match="has no readings"):
+        run_experiment(registered, trials=1, readings=["plain"], progress=False)
+    with pytest.raises(ExperimentError, match="must be unique"):
+        toy("toy-twice", readings=(Reading("a", "", ""), Reading("a", "", "")))
+    with pytest.raises(ExperimentError, match="reading name 'A b'"):
+        Reading("A b", "", "")
+
+
+def test_findings_table_bolds_the_default_and_reads_json() -> None:
+    finding = Finding("q", "1", (("a", "2"), ("b", "3")), "v")
+    table = findings_table([("x", "Fig. 1", [finding, Finding("p", "4", (("", "5"),), "w").as_json()])])
+    lines = table.splitlines()
+    assert lines[2] == "| x | Fig. 1 | q | 1 | **a 2** · b 3 | v |"
+    assert lines[3] == "| x | Fig. 1 | p | 4 | 5 | w |"

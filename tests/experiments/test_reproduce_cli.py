@@ -42,7 +42,25 @@ def test_small_run_writes_metrics_report_and_plots(
     assert (directory / "edges.png").read_bytes()[:8] == PNG_SIGNATURE
 
 
-def test_all_writes_one_directory_per_experiment(tmp_path: Path, cli) -> None:
-    code, _, _ = cli(["reproduce", "all", "--trials", "2", "-o", str(tmp_path)])
-    assert code == 0
+def test_all_writes_one_directory_per_experiment_and_the_summary_table(tmp_path: Path, cli) -> None:
+    code, out, _ = cli(["reproduce", "all", "--trials", "2", "-o", str(tmp_path)])
+    assert code == 0 and "summary.md" in out
     assert (tmp_path / "edge-reduction" / "metrics.json").is_file()
+    summary = (tmp_path / "summary.md").read_text()
+    document = json.loads((tmp_path / "summary.json").read_text())
+    assert [e["experiment"] for e in document["experiments"]] == sorted(e["experiment"] for e in document["experiments"])
+    for entry in document["experiments"]:
+        assert entry["findings"], entry["experiment"]
+        assert f"| {entry['experiment']} | {entry['reference']} |" in summary
+        for finding in entry["findings"]:
+            assert [v["reading"] for v in finding["values"] if v["reading"]] in ([], entry["readings"], entry["readings"][:1])
+
+
+def test_a_reading_is_chosen_by_name(tmp_path: Path, cli) -> None:
+    code, _, err = cli(["reproduce", "transfer", "--reading", "sideways", "-n", "1", "-o", str(tmp_path)])
+    assert code == 2 and err.count("\n") == 1 and "unknown reading 'sideways'" in err and "any-order" in err
+    code, _, err = cli(["reproduce", "all", "--reading", "any-order", "-o", str(tmp_path)])
+    assert code == 2 and "not for 'all'" in err
+    code, _, _ = cli(["reproduce", "caregiver", "-r", "per-step", "-n", "1", "-o", str(tmp_path / "cg")])
+    assert code == 0
+    assert json.loads((tmp_path / "cg" / "metrics.json").read_text())["readings"] == ["per-step"]

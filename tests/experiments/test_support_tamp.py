@@ -5,9 +5,22 @@ from pathlib import Path
 
 import pytest
 
+from supportive.envs.circuits.scenario import thesis_scenario
+from supportive.envs.tabletop.leads import PlanFollowingLead
+from supportive.envs.tabletop.team import run_team
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.plotting import PNG_SIGNATURE
-from supportive.experiments.support_tamp import FILES, PAIRINGS, SCENARIOS, THESIS, make_trials, run_trial
+from supportive.experiments.support_tamp import (
+    FILES,
+    PAIRINGS,
+    READINGS,
+    SCENARIOS,
+    THESIS,
+    alone_plan,
+    make_trials,
+    run_trial,
+    staged_floor,
+)
 
 
 @pytest.fixture(scope="module")
@@ -20,6 +33,7 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
 
 def test_registered() -> None:
     assert "support-tamp" in names() and get("support-tamp").default_trials == 30
+    assert [r.name for r in get("support-tamp").readings] == ["duration", "search-aware"]
 
 
 def test_runs_are_deterministic_and_draw_both_figures(runs: tuple[Path, Path]) -> None:
@@ -28,23 +42,31 @@ def test_runs_are_deterministic_and_draw_both_figures(runs: tuple[Path, Path]) -
     for name in FILES.values():
         assert (a / name).read_bytes().startswith(PNG_SIGNATURE)
     timing = json.loads((a / "timing-summary.json").read_text())
-    assert (
-        set(timing) == set(SCENARIOS)
-        and timing["heuristic"]["slow lead, fast support"]["support_planning_seconds"]["mean"] > 0
-    )
+    assert set(timing) == set(SCENARIOS)
+    cell = timing["heuristic"]["slow lead, fast support"]
+    assert cell["duration"]["support_planning_seconds"]["mean"] > 0 and "search-aware" in cell
 
 
 def test_metrics_compare_every_pairing_alone_and_supported(runs: tuple[Path, Path]) -> None:
     metrics = json.loads((runs[0] / "metrics.json").read_text())
-    assert metrics["tables"] == 1
+    assert metrics["tables"] == 1 and metrics["readings"] == [r.name for r in READINGS]
     for scenario in SCENARIOS:
         for pairing in PAIRINGS:
             entry = metrics["scenarios"][scenario][pairing]
-            alone, helped = entry["alone"], entry["supported"]
-            assert alone["completed"] == helped["completed"] == 1
-            assert alone["support_actions"]["mean"] == 0
-            expected = round(100 * (1 - helped["makespan"]["mean"] / alone["makespan"]["mean"]), 1)
-            assert entry["makespan_gain_percent"] == pytest.approx(expected, abs=0.11)
+            alone = entry["alone"]
+            assert alone["completed"] == 1 and alone["support_actions"]["mean"] == 0
+            # the floor is below what the lead takes alone, and the ceiling above any gain seen
+            assert 0 < entry["floor"]["mean"] < alone["makespan"]["mean"]
+            for reading, helped in entry["supported"].items():
+                assert helped["completed"] == 1
+                r = helped["gain"]["reduction"]
+                expected = round(100 * (1 - helped["makespan"]["mean"] / alone["makespan"]["mean"]), 1)
+                assert r == pytest.approx(expected, abs=0.11)
+                # the two readings of the gain are one number seen two ways: s = 1 / (1 − r) − 1
+                assert helped["gain"]["speed-up"] == pytest.approx(100 * (1 / (1 - r / 100) - 1), abs=0.2)
+                assert r <= entry["ceiling"]["reduction"], (scenario, pairing, reading)
+            if scenario == "unpredictable":  # no search to model: the same run under both readings
+                assert entry["supported"]["duration"] == entry["supported"]["search-aware"]
         slow_alone = metrics["scenarios"][scenario]["slow lead, fast support"]["alone"]["makespan"]["mean"]
         fast_alone = metrics["scenarios"][scenario]["fast lead, fast support"]["alone"]["makespan"]["mean"]
         assert slow_alone == pytest.approx(3 * fast_alone, rel=0.02)  # a third of the speed, all motion
@@ -55,10 +77,26 @@ def test_report_puts_the_thesis_beside(runs: tuple[Path, Path]) -> None:
     for number in ("44.0 %", "30.5 %", "9.8 %"):
         assert number in text
     assert "## Verdict" in text and "Scenario `heuristic`" in text and THESIS["makespan_gain_percent"]
+    for words in ("`duration` (default)", "`search-aware`", "speed-up", "ceiling", "Figure 3.6"):
+        assert words in text
 
 
 def test_one_trial_is_the_same_whoever_runs_it() -> None:
-    trial = make_trials(1, 11)[0]
+    trial = make_trials(1, 11, readings=["duration"])[0]
     first, second = run_trial(trial), run_trial(trial)
     first.pop("timing"), second.pop("timing")
     assert first == second
+    assert all(list(cell["supported"]) == ["duration"] for s in first["scenarios"].values() for cell in s.values())
+
+
+def test_the_staged_floor_is_the_plan_with_handling_and_hand_travel_only() -> None:
+    scenario = thesis_scenario(5)
+    world = scenario.world
+    plans = scenario.plans()
+    plan = alone_plan("unpredictable", world, plans)
+    alone = run_team(world, PlanFollowingLead([plan]))
+    floor = staged_floor(world, plan)
+    arm = world.lead_arm
+    assert len(plan) * (arm.grasp + arm.release) < floor < alone.makespan
+    slow = world.with_speeds(1 / 3, 1.0)
+    assert staged_floor(slow, plan) == pytest.approx(3 * floor)

@@ -117,3 +117,66 @@ def test_prototypes_parse_and_match() -> None:
     for bad in ("", "1x(a)", "p(a,,b)"):
         with pytest.raises(PlanningError):
             Prototype.parse(bad)
+
+
+class _Spread:
+    """A made-up lead search: its effort is the sum of the objects' distances from 0 (a lead whose search
+    grows with how scattered things are), cut short at ``limit`` like a real search; counts its calls."""
+
+    def __init__(self) -> None:
+        self.calls = 0
+
+    def __call__(self, state: Any, limit: float = float("inf")) -> float:
+        self.calls += 1
+        effort = sum(abs(x) for x in state.positions if x is not None)
+        return effort if effort <= limit else limit + 1.0
+
+
+def _brute_force(decision: Any, search: Any, scale: float) -> Any:
+    """The oracle: the search term for every candidate, then the argmin (doing nothing wins ties)."""
+    best, best_total = None, decision.idle_score - 1e-9 * abs(decision.idle_score)
+    for candidate, score in zip(decision.candidates.environments, decision.scores, strict=True):
+        total = score + scale * search(candidate.state)
+        if total < best_total:
+            best, best_total = candidate, total
+    return best
+
+
+_CASES = [("conservative", 1.0, 0), ("aggressive", 3.0, 1), ("conservative", 0.2, 2), ("aggressive", 0.5, 3)]
+
+
+def _check_against_brute_force(line_world_type: Any, scheme: str, weight: float, seed: int) -> bool:
+    """Checks one decision against the oracle; True when the search term changed the choice."""
+    problem = problem_of(line_world_type)
+    search = _Spread()
+    planner = SupportPlanner(scheme, environments=60, search=search, search_weight=weight).fit(problem)
+    decision = planner.decide(problem, seed=seed)
+    assert decision.idle_search == search(problem.state)
+    assert decision.search_scale == pytest.approx(
+        weight * sum(abs(w) * d for w, d in zip(decision.weights, decision.idle_durations, strict=True))
+        / decision.idle_search
+    )
+    expected = _brute_force(decision, _Spread(), decision.search_scale)
+    assert (decision.chosen if decision.helps else None) == expected
+    if expected is not None:
+        assert decision.chosen_search == search(expected.state)
+        assert decision.score == pytest.approx(
+            decision.scores[decision.candidates.environments.index(expected)]
+            + decision.search_scale * decision.chosen_search
+        )
+    assert search.calls <= len(decision.candidates.environments) + 3  # never more than one search each
+    plain = SupportPlanner(scheme, environments=60).fit(problem).decide(problem, seed=seed)
+    return plain.chosen != decision.chosen
+
+
+def test_the_search_aware_choice_is_the_brute_force_argmin(line_world_type: Any) -> None:
+    changed = [_check_against_brute_force(line_world_type, *case) for case in _CASES]
+    assert any(changed)  # the search term did change some choice: the oracle is not only checking durations
+
+
+def test_without_a_search_model_nothing_changes(line_world_type: Any) -> None:
+    problem = problem_of(line_world_type)
+    plain = SupportPlanner("conservative", environments=40).fit(problem).decide(problem, seed=6)
+    assert plain.search_scale == 0.0 and plain.idle_search is None and plain.chosen_search is None
+    with pytest.raises(PlanningError, match="search_weight"):
+        SupportPlanner(search=_Spread(), search_weight=-1.0)

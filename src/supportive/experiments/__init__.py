@@ -11,6 +11,7 @@ numbers side by side. A trial's wall-clock measurements, under its reserved ``"t
 True
 """
 
+from supportive.experiments.readings import Finding, Reading, findings_table
 from supportive.experiments.registry import (
     ALL,
     TIMING_KEY,
@@ -25,6 +26,7 @@ from supportive.experiments.registry import (
 )
 from supportive.experiments.runner import (
     DEFAULT_OUTPUT,
+    SUMMARY_FILE,
     RunResult,
     default_output,
     reproduce,
@@ -36,14 +38,18 @@ from supportive.experiments.trials import Trial, spawn_trials, trial_seeds
 __all__ = [
     "ALL",
     "DEFAULT_OUTPUT",
+    "SUMMARY_FILE",
     "TIMING_KEY",
     "Experiment",
+    "Finding",
     "HeadlineRow",
     "Metrics",
+    "Reading",
     "RunResult",
     "Trial",
     "TrialResult",
     "default_output",
+    "findings_table",
     "get",
     "names",
     "register",

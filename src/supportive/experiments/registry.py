@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any, TypeAlias
 
 from supportive.errors import ExperimentError
+from supportive.experiments.readings import Finding, Reading
 from supportive.experiments.trials import Trial
 
 __all__ = [
@@ -81,7 +82,8 @@ class Experiment:
         thesis: The thesis's own numbers where it gives them (plain JSON data), for the report.
         default_trials: Trials of a full run (the thesis's sample size).
         make_trials: ``(trials, seed) -> trials``; every trial gets its own seed (see
-            :func:`~supportive.experiments.trials.spawn_trials`).
+            :func:`~supportive.experiments.trials.spawn_trials`). An experiment with ``readings`` is called
+            ``make_trials(trials, seed, readings=names)`` with the readings the run covers.
         run_trial: Runs ONE trial and returns plain JSON data (a dict; its key ``"timing"`` is reserved for
             wall-clock measurements, see ``timing_report``). A module-level function, so that it can be sent
             to worker processes.
@@ -96,6 +98,11 @@ class Experiment:
             from every result before ``summarize``, writes the timings (in trial order, of the trials that
             returned one) to ``timing.json`` and passes them here, read back from that file. Called only when
             the run writes files and some trial returned timings.
+        readings: The readings of under-specified details of the thesis the experiment runs side by side
+            (see :mod:`supportive.experiments.readings`), the default (closest to the thesis's text) first;
+            empty when there is nothing to read two ways.
+        findings: Optional metrics -> the rows of the summary table (:class:`~.readings.Finding`): quantity,
+            the thesis's number, this run's number under each reading, verdict.
     """
 
     name: str
@@ -103,13 +110,15 @@ class Experiment:
     reference: str
     thesis: Mapping[str, Any]
     default_trials: int
-    make_trials: Callable[[int, int], Sequence[Trial]] = field(repr=False)
+    make_trials: Callable[..., Sequence[Trial]] = field(repr=False)
     run_trial: Callable[[Trial], TrialResult] = field(repr=False)
     summarize: Callable[[Sequence[TrialResult]], Metrics] = field(repr=False)
     report: Callable[[Mapping[str, Any]], str] = field(repr=False)
     plots: Callable[[Mapping[str, Any], Path], list[Path]] = field(repr=False)
     headline: Callable[[Mapping[str, Any]], list[HeadlineRow]] = field(repr=False)
     timing_report: Callable[[list[dict[str, Any]], Path], list[Path]] | None = field(default=None, repr=False)
+    readings: tuple[Reading, ...] = ()
+    findings: Callable[[Mapping[str, Any]], list[Finding]] | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         if not _NAME.match(self.name) or self.name == ALL:
@@ -120,6 +129,14 @@ class Experiment:
             raise ExperimentError(
                 f"experiment {self.name}: default_trials must be >= 1, got {self.default_trials}"
             )
+        names = [r.name for r in self.readings]
+        if len(set(names)) != len(names):
+            raise ExperimentError(f"experiment {self.name}: reading names must be unique, got {names}")
+
+    @property
+    def default_reading(self) -> str | None:
+        """The default reading's name (the first), or None without readings."""
+        return self.readings[0].name if self.readings else None
 
 
 def _load_builtins() -> None:

@@ -11,6 +11,9 @@ A run with output directory ``DIR`` writes:
 * ``DIR/timing.json``, when trials returned wall-clock measurements under their reserved ``"timing"`` key:
   those measurements, in trial order (they differ from run to run by design, and never reach ``summarize``
   or ``metrics.json``), and whatever the experiment's ``timing_report`` writes from them.
+
+``run_all`` also writes ``DIR/summary.md`` and ``DIR/summary.json``: every experiment's findings (the thesis's
+number beside this run's under each reading, and a verdict) in one table.
 """
 
 from __future__ import annotations
@@ -18,7 +21,7 @@ from __future__ import annotations
 import json
 import platform
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -35,6 +38,7 @@ from supportive.experiments.output import (
     write_text,
 )
 from supportive.experiments.progress import progress_bar
+from supportive.experiments.readings import Finding, findings_table, select_readings
 from supportive.experiments.registry import (
     ALL,
     TIMING_KEY,
@@ -46,12 +50,26 @@ from supportive.experiments.registry import (
     names,
 )
 
-__all__ = ["DEFAULT_OUTPUT", "RunResult", "default_output", "reproduce", "run_all", "run_experiment"]
+__all__ = [
+    "DEFAULT_OUTPUT",
+    "SUMMARY_FILE",
+    "SUMMARY_JSON",
+    "RunResult",
+    "default_output",
+    "reproduce",
+    "run_all",
+    "run_experiment",
+    "summary_table",
+]
 
 DEFAULT_OUTPUT = Path("out/reproduce")
 """Where ``supportive reproduce`` writes when not told: ``out/reproduce/<name>``."""
+SUMMARY_FILE = "summary.md"
+"""Written by ``run_all``: one table of every experiment's findings."""
+SUMMARY_JSON = "summary.json"
+"""The same findings as plain JSON (deterministic for the same trials and seed)."""
 
-_RESERVED = ("experiment", "title", "reference", "thesis", "seed", "trials")
+_RESERVED = ("experiment", "title", "reference", "thesis", "seed", "trials", "readings")
 
 
 @dataclass(frozen=True)
@@ -62,6 +80,7 @@ class RunResult:
         experiment: The experiment's name.
         trials: Number of trials run.
         seed: The run's seed.
+        readings: The readings the run covered (the default first; empty for an experiment without).
         backend: Where the trials ran (``"in process"``, ``"dask LocalCluster, 2 worker processes"``, …).
         results: Each trial's result without its ``"timing"``, in trial order (what ``summarize`` saw).
         timings: The ``"timing"`` of each trial that returned one, in trial order (as in ``timing.json``);
@@ -69,6 +88,7 @@ class RunResult:
         metrics: The metrics, exactly as in ``metrics.json``.
         report: The markdown report.
         headline: A few (quantity, this run, the thesis) rows for a terminal summary.
+        findings: The summary table's rows (empty when the experiment declares no ``findings``).
         output: The directory written, or ``None`` when nothing was written.
         files: The files written (metrics, report, plots, run info, timings).
         seconds: Wall time of the trials and the summary.
@@ -77,12 +97,14 @@ class RunResult:
     experiment: str
     trials: int
     seed: int
+    readings: tuple[str, ...]
     backend: str
     results: tuple[TrialResult, ...]
     timings: tuple[dict[str, Any], ...]
     metrics: Metrics
     report: str
     headline: tuple[HeadlineRow, ...]
+    findings: tuple[Finding, ...]
     output: Path | None
     files: tuple[Path, ...]
     seconds: float
@@ -102,6 +124,7 @@ def run_experiment(
     scheduler: str | None = None,
     output: str | Path | None = None,
     progress: bool = True,
+    readings: Sequence[str] | None = None,
 ) -> RunResult:
     """Run the experiment registered as ``name``.
 
@@ -116,9 +139,11 @@ def run_experiment(
         output: Directory for ``metrics.json``, ``report.md``, the plots, ``run.json`` and, when trials
             measured times, ``timing.json`` and the experiment's timing files; ``None`` writes nothing.
         progress: Show a progress bar (only ever on a terminal).
+        readings: Run only these of the experiment's readings (default: all of them, side by side).
 
     Raises:
-        ExperimentError: for an unknown name, bad arguments, an unreachable scheduler or an unwritable output.
+        ExperimentError: for an unknown name or reading, bad arguments, an unreachable scheduler or an
+            unwritable output.
         MissingExtraError: when dask (for ``workers`` > 1 or ``scheduler``) or matplotlib (for the plots) is
             not installed.
 
@@ -127,10 +152,11 @@ def run_experiment(
     (2, 'edge-reduction', [10, 100])
     """
     experiment = get(name)
+    chosen = select_readings(experiment.name, experiment.readings, readings)
     check_backend(workers, scheduler)
     count = _trial_count(experiment, trials)
     with open_executor(workers, scheduler) as executor:
-        return _run(experiment, executor, count, seed, _directory(output), progress)
+        return _run(experiment, executor, count, seed, _directory(output), progress, chosen)
 
 
 def run_all(
@@ -141,14 +167,15 @@ def run_all(
     output: str | Path | None = None,
     progress: bool = True,
 ) -> list[RunResult]:
-    """Run every registered experiment, in name order, on one executor; experiment ``x`` writes into
-    ``output/x/``. Arguments as for :func:`run_experiment` (``trials`` applies to each experiment)."""
+    """Run every registered experiment (every reading), in name order, on one executor; experiment ``x``
+    writes into ``output/x/``, and ``output/summary.md`` (+ ``summary.json``) gathers their findings.
+    Arguments as for :func:`run_experiment` (``trials`` applies to each experiment)."""
     experiments = [get(name) for name in names()]
     check_backend(workers, scheduler)
     counts = [_trial_count(experiment, trials) for experiment in experiments]
     directory = _directory(output)
     with open_executor(workers, scheduler) as executor:
-        return [
+        results = [
             _run(
                 experiment,
                 executor,
@@ -156,9 +183,39 @@ def run_all(
                 seed,
                 None if directory is None else directory / experiment.name,
                 progress,
+                select_readings(experiment.name, experiment.readings, None),
             )
             for experiment, count in zip(experiments, counts, strict=True)
         ]
+    if directory is not None:
+        write_text(directory / SUMMARY_FILE, summary_table(results))
+        document = {
+            "seed": seed,
+            "trials": {r.experiment: r.trials for r in results},
+            "experiments": [
+                {
+                    "experiment": r.experiment,
+                    "reference": get(r.experiment).reference,
+                    "readings": list(r.readings),
+                    "findings": [f.as_json() for f in r.findings],
+                }
+                for r in results
+            ],
+        }
+        write_text(directory / SUMMARY_JSON, dump_json(document, what="findings"))
+    return results
+
+
+def summary_table(results: Sequence[RunResult]) -> str:
+    """``summary.md``: one markdown table of every run's findings, with the seed and trial counts."""
+    seeds = sorted({r.seed for r in results})
+    counts = ", ".join(f"{r.experiment} {r.trials}" for r in results)
+    rows = [(r.experiment, get(r.experiment).reference, r.findings) for r in results if r.findings]
+    return (
+        "# The thesis's experiments: this run beside the thesis\n\n"
+        f"Seed {', '.join(map(str, seeds))}; trials: {counts}. Each experiment's `report.md` has the details, "
+        "95 % confidence intervals and every reading's text.\n\n" + findings_table(rows) + "\n"
+    )
 
 
 def reproduce(
@@ -169,13 +226,20 @@ def reproduce(
     scheduler: str | None = None,
     output: str | Path | None = None,
     progress: bool = True,
+    readings: Sequence[str] | None = None,
 ) -> list[RunResult]:
     """:func:`run_all` when ``name`` is ``"all"``, else :func:`run_experiment` (as a one-item list). What
-    ``supportive reproduce`` calls; ``output`` defaults to :func:`default_output`."""
+    ``supportive reproduce`` calls; ``output`` defaults to :func:`default_output`.
+
+    Raises:
+        ExperimentError: as :func:`run_experiment`, and for ``readings`` with ``"all"``.
+    """
     directory = default_output(name) if output is None else Path(output)
     if name == ALL:
+        if readings:
+            raise ExperimentError("readings are chosen for one experiment, not for 'all'")
         return run_all(trials, seed, workers, scheduler, directory, progress)
-    return [run_experiment(name, trials, seed, workers, scheduler, directory, progress)]
+    return [run_experiment(name, trials, seed, workers, scheduler, directory, progress, readings or None)]
 
 
 def _trial_count(experiment: Experiment, trials: int | None) -> int:
@@ -197,10 +261,15 @@ def _run(
     seed: int,
     output: Path | None,
     progress: bool,
+    readings: tuple[str, ...],
 ) -> RunResult:
     started_at = datetime.now(UTC)
     started = time.perf_counter()
-    specs = experiment.make_trials(trials, seed)
+    specs = (
+        experiment.make_trials(trials, seed, readings=readings)
+        if experiment.readings
+        else experiment.make_trials(trials, seed)
+    )
     with progress_bar(experiment.name, len(specs), enabled=progress) as advance:
         returned = executor.map(experiment.run_trial, specs, advance)
     for index, result in enumerate(returned):
@@ -221,12 +290,14 @@ def _run(
         "thesis": dict(experiment.thesis),
         "seed": seed,
         "trials": len(specs),
+        **({"readings": list(readings)} if experiment.readings else {}),
         **summary,
     }
     text = dump_json(document)
     metrics: Metrics = json.loads(text)  # what report and plots see is exactly what the file holds
     report = experiment.report(metrics)
     headline = tuple(experiment.headline(metrics))
+    findings = tuple(experiment.findings(metrics)) if experiment.findings is not None else ()
     seconds = time.perf_counter() - started
     files: list[Path] = []
     if output is not None:
@@ -245,12 +316,14 @@ def _run(
         experiment=experiment.name,
         trials=len(specs),
         seed=seed,
+        readings=readings,
         backend=executor.description,
         results=tuple(results),
         timings=tuple(timings),
         metrics=metrics,
         report=report,
         headline=headline,
+        findings=findings,
         output=output,
         files=tuple(files),
         seconds=seconds,

@@ -10,7 +10,16 @@ from typing import Any
 
 from scipy import stats
 
-__all__ = ["above_zero", "below_zero", "error_bar", "format_ci", "format_sd", "mean_ci", "mean_sd"]
+__all__ = [
+    "above_zero",
+    "below_zero",
+    "error_bar",
+    "format_ci",
+    "format_sd",
+    "mean_ci",
+    "mean_sd",
+    "ratio_ci",
+]
 
 
 def mean_ci(
@@ -40,6 +49,34 @@ def mean_ci(
             low, high = max(bounds[0], low), min(bounds[1], high)
         low, high = round(low, digits), round(high, digits)
     return {"mean": round(mean, digits), "low": low, "high": high, "n": len(values)}
+
+
+def ratio_ci(numerators: Sequence[float], denominators: Sequence[float], digits: int = 6) -> dict[str, Any]:
+    """The ratio of the means of paired samples, mean(numerators) / mean(denominators), with a 95% confidence
+    interval by the delta method (the standard error of the ratio estimator: the sample standard deviation
+    of ``y − R x`` over √n, divided by mean(x); Student's t), as plain JSON like :func:`mean_ci`.
+
+    Everything is ``None`` when the denominators' mean is 0; the bounds are ``None`` for fewer than two pairs.
+
+    >>> ratio_ci([1.0, 2.0, 3.0], [2.0, 4.0, 6.0])
+    {'mean': 0.5, 'low': 0.5, 'high': 0.5, 'n': 3}
+    >>> r = ratio_ci([1.0, 3.0, 2.0, 2.0], [4.0, 4.0, 5.0, 3.0]); r["low"] < r["mean"] == 0.5 < r["high"]
+    True
+    """
+    if len(numerators) != len(denominators):
+        raise ValueError("ratio_ci: numerators and denominators must pair up")
+    n = len(numerators)
+    if not n or statistics.fmean(denominators) == 0:
+        return {"mean": None, "low": None, "high": None, "n": n}
+    x, y = statistics.fmean(denominators), statistics.fmean(numerators)
+    ratio = y / x
+    low: float | None = None
+    high: float | None = None
+    if n > 1:
+        residuals = [b - ratio * a for a, b in zip(denominators, numerators, strict=True)]
+        half = float(stats.t.ppf(0.975, n - 1)) * statistics.stdev(residuals) / math.sqrt(n) / abs(x)
+        low, high = round(ratio - half, digits), round(ratio + half, digits)
+    return {"mean": round(ratio, digits), "low": low, "high": high, "n": n}
 
 
 def mean_sd(values: Sequence[float], digits: int = 6) -> dict[str, Any]:

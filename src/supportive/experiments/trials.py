@@ -44,6 +44,20 @@ class Trial:
         """A fresh generator seeded with this trial's seed (the same numbers every time)."""
         return np.random.default_rng(self.seed)
 
+    def children(self, count: int) -> list[np.random.SeedSequence]:
+        """``count`` independent seeds for parts of the trial, the same on every call (unlike
+        ``self.seed.spawn``, which moves on each time): child ``i`` is what a fresh copy of the trial's seed
+        spawns first at position ``i``.
+
+        >>> trial = spawn_trials(3, [{}])[0]
+        >>> [c.spawn_key for c in trial.children(2)] == [c.spawn_key for c in trial.children(2)]
+        True
+        """
+        return [
+            np.random.SeedSequence(self.seed.entropy, spawn_key=(*self.seed.spawn_key, i), pool_size=self.seed.pool_size)
+            for i in range(count)
+        ]
+
 
 def trial_seeds(seed: int, count: int) -> list[np.random.SeedSequence]:
     """``count`` independent seeds for the trials of a run with seed ``seed``.

@@ -1,5 +1,13 @@
 """Choosing the supportive action (§3.2.7): ξ* = argmin_{ξ ∈ Ξ} Σ_{π ∈ Π_T} w_π · duration(T, π, ξ, s_c, γ).
 
+Given a model of the lead's search (``search``, a :class:`~supportive.planning.world.LeadSearch`), the
+objective also counts §3.2.5's other aim, "reduces the expected search complexity required for agents in A
+to find solutions": + λ · D · S(ξ.s) / S(s_c), where S is the lead's search effort, D = Σ |w_π| ·
+duration(π, idle) the scale of the weighted durations at s_c and λ the ``search_weight`` — with λ = 1 a
+search 1 % smaller weighs as much as 1 % of the expected duration. Searching is costly, so the candidates are
+taken in order of their duration score and each search is given only the effort that could still make its
+candidate the best (branch and bound: S ≥ 0, so the choice is the one a full evaluation would make).
+
 :class:`SupportPlanner` is fitted once on Σ — plan durations without support in s_0, their weights, the
 nullification penalty — and then decides at any s_c: it samples hypothetical environments, scores them
 (in this process, in local worker processes, or on Dask) together with doing nothing, and returns the best.
@@ -21,7 +29,7 @@ from supportive.planning.evaluation import Scorer, ScoringContext, open_scorer
 from supportive.planning.hypothetical import Hypothetical, HypotheticalSet, hypothetical_environments
 from supportive.planning.problem import SupportProblem
 from supportive.planning.weighting import WeightingScheme, parse_scheme, plan_weights
-from supportive.planning.world import Operator
+from supportive.planning.world import LeadSearch, Operator
 
 __all__ = ["SupportDecision", "SupportPlanner"]
 
@@ -38,13 +46,16 @@ class SupportDecision(Generic[StateT, OperatorT, MoveT]):
 
     Attributes:
         chosen: ξ*, the best hypothetical environment (``Hypothetical.idle`` when doing nothing is best).
-        score: Its weighted duration sum.
-        idle_score: The weighted duration sum of doing nothing.
+        score: Its weighted duration sum, plus the search term with a search model.
+        idle_score: The same for doing nothing.
         weights: w_π of every known plan.
         idle_durations: Each plan's estimated duration without support from s_c.
         chosen_durations: Each plan's estimated duration with ξ*.
         candidates: Ξ as sampled (without the idle candidate), with discard counts.
-        scores: The score of every candidate of Ξ, in order.
+        scores: The weighted duration sum of every candidate of Ξ, in order.
+        search_scale: What one unit of the lead's search effort adds to a score (0 without a search model).
+        idle_search: The lead's search effort at s_c (None without a search model).
+        chosen_search: Its search effort in ξ*.s (None without a search model).
     """
 
     chosen: Hypothetical[StateT, OperatorT, MoveT]
@@ -55,6 +66,9 @@ class SupportDecision(Generic[StateT, OperatorT, MoveT]):
     chosen_durations: tuple[float, ...]
     candidates: HypotheticalSet[StateT, OperatorT, MoveT]
     scores: tuple[float, ...]
+    search_scale: float = 0.0
+    idle_search: float | None = None
+    chosen_search: float | None = None
 
     @property
     def helps(self) -> bool:
@@ -97,6 +111,10 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
             may be following are then the ones that count, and the best of them sets m.
         workers: Local worker processes that score candidates (1: in this process).
         client: A ``dask.distributed.Client`` to score on instead.
+        search: The lead's search effort in a state (:class:`~supportive.planning.world.LeadSearch`), to
+            prefer environments where the lead's planner has less to search; None: durations only (§3.2.7).
+        search_weight: λ, the weight of the relative search effort against the relative expected duration
+            (see the module docstring); used only with ``search``.
 
     Attributes (after ``fit``):
         baseline_: Each plan's duration in s_0 without support.
@@ -117,9 +135,13 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         reweight: bool = True,
         workers: int = 1,
         client: Any = None,
+        search: LeadSearch[StateT] | None = None,
+        search_weight: float = 1.0,
     ) -> None:
         if environments < 1:
             raise PlanningError(f"environments must be >= 1, got {environments}")
+        if search_weight < 0:
+            raise PlanningError(f"search_weight must be >= 0, got {search_weight}")
         if penalty_factor <= 1:
             raise PlanningError(f"penalty_factor must be > 1, got {penalty_factor}")
         self.scheme = parse_scheme(scheme)
@@ -132,6 +154,8 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         self.reweight = reweight
         self.workers = workers
         self.client = client
+        self.search = search
+        self.search_weight = search_weight
         self._scorer: Scorer | None = None
         self._context: ScoringContext[StateT, OperatorT, MoveT] | None = None
 
@@ -175,13 +199,27 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         idle_durations = context.durations(idle, busy)
         weights = self._weights_at(idle_durations) if self.reweight else self.weights_
         idle_score = float(np.dot(weights, idle_durations))
-        scores = (
-            self._scorer_for(context).scores(candidates.environments, weights, busy) if any(weights) else []
-        )
-        chosen, score = idle, idle_score
-        if scores:
+        idle_search, scale = None, 0.0
+        if self.search is not None:
+            idle_search = float(self.search(problem.state))
+            if idle_search > 0:
+                scale = self.search_weight * float(np.dot(np.abs(weights), idle_durations)) / idle_search
+            idle_score += scale * idle_search
+        scores = self._scorer_for(context).scores(candidates.environments, weights, busy) if any(weights) else []
+        chosen, score, chosen_search = idle, idle_score, idle_search
+        bar = idle_score - _RELATIVE_GAIN * abs(idle_score)
+        if scores and scale > 0 and self.search is not None:
+            for i in sorted(range(len(scores)), key=scores.__getitem__):
+                room = (bar - scores[i]) / scale
+                if room <= 0:
+                    break  # every later candidate has a duration score at least as high
+                effort = float(self.search(candidates.environments[i].state, room))
+                if effort < room:
+                    chosen, score, chosen_search = candidates.environments[i], scores[i] + scale * effort, effort
+                    bar = score
+        elif scores:
             best = int(np.argmin(scores))
-            if scores[best] < idle_score - _RELATIVE_GAIN * abs(idle_score):
+            if scores[best] < bar:
                 chosen, score = candidates.environments[best], scores[best]
         return SupportDecision(
             chosen,
@@ -192,6 +230,9 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
             tuple(float(d) for d in (idle_durations if chosen is idle else context.durations(chosen, busy))),
             candidates,
             tuple(scores),
+            scale,
+            idle_search,
+            chosen_search,
         )
 
     def _weights_at(self, durations: np.ndarray) -> tuple[float, ...]:

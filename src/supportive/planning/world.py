@@ -13,6 +13,7 @@ operator prototype, e.g. ``"pick"``), which the support agent's capabilities C_s
 
 from __future__ import annotations
 
+import math
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, field
 from typing import Protocol, TypeVar
@@ -23,6 +24,7 @@ __all__ = [
     "LEAD",
     "SUPPORT",
     "Effects",
+    "LeadSearch",
     "Operator",
     "Predicate",
     "SupportWorld",
@@ -48,6 +50,21 @@ class Effects:
     def touched(self) -> frozenset[Predicate]:
         """Every predicate the operator adds or deletes."""
         return self.add | self.delete
+
+
+StateT_contra = TypeVar("StateT_contra", contravariant=True)
+
+
+class LeadSearch(Protocol[StateT_contra]):
+    """The lead's search complexity in a state: the effort its planner spends there to find its next plan
+    (search nodes, say). §3.2.5: a solution to Σ "reduces the expected duration … or reduces the expected
+    search complexity required for agents in A to find solutions"; a support agent that knows the lead's
+    planner heuristic can model it."""
+
+    def __call__(self, state: StateT_contra, limit: float = math.inf) -> float:
+        """The lead's search effort in ``state`` (>= 0) when it is at most ``limit``; otherwise any value
+        above ``limit`` (the search may stop as soon as it knows)."""
+        ...
 
 
 class Operator(Protocol):

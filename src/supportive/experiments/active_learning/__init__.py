@@ -32,6 +32,7 @@ ACTIVE_LEARNING_BLOCKS = register(
         report=blocks.report,
         plots=blocks_plots,
         headline=blocks.headline,
+        findings=blocks.findings,
     )
 )
 """The registered Figure 2.10 experiment."""
@@ -49,6 +50,8 @@ ACTIVE_LEARNING = register(
         report=food.report,
         plots=food_plots,
         headline=food.headline,
+        readings=food.READINGS,
+        findings=food.findings,
     )
 )
 """The registered Figure 2.11 experiment."""

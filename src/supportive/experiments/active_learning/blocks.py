@@ -24,6 +24,7 @@ from supportive.experiments.active_learning.common import (
     known_paths,
     teach,
 )
+from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
@@ -39,6 +40,7 @@ __all__ = [
     "PANEL",
     "TASKS",
     "THESIS",
+    "findings",
     "headline",
     "make_trials",
     "report",
@@ -314,4 +316,50 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
             else f"dist +{gains['distance']:g}, conn +{gains['connectivity']:g} vs random"
         )
         rows.append((f"task {number} triads: paths rand/dist/conn (of {task['orderings']})", ours, theirs))
+    return rows
+
+
+def findings(metrics: Mapping[str, Any]) -> list[Finding]:
+    """The summary rows: the distance and connectivity gains over random of pooled triads on tasks 1 and 2
+    (the thesis's post-hoc differences), and task 3."""
+    rows = []
+    thesis = metrics["thesis"]["post_hoc_differences"]["triads"]
+    for task in metrics["tasks"]:
+        number = str(task["number"])
+        gains = task["groups"]["triads"]["gain_over_random"]
+        ours = " / ".join(format_ci(gains[s]["paths"], 1) for s in ("distance", "connectivity"))
+        theirs = thesis.get(number)
+        above = [s for s in ("distance", "connectivity") if above_zero(gains[s]["paths"])]
+        below = [s for s in ("distance", "connectivity") if below_zero(gains[s]["paths"])]
+        if theirs is None:
+            claim = "no significant difference"
+            if above or below:
+                parts = [f"{' and '.join(x)} {word} random" for x, word in ((above, "beat"), (below, "below")) if x]
+                verdict = "not reproduced: " + "; ".join(parts) + " (95% CIs)"
+            else:
+                verdict = "reproduced (no difference from random)"
+        else:
+            claim = f"+{theirs['distance']:g} / +{theirs['connectivity']:g}"
+            inside = [
+                s
+                for s in ("distance", "connectivity")
+                if gains[s]["paths"]["low"] is not None
+                and gains[s]["paths"]["low"] <= theirs[s] <= gains[s]["paths"]["high"]
+            ]
+            verdict = (
+                "reproduced (the thesis's gains within the 95% CIs)"
+                if len(inside) == 2
+                else "direction reproduced, size not (" + (", ".join(inside) or "neither") + " within the CI)"
+                if len(above) == 2
+                else "not reproduced"
+            )
+        rows.append(
+            Finding(
+                f"task {number} ({task['orderings']} orderings), triads: paths gained over random, distance / "
+                "connectivity",
+                claim,
+                (("", ours),),
+                verdict,
+            )
+        )
     return rows

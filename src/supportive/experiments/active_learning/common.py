@@ -35,6 +35,7 @@ __all__ = [
     "anova",
     "instructor_rng",
     "known_paths",
+    "make_instructor",
     "session_rng",
     "teach",
 ]
@@ -72,6 +73,20 @@ def session_rng(instructor_seed: int, task: int, strategy: int) -> np.random.Gen
     return np.random.default_rng([instructor_seed, task, strategy, 1])
 
 
+def make_instructor(
+    structure: Node, *, instructor_seed: int, task: int, own_base: bool
+) -> SimulatedInstructor:
+    """The simulated instructor ``instructor_seed`` for task number ``task``: the same person (preferred path,
+    unprompted variation from day to day) whatever strategy she teaches.
+
+    With ``own_base`` her base path is a valid ordering drawn uniformly for her (her own habit) instead of the
+    structure's canonical order; either way it is then perturbed (``perturbation=0.2``).
+    """
+    rng = instructor_rng(instructor_seed, task)
+    base = [a for a, _ in sample_orderings(structure, 1, rng)[0]] if own_base else None
+    return SimulatedInstructor(structure, base, deviation=DEVIATION, seed=rng)
+
+
 def teach(
     structure: Node,
     actions: Sequence[str],
@@ -84,16 +99,12 @@ def teach(
     demonstrations: int,
     own_base: bool = False,
 ) -> Taught:
-    """One instructor teaches a fresh learner ``demonstrations`` times with ``strategy`` on ``schedule``.
-
-    With ``own_base`` the instructor's base path is a valid ordering drawn uniformly for her (her own habit)
-    instead of the structure's canonical order; either way it is then perturbed (``perturbation=0.2``).
+    """One instructor (:func:`make_instructor`) teaches a fresh learner ``demonstrations`` times with
+    ``strategy`` on ``schedule``.
 
     Returns the demonstrations performed and the learner's known path count after each.
     """
-    rng = instructor_rng(instructor_seed, task)
-    base = [a for a, _ in sample_orderings(structure, 1, rng)[0]] if own_base else None
-    instructor = SimulatedInstructor(structure, base, deviation=DEVIATION, seed=rng)
+    instructor = make_instructor(structure, instructor_seed=instructor_seed, task=task, own_base=own_base)
     session = TeachingSession(
         actions,
         strategy,

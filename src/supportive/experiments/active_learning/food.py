@@ -1,13 +1,15 @@
 """Active learning on 12 food-preparation tasks, solo vs pooled instructors (§2.2.10.1, Figure 2.11).
 
 One trial = one simulated panel of 3 instructors (each with its own seed) on all 12 tasks of
-:mod:`supportive.examples.food`, for each query strategy (random, distance, connectivity). The schedule is the
-pilot study's: after steps 1, 3 and 5, at most 3 queries per demonstration, none in the first.
+:mod:`supportive.examples.food`, for each query strategy (random, distance, connectivity) and each reading of
+*when* the learner asks (:data:`READINGS`; at most 3 queries per demonstration, none in the first).
 
 * **solo**: instructor 1 teaches 12 demonstrations; comprehension after 4, 8 and 12 of them.
 * **multi-instructor**: instructors 1, 2 and 3 teach 4 demonstrations each to their own learners; iteration 4
   is instructor 1's learner (so it equals solo's iteration 4, as in the thesis), 8 is instructors 1 + 2
   pooled, 12 is 1 + 2 + 3 pooled (the union of the learned graphs).
+* **ceiling**: the known paths of every demonstration the same instructors could have given under the
+  schedule, whatever the learner asked (:mod:`.ceiling`) — a bound no strategy can pass.
 
 Comprehension = known origin→terminal paths of the task graph as a percentage of the task's valid orderings
 (:func:`~supportive.tasks.htn.count_orderings`), averaged over the 12 tasks; 95% confidence intervals are over
@@ -21,7 +23,9 @@ from functools import cache
 from typing import Any
 
 from supportive.examples import food
-from supportive.experiments.active_learning.common import STRATEGIES, known_paths, teach
+from supportive.experiments.active_learning.ceiling import ceiling_paths, reachable_demonstrations
+from supportive.experiments.active_learning.common import STRATEGIES, known_paths, make_instructor, teach
+from supportive.experiments.readings import Finding, Reading, reading_names, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
@@ -33,8 +37,10 @@ __all__ = [
     "CONDITIONS",
     "DEFAULT_TRIALS",
     "ITERATIONS",
-    "SCHEDULE",
+    "READINGS",
+    "SCHEDULES",
     "THESIS",
+    "findings",
     "headline",
     "make_trials",
     "report",
@@ -42,9 +48,38 @@ __all__ = [
     "summarize",
 ]
 
-SCHEDULE = QuerySchedule(after_steps=(1, 3, 5), max_per_demonstration=3, skip_first_demonstrations=1)
-"""§2.2.10.1: "conditions identical to the pilot study (4 demonstrations per task, 3 queries allowed per
-demonstration, no queries during the initial demonstration)"."""
+READINGS = (
+    Reading(
+        "pilot",
+        "queries after steps 1, 3 and 5",
+        '§2.2.10.1 runs the food tasks under "conditions identical to the pilot study", modelling the pilot '
+        'participants "for each task type"; the pilot asked after steps 1, 3 and 5 in its chain-with-a-clique '
+        "and chain-of-cliques tasks (§2.2.7.1, tasks 1 and 2) and at the start only in its clique of chains "
+        "(task 3). Every food task is a chain of cliques and actions, the type of tasks 1 and 2, so the "
+        "pilot's schedule for that type is the closest reading: the default.",
+    ),
+    Reading(
+        "start-2-4",
+        "queries at the start and after steps 2 and 4",
+        "The pilot's other schedule (§2.2.7.1, task 3: \"at the beginning of this task, as well as after the "
+        'second and fourth steps"), for every food task.',
+    ),
+    Reading(
+        "start-4-8",
+        "queries at the start and after steps 4 and 8",
+        "A query at the start, the other two spread over a 10–14-step recipe: the thesis gives no schedule "
+        "for the food tasks, and the pilot's steps 1–5 cover only the first half of them.",
+    ),
+)
+"""When the learner asks, as named readings; the first (``pilot``) is the default."""
+
+SCHEDULES: dict[str, QuerySchedule] = {
+    "pilot": QuerySchedule(after_steps=(1, 3, 5), max_per_demonstration=3, skip_first_demonstrations=1),
+    "start-2-4": QuerySchedule(after_steps=(0, 2, 4), max_per_demonstration=3, skip_first_demonstrations=1),
+    "start-4-8": QuerySchedule(after_steps=(0, 4, 8), max_per_demonstration=3, skip_first_demonstrations=1),
+}
+"""Each reading's schedule: §2.2.10.1's "3 queries allowed per demonstration, no queries during the initial
+demonstration", asked at the reading's steps."""
 ITERATIONS = (4, 8, 12)
 """Demonstrations seen, in all, at the three measurements."""
 CONDITIONS = ("solo", "multi")
@@ -85,6 +120,8 @@ THESIS: dict[str, Any] = {
 """What §2.2.10.1 reports for Figure 2.11 (mean % of task comprehension at iterations 4, 8, 12)."""
 
 LABELS = {"solo": "solo instructor", "multi": "multi-instructor (pooled)"}
+CLOSE = 5.0
+"""A curve "matches" the thesis when it is within this many percentage points at all three iterations."""
 
 
 @cache
@@ -97,15 +134,29 @@ def _tasks() -> tuple[tuple[TaskSpec, int], ...]:
     return tuple(out)
 
 
-def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
-    """One trial per simulated panel of 3 instructors, each trial with its own seed."""
-    return spawn_trials(seed, [{"instructors": INSTRUCTORS, "base": BASE} for _ in range(trials)])
+def make_trials(trials: int, seed: int, readings: Sequence[str] | None = None) -> tuple[Trial, ...]:
+    """One trial per simulated panel of 3 instructors, each trial with its own seed, for ``readings``
+    (default: all of :data:`READINGS`). A reading's numbers do not depend on which other readings run."""
+    chosen = list(readings if readings is not None else reading_names(READINGS))
+    return spawn_trials(
+        seed, [{"instructors": INSTRUCTORS, "base": BASE, "readings": chosen} for _ in range(trials)]
+    )
 
 
 def run_trial(trial: Trial) -> dict[str, Any]:
-    """Run one panel on every task with every strategy; path counts at iterations 4, 8, 12, solo and pooled."""
+    """Run one panel on every task with every strategy under every reading; path counts at iterations 4, 8,
+    12, solo and pooled, and the instructors' ceilings."""
     own_base = trial.params.get("base", BASE) == "own"
     seeds = [int(s) for s in trial.rng().integers(0, 2**32, size=INSTRUCTORS)]
+    chosen = trial.params.get("readings", reading_names(READINGS))
+    return {
+        "index": trial.index,
+        "base": "own" if own_base else "canonical",
+        "readings": {name: {"tasks": _panel(SCHEDULES[name], seeds, own_base)} for name in chosen},
+    }
+
+
+def _panel(schedule: QuerySchedule, seeds: Sequence[int], own_base: bool) -> dict[str, Any]:
     step = ITERATIONS[0]
     tasks: dict[str, Any] = {}
     for number, (spec, orderings) in enumerate(_tasks(), start=1):
@@ -120,7 +171,7 @@ def run_trial(trial: Trial) -> dict[str, Any]:
                     task=number,
                     strategy=strategy,
                     strategy_index=s,
-                    schedule=SCHEDULE,
+                    schedule=schedule,
                     demonstrations=ITERATIONS[-1] if i == 0 else step,
                     own_base=own_base,
                 )
@@ -133,8 +184,29 @@ def run_trial(trial: Trial) -> dict[str, Any]:
                 for k in range(1, INSTRUCTORS + 1)
             ]
             out[strategy] = {"solo": solo, "multi": multi}
+        reachable = [
+            _reachable(spec, number, seed, schedule, ITERATIONS[-1] if i == 0 else step, own_base)
+            for i, seed in enumerate(seeds)
+        ]
+        out["ceiling"] = {
+            "solo": [ceiling_paths(reachable[0][:n]) for n in ITERATIONS],
+            "multi": [
+                ceiling_paths([*reachable[0][:step], *(d for r in reachable[1:k] for d in r)])
+                for k in range(1, INSTRUCTORS + 1)
+            ],
+        }
         tasks[spec.name] = out
-    return {"index": trial.index, "base": "own" if own_base else "canonical", "tasks": tasks}
+    return tasks
+
+
+def _reachable(
+    spec: TaskSpec, number: int, seed: int, schedule: QuerySchedule, demonstrations: int, own_base: bool
+) -> list[set[tuple[str, ...]]]:
+    """For each of an instructor's demonstrations, every one she could have given under ``schedule``."""
+    assert spec.structure is not None
+    person = make_instructor(spec.structure, instructor_seed=seed, task=number, own_base=own_base)
+    actions = spec.action_ids()
+    return [reachable_demonstrations(person, schedule, d, actions) for d in range(demonstrations)]
 
 
 def _percent(paths: int, orderings: int) -> float:
@@ -142,22 +214,41 @@ def _percent(paths: int, orderings: int) -> float:
 
 
 def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """Mean comprehension over tasks per trial, then mean and 95% CI over trials; per-task means; pooled minus
-    solo at the same number of demonstrations."""
-    names = list(results[0]["tasks"])
+    """Per reading: mean comprehension over tasks per trial, then mean and 95% CI over trials, for every
+    strategy and the ceiling; per-task means; pooled minus solo at the same number of demonstrations."""
+    readings = list(results[0]["readings"])
+    return {
+        "iterations": list(ITERATIONS),
+        "instructors": INSTRUCTORS,
+        "base": results[0].get("base", BASE),
+        "task_count": len(results[0]["readings"][readings[0]]["tasks"]),
+        "schedules": {
+            name: {
+                "after_steps": list(SCHEDULES[name].after_steps),
+                "max_per_demonstration": SCHEDULES[name].max_per_demonstration,
+                "skip_first_demonstrations": SCHEDULES[name].skip_first_demonstrations,
+            }
+            for name in readings
+        },
+        "by_reading": {name: _summarize_reading([r["readings"][name] for r in results]) for name in readings},
+    }
 
-    def per_trial(r: Mapping[str, Any], strategy: str, condition: str, i: int) -> float:
+
+def _summarize_reading(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    names = list(results[0]["tasks"])
+    rows = (*STRATEGIES, "ceiling")
+
+    def per_trial(r: Mapping[str, Any], row: str, condition: str, i: int) -> float:
         tasks = r["tasks"]
-        values = [_percent(tasks[n][strategy][condition][i], tasks[n]["orderings"]) for n in names]
+        values = [_percent(tasks[n][row][condition][i], tasks[n]["orderings"]) for n in names]
         return sum(values) / len(values)
 
     comprehension = {
         condition: {
-            strategy: [
-                mean_ci([per_trial(r, strategy, condition, i) for r in results], 2)
-                for i in range(len(ITERATIONS))
+            row: [
+                mean_ci([per_trial(r, row, condition, i) for r in results], 2) for i in range(len(ITERATIONS))
             ]
-            for strategy in STRATEGIES
+            for row in rows
         }
         for condition in CONDITIONS
     }
@@ -185,10 +276,10 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
             "orderings": results[0]["tasks"][n]["orderings"],
             **{
                 condition: {
-                    strategy: [
+                    row: [
                         round(
                             sum(
-                                _percent(r["tasks"][n][strategy][condition][i], r["tasks"][n]["orderings"])
+                                _percent(r["tasks"][n][row][condition][i], r["tasks"][n]["orderings"])
                                 for r in results
                             )
                             / len(results),
@@ -196,134 +287,206 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                         )
                         for i in range(len(ITERATIONS))
                     ]
-                    for strategy in STRATEGIES
+                    for row in rows
                 }
                 for condition in CONDITIONS
             },
         }
         for n in names
     }
-    return {
-        "iterations": list(ITERATIONS),
-        "schedule": {
-            "after_steps": list(SCHEDULE.after_steps),
-            "max_per_demonstration": 3,
-            "skip_first_demonstrations": 1,
-        },
-        "instructors": INSTRUCTORS,
-        "base": results[0].get("base", BASE),
-        "task_count": len(names),
-        "comprehension": comprehension,
-        "pooled_minus_solo": pooled_gain,
-        "tasks": tasks,
-    }
+    return {"comprehension": comprehension, "pooled_minus_solo": pooled_gain, "tasks": tasks}
+
+
+def _readings(metrics: Mapping[str, Any]) -> list[str]:
+    return list(metrics["by_reading"])
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report: comprehension per strategy and iteration beside the thesis's, and pooled vs solo."""
+    """The markdown report: comprehension per reading, strategy and iteration beside the thesis's, the
+    instructors' ceiling, pooled vs solo, and per task."""
     thesis = metrics["thesis"]["comprehension_percent"]
     trials = metrics["trials"]
     its = metrics["iterations"]
+    readings = _readings(metrics)
     lines = [
         "# Active learning on 12 food-preparation tasks (§2.2.10.1, Figure 2.11)",
         "",
         f"Seed {metrics['seed']}, {trials} trials (thesis: 50). One trial = a panel of {metrics['instructors']} "
-        f"simulated instructors on all {metrics['task_count']} tasks; queries after steps 1, 3, 5, at most 3 per "
-        "demonstration, none in the first. Comprehension = known paths of the learned task graph ÷ the task's "
-        "valid orderings, %, averaged over the tasks; this run's mean with its 95% confidence interval over "
-        "trials, the thesis's mean beside it. Solo: instructor 1 alone, 4, 8, 12 demonstrations; "
-        "multi-instructor: instructor 1's 4, then pooled with instructor 2's 4, then with instructor 3's 4 "
-        "(iteration 4 is the same learner in both). Instructors' base path: "
-        + ("a valid ordering drawn for each instructor" if metrics["base"] == "own" else "the structure's order")
+        f"simulated instructors on all {metrics['task_count']} tasks, at most 3 queries per demonstration, none "
+        "in the first. Comprehension = known paths of the learned task graph ÷ the task's valid orderings, %, "
+        "averaged over the tasks; this run's mean with its 95% confidence interval over trials, the thesis's "
+        "mean beside it. Solo: instructor 1 alone, 4, 8, 12 demonstrations; multi-instructor: instructor 1's 4, "
+        "then pooled with instructor 2's 4, then with instructor 3's 4 (iteration 4 is the same learner in "
+        "both). Instructors' base path: "
+        + (
+            "a valid ordering drawn for each instructor"
+            if metrics["base"] == "own"
+            else "the structure's order"
+        )
         + ' (the thesis: "a fixed arbitrarily chosen canonical base path"), perturbed per instructor.',
+        "",
+        "**Ceiling**: the known paths of *every* demonstration the same instructors could have given under the "
+        "reading's schedule, whatever the learner asked (each query heeded within 3 steps, or ignored) — a "
+        "bound no strategy can pass with these instructors. Where a curve meets it, the instructor model, not "
+        "the strategy, is what limits it.",
+        "",
+        "## Readings: when the learner asks",
+        "",
+        *readings_table(READINGS, readings, "schedule"),
     ]
     for condition in CONDITIONS:
         lines += [
             "",
             f"## {LABELS[condition]}",
             "",
-            "| strategy | " + " | ".join(f"iteration {n} | thesis" for n in its) + " |",
-            "|---|" + "---:|---:|" * len(its),
+            "| strategy | reading | " + " | ".join(f"iteration {n}" for n in its) + " | thesis |",
+            "|---|---|" + "---:|" * len(its) + "---:|",
         ]
-        for strategy in STRATEGIES:
-            ours = metrics["comprehension"][condition][strategy]
-            cells = " | ".join(
-                f"{format_ci(ours[i], 1)} | {thesis[condition][strategy][i]:.1f}" for i in range(len(its))
-            )
-            lines.append(f"| {strategy} | {cells} |")
+        for row in (*STRATEGIES, "ceiling"):
+            for name in readings:
+                ours = metrics["by_reading"][name]["comprehension"][condition][row]
+                theirs = (
+                    " / ".join(f"{v:.1f}" for v in thesis[condition][row])
+                    if row in thesis[condition]
+                    else "–"
+                )
+                cells = " | ".join(format_ci(ours[i], 1) for i in range(len(its)))
+                lines.append(f"| {row} | `{name}` | {cells} | {theirs} |")
     lines += [
         "",
         "## Pooled instructors vs a solo instructor with the same number of demonstrations",
         "",
-        "| strategy | iteration | multi − solo (percentage points) | trials multi better / worse | thesis multi − solo |",
-        "|---|---:|---:|---:|---:|",
+        "| strategy | reading | iteration | multi − solo (percentage points) | trials multi better / worse | "
+        "thesis multi − solo |",
+        "|---|---|---:|---:|---:|---:|",
     ]
     for strategy in STRATEGIES:
-        for i, n in enumerate(its):
-            if i == 0:
-                continue
-            gain = metrics["pooled_minus_solo"][strategy][str(n)]
-            theirs = thesis["multi"][strategy][i] - thesis["solo"][strategy][i]
-            lines.append(
-                f"| {strategy} | {n} | {format_ci(gain['percent'], 1)} | {gain['trials_better']} / {gain['trials_worse']} "
-                f"| {theirs:+.1f} |"
+        for name in readings:
+            for i, n in enumerate(its):
+                if i == 0:
+                    continue
+                gain = metrics["by_reading"][name]["pooled_minus_solo"][strategy][str(n)]
+                theirs = thesis["multi"][strategy][i] - thesis["solo"][strategy][i]
+                lines.append(
+                    f"| {strategy} | `{name}` | {n} | {format_ci(gain['percent'], 1)} | "
+                    f"{gain['trials_better']} / {gain['trials_worse']} | {theirs:+.1f} |"
+                )
+    for name in readings:
+        lines += [
+            "",
+            f"## Per task, `{name}` (mean % over trials at iterations " + ", ".join(map(str, its)) + ")",
+            "",
+            "| task | orderings | solo random | solo distance | solo connectivity | solo ceiling | multi random "
+            "| multi distance | multi connectivity | multi ceiling |",
+            "|---|---:|---|---|---|---|---|---|---|---|",
+        ]
+        for task_name, task in metrics["by_reading"][name]["tasks"].items():
+            cells = " | ".join(
+                "/".join(f"{v:.0f}" for v in task[condition][row])
+                for condition in CONDITIONS
+                for row in (*STRATEGIES, "ceiling")
             )
-    lines += [
-        "",
-        "## Per task (mean % over trials at iterations " + ", ".join(map(str, its)) + ")",
-        "",
-        "| task | orderings | solo random | solo distance | solo connectivity | multi random | multi distance | multi connectivity |",
-        "|---|---:|---|---|---|---|---|---|",
-    ]
-    for name, task in metrics["tasks"].items():
-        cells = " | ".join(
-            "/".join(f"{v:.0f}" for v in task[condition][strategy])
-            for condition in CONDITIONS
-            for strategy in STRATEGIES
-        )
-        lines.append(f"| {name} | {task['orderings']} | {cells} |")
+            lines.append(f"| {task_name} | {task['orderings']} | {cells} |")
     lines += ["", "## Verdict", "", *verdict(metrics), ""]
     return "\n".join(lines)
 
 
+def _gap(metrics: Mapping[str, Any], name: str, condition: str, strategy: str) -> float:
+    """The largest distance from the thesis's curve over the three iterations, percentage points."""
+    ours = metrics["by_reading"][name]["comprehension"][condition][strategy]
+    theirs = metrics["thesis"]["comprehension_percent"][condition][strategy]
+    return max(abs(float(o["mean"]) - float(t)) for o, t in zip(ours, theirs, strict=True))
+
+
+def _curve_verdict(metrics: Mapping[str, Any], condition: str, strategy: str) -> str:
+    readings = _readings(metrics)
+    gaps = {name: _gap(metrics, name, condition, strategy) for name in readings}
+    close = [name for name in readings if gaps[name] <= CLOSE]
+    best = min(readings, key=gaps.__getitem__)
+    if readings[0] in close:
+        return f"reproduced (within {CLOSE:g} points at 4/8/12)"
+    if close:
+        return (
+            f"reproduced only under {', '.join(close)}; default off by up to {gaps[readings[0]]:.1f} points"
+        )
+    return f"not reproduced: off by up to {gaps[best]:.1f} points even under {best}"
+
+
 def verdict(metrics: Mapping[str, Any]) -> list[str]:
-    """Bullet lines on the thesis's claims, from this run's numbers."""
-    comp = metrics["comprehension"]
+    """Bullet lines on the thesis's claims, from this run's numbers, for each reading."""
     last = len(metrics["iterations"]) - 1
+    n = metrics["iterations"][last]
     out = []
+    for name in _readings(metrics):
+        comp = metrics["by_reading"][name]["comprehension"]
+        for condition in CONDITIONS:
+            order = sorted(STRATEGIES, key=lambda s: -comp[condition][s][last]["mean"])
+            thesis = metrics["thesis"]["comprehension_percent"][condition]
+            theirs = sorted(STRATEGIES, key=lambda s: -thesis[s][last])
+            out.append(
+                f"* `{name}`, {LABELS[condition]}, iteration {n}: "
+                + " > ".join(f"{s} {comp[condition][s][last]['mean']:.1f} %" for s in order)
+                + f" (ceiling {comp[condition]['ceiling'][last]['mean']:.1f} %; thesis: "
+                + " > ".join(f"{s} {thesis[s][last]:.1f} %" for s in theirs)
+                + ")."
+            )
+        for strategy in STRATEGIES:
+            gain = metrics["by_reading"][name]["pooled_minus_solo"][strategy][str(n)]["percent"]
+            if above_zero(gain):
+                word = "beat"
+            elif below_zero(gain):
+                word = "fall behind"
+            else:
+                word = "are level with"
+            out.append(
+                f"* `{name}`, {strategy}: 3 pooled instructors {word} one instructor with the same 12 "
+                f"demonstrations ({format_ci(gain, 1, signed=True)} points, mean and 95% CI)."
+            )
     for condition in CONDITIONS:
-        order = sorted(STRATEGIES, key=lambda s: -comp[condition][s][last]["mean"])
-        thesis = metrics["thesis"]["comprehension_percent"][condition]
-        theirs = sorted(STRATEGIES, key=lambda s: -thesis[s][last])
-        out.append(
-            f"* {LABELS[condition]}, iteration {metrics['iterations'][last]}: "
-            + " > ".join(f"{s} {comp[condition][s][last]['mean']:.1f} %" for s in order)
-            + " (thesis: "
-            + " > ".join(f"{s} {thesis[s][last]:.1f} %" for s in theirs)
-            + ")."
-        )
-    for strategy in STRATEGIES:
-        gain = metrics["pooled_minus_solo"][strategy][str(metrics["iterations"][last])]["percent"]
-        if above_zero(gain):
-            word = "beat"
-        elif below_zero(gain):
-            word = "fall behind"
-        else:
-            word = "are level with"
-        out.append(
-            f"* {strategy}: 3 pooled instructors {word} one instructor with the same 12 demonstrations "
-            f"({format_ci(gain, 1, signed=True)} points, mean and 95% CI)."
-        )
+        for strategy in STRATEGIES:
+            out.append(
+                f"* {LABELS[condition]} {strategy} curve: {_curve_verdict(metrics, condition, strategy)}."
+            )
     return out
 
 
+def findings(metrics: Mapping[str, Any]) -> list[Finding]:
+    """One row per condition and strategy: % known at 4/8/12 under each reading, beside the thesis."""
+    thesis = metrics["thesis"]["comprehension_percent"]
+    rows = []
+    for condition in CONDITIONS:
+        for strategy in STRATEGIES:
+            values = tuple(
+                (
+                    name,
+                    "/".join(
+                        f"{v['mean']:.1f}"
+                        for v in metrics["by_reading"][name]["comprehension"][condition][strategy]
+                    ),
+                )
+                for name in _readings(metrics)
+            )
+            rows.append(
+                Finding(
+                    f"{condition} {strategy}: % known at 4/8/12",
+                    "/".join(f"{v:.1f}" for v in thesis[condition][strategy]),
+                    values,
+                    _curve_verdict(metrics, condition, strategy),
+                )
+            )
+    return rows
+
+
 def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
-    """Comprehension at iterations 4/8/12 per condition and strategy, beside the thesis's."""
+    """Comprehension at iteration 12 per condition and strategy under each reading, beside the thesis's."""
     thesis = metrics["thesis"]["comprehension_percent"]
     rows: list[HeadlineRow] = []
     for condition in CONDITIONS:
-        for strategy in STRATEGIES:
-            ours = "/".join(f"{v['mean']:.1f}" for v in metrics["comprehension"][condition][strategy])
-            theirs = "/".join(f"{v:.1f}" for v in thesis[condition][strategy])
-            rows.append((f"{condition} {strategy}: % known at 4/8/12", ours, theirs))
+        for strategy in (*STRATEGIES, "ceiling"):
+            ours = " · ".join(
+                f"{name} {metrics['by_reading'][name]['comprehension'][condition][strategy][-1]['mean']:.1f}"
+                for name in _readings(metrics)
+            )
+            theirs = f"{thesis[condition][strategy][-1]:.1f}" if strategy in thesis[condition] else "–"
+            rows.append((f"{condition} {strategy}: % known at 12", ours, theirs))
     return rows

@@ -52,36 +52,40 @@ def blocks_plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
 
 
 def food_plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
-    """Write ``comprehension.png``: % comprehension vs iteration per strategy, solo and multi-instructor."""
+    """Write ``comprehension.png``: % comprehension vs iteration per strategy (and the instructors' ceiling),
+    solo and multi-instructor, one row of panels per reading, the thesis's curves dashed."""
     iterations = metrics["iterations"]
     thesis = metrics["thesis"]["comprehension_percent"]
-    figure = new_figure(11.0, 4.5)
-    axes = figure.subplots(1, len(CONDITIONS), sharey=True)
-    for ax, condition in zip(axes, CONDITIONS, strict=True):
-        for s, strategy in enumerate(STRATEGIES):
-            ours = metrics["comprehension"][condition][strategy]
-            xs = [n + (s - 1) * 0.12 for n in iterations]
-            means = [v["mean"] for v in ours]
-            bars = [error_bar(v) for v in ours]
-            err = [[b[0] for b in bars], [b[1] for b in bars]]
-            ax.errorbar(
-                xs, means, yerr=err, marker="o", capsize=3, color=COLOURS[strategy], label=f"{strategy}"
-            )
+    readings = list(metrics["by_reading"])
+    figure = new_figure(11.0, 4.0 * len(readings))
+    axes = figure.subplots(len(readings), len(CONDITIONS), sharey=True, squeeze=False)
+    for row, name in zip(axes, readings, strict=True):
+        comprehension = metrics["by_reading"][name]["comprehension"]
+        for ax, condition in zip(row, CONDITIONS, strict=True):
+            for s, strategy in enumerate(STRATEGIES):
+                ours = comprehension[condition][strategy]
+                xs = [n + (s - 1) * 0.12 for n in iterations]
+                bars = [error_bar(v) for v in ours]
+                err = [[b[0] for b in bars], [b[1] for b in bars]]
+                ax.errorbar(
+                    xs, [v["mean"] for v in ours], yerr=err, marker="o", capsize=3, color=COLOURS[strategy],
+                    label=strategy,
+                )  # fmt: skip
+                ax.plot(
+                    iterations, thesis[condition][strategy], linestyle="--", marker="x",
+                    color=COLOURS[strategy], alpha=0.6, label=f"{strategy} (thesis)",
+                )  # fmt: skip
             ax.plot(
-                iterations,
-                thesis[condition][strategy],
-                linestyle="--",
-                marker="x",
-                color=COLOURS[strategy],
-                alpha=0.6,
-                label=f"{strategy} (thesis)",
-            )
-        ax.set_title(LABELS[condition])
-        ax.set_xticks(iterations)
+                iterations, [v["mean"] for v in comprehension[condition]["ceiling"]], color="black",
+                linestyle=":", label="instructors' ceiling",
+            )  # fmt: skip
+            ax.set_title(f"{LABELS[condition]}, queries: {name}", fontsize=9)
+            ax.set_xticks(iterations)
+            ax.set_ylim(0, 100)
+            ax.grid(alpha=0.3)
+        row[0].set_ylabel("% of valid orderings known")
+    for ax in axes[-1]:
         ax.set_xlabel("demonstrations (iteration)")
-        ax.set_ylim(0, 100)
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("% of valid orderings known")
-    axes[0].legend(fontsize=8, loc="lower right")
+    axes[0][0].legend(fontsize=7, loc="lower right")
     figure.suptitle(f"Task comprehension over 12 food tasks (Fig. 2.11), {metrics['trials']} trials")
     return [save_png(figure, directory / COMPREHENSION_PLOT)]

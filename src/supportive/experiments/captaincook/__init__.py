@@ -22,7 +22,7 @@ from supportive.experiments.captaincook.measure import (
     run_trial,
     summarize,
 )
-from supportive.experiments.captaincook.report import CURVES_PLOT, THESIS, headline, plots, report
+from supportive.experiments.captaincook.report import CURVES_PLOT, THESIS, findings, headline, plots, report
 from supportive.experiments.registry import Experiment, register
 
 __all__ = [
@@ -34,6 +34,7 @@ __all__ = [
     "METRICS",
     "SCHEDULE",
     "THESIS",
+    "findings",
     "headline",
     "make_trials",
     "partial_order",
@@ -58,6 +59,7 @@ CAPTAINCOOK = register(
         report=report,
         plots=plots,
         headline=headline,
+        findings=findings,
     )
 )
 """The registered experiment."""

@@ -8,10 +8,11 @@ from typing import Any
 
 from supportive.experiments.captaincook.measure import CONDITIONS, METRICS
 from supportive.experiments.plotting import new_figure, save_png
+from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, error_bar, format_ci
 
-__all__ = ["CURVES_PLOT", "THESIS", "headline", "plots", "report"]
+__all__ = ["CURVES_PLOT", "THESIS", "findings", "headline", "plots", "report"]
 
 CURVES_PLOT = "curves.png"
 
@@ -170,3 +171,24 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     for cond in CONDITIONS:
         rows.append((f"F1 at own K, {cond}", f"{metrics['at_own_k'][cond]['f1']['mean']:.3f}", "–"))
     return rows
+
+
+def findings(metrics: Mapping[str, Any]) -> list[Finding]:
+    """The summary row: F1 at each recipe's own number of recordings, passive and each query strategy."""
+    own = metrics["at_own_k"]
+    values = (("", " · ".join(f"{c} {own[c]['f1']['mean']:.3f}" for c in CONDITIONS)),)
+    passive = own["passive"]["f1"]["mean"]
+    below = [c for c in CONDITIONS[1:] if own[c]["f1"]["mean"] < passive]
+    verdict = (
+        "not reproduced: every strategy below passive learning from real recordings"
+        if len(below) == len(CONDITIONS) - 1
+        else "reproduced for " + ", ".join(c for c in CONDITIONS[1:] if c not in below)
+    )
+    return [
+        Finding(
+            "F1 of implied precedences at each recipe's K recordings",
+            "no CaptainCook4D experiment; claim: asking beats watching",
+            values,
+            verdict,
+        )
+    ]

@@ -1,4 +1,4 @@
-"""Summarising the caregiver experiment beside Tables 3.1–3.3 of the thesis."""
+"""Summarising the caregiver experiment beside Tables 3.1–3.3 of the thesis, every reading side by side."""
 
 from __future__ import annotations
 
@@ -6,11 +6,12 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from supportive.envs.household.novice import NOVICE_TYPES
-from supportive.experiments.caregiver.measure import CONDITIONS
+from supportive.experiments.caregiver.measure import MEMORIES, READINGS
+from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
-from supportive.experiments.statistics import format_sd, mean_sd
+from supportive.experiments.statistics import format_ci, format_sd, mean_sd, ratio_ci
 
-__all__ = ["MEASURES", "THESIS", "headline", "report", "summarize", "verdict"]
+__all__ = ["MEASURES", "THESIS", "findings", "headline", "report", "summarize", "thesis_reduction", "verdict"]
 
 THESIS: dict[str, Any] = {
     "episodes": 20,
@@ -48,41 +49,79 @@ MEASURES = {
 }
 """The three measures, as the report titles them."""
 
+_KEYS = {"damage_normalized": "damage", "steps_until_threshold": "steps", "cells_explored": "cells"}
+_DIGITS = {"damage_normalized": 4, "steps_until_threshold": 2, "cells_explored": 2}
+
+
+def thesis_reduction(label: str) -> float:
+    """The damage reduction Table 3.1 implies for a novice type, %."""
+    without, with_ = THESIS["damage_normalized"][label]
+    return float(100.0 * (without - with_) / without)
+
+
+def _readings(metrics: Mapping[str, Any]) -> list[str]:
+    return list(metrics["readings"])
+
 
 def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """Mean and standard deviation of each measure per novice type and condition; damage normalised by the
-    largest damage of any one episode (any type, either condition), as in Figure 3.14."""
-    most = max(
-        r["novices"][label][condition]["damage"] for r in results for label in NOVICE_TYPES for condition in CONDITIONS
-    )
+    """Mean and standard deviation of each measure per novice type, without the caregiver and with it under
+    each reading; damage normalised by the largest damage of any one episode of the run (any type,
+    condition or reading), as in Figure 3.14; the damage reduction with its 95% CI (ratio of paired means,
+    delta method)."""
+    readings = list(results[0]["novices"][next(iter(NOVICE_TYPES))]["with"])
+    episodes_of: dict[str, dict[str, Any]] = {
+        label: {
+            "without": [r["novices"][label]["without"] for r in results],
+            "with": {name: [r["novices"][label]["with"][name] for r in results] for name in readings},
+        }
+        for label in NOVICE_TYPES
+    }
+    every = [
+        e
+        for label in NOVICE_TYPES
+        for e in (*episodes_of[label]["without"], *(x for n in readings for x in episodes_of[label]["with"][n]))
+    ]
+    most = max(e["damage"] for e in every)
     scale = most or 1
     measures: dict[str, Any] = {key: {} for key in MEASURES}
     reduction: dict[str, Any] = {}
     completed: dict[str, Any] = {}
-    for label in NOVICE_TYPES:
-        episodes = {c: [r["novices"][label][c] for r in results] for c in CONDITIONS}
-        measures["damage_normalized"][label] = {
-            c: mean_sd([e["damage"] / scale for e in episodes[c]], 4) for c in CONDITIONS
-        }
-        measures["steps_until_threshold"][label] = {c: mean_sd([e["steps"] for e in episodes[c]], 2) for c in CONDITIONS}
-        measures["cells_explored"][label] = {c: mean_sd([e["cells"] for e in episodes[c]], 2) for c in CONDITIONS}
-        without = sum(e["damage"] for e in episodes["without"])
-        with_ = sum(e["damage"] for e in episodes["with"])
-        reduction[label] = round(100.0 * (without - with_) / without, 1) if without else None
-        completed[label] = {c: sum(not e["reached_threshold"] for e in episodes[c]) for c in CONDITIONS}
     collisions: dict[str, Any] = {}
     for label in NOVICE_TYPES:
-        collisions[label] = {}
-        for c in CONDITIONS:
-            counts: dict[str, int] = {}
-            for r in results:
-                for kind, n in r["novices"][label][c]["collisions"].items():
-                    counts[kind] = counts.get(kind, 0) + n
-            collisions[label][c] = dict(sorted(counts.items()))
+        without, with_ = episodes_of[label]["without"], episodes_of[label]["with"]
+        for key, field in _KEYS.items():
+            factor = scale if key == "damage_normalized" else 1
+            measures[key][label] = {
+                "without": mean_sd([e[field] / factor for e in without], _DIGITS[key]),
+                "with": {
+                    name: mean_sd([e[field] / factor for e in with_[name]], _DIGITS[key]) for name in readings
+                },
+            }
+        reduction[label] = {}
+        for name in readings:
+            ratio = ratio_ci([e["damage"] for e in with_[name]], [e["damage"] for e in without], 6)
+            reduction[label][name] = (
+                {"percent": None, "low": None, "high": None}
+                if ratio["mean"] is None
+                else {
+                    "percent": round(100.0 * (1.0 - ratio["mean"]), 1),
+                    "low": None if ratio["high"] is None else round(100.0 * (1.0 - ratio["high"]), 1),
+                    "high": None if ratio["low"] is None else round(100.0 * (1.0 - ratio["low"]), 1),
+                }
+            )
+        completed[label] = {
+            "without": sum(not e["reached_threshold"] for e in without),
+            "with": {name: sum(not e["reached_threshold"] for e in with_[name]) for name in readings},
+        }
+        collisions[label] = {
+            "without": _collisions(without),
+            "with": {name: _collisions(with_[name]) for name in readings},
+        }
     return {
         "map": results[0]["map"],
         "episodes": len(results),
         "max_damage": most,
+        "memory": {name: MEMORIES[name] for name in readings},
         "novice_types": {label: epsilon for label, epsilon in NOVICE_TYPES.items()},
         "measures": measures,
         "damage_reduction_percent": reduction,
@@ -91,82 +130,140 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     }
 
 
+def _collisions(episodes: Sequence[Mapping[str, Any]]) -> dict[str, int]:
+    counts: dict[str, int] = {}
+    for e in episodes:
+        for kind, n in e["collisions"].items():
+            counts[kind] = counts.get(kind, 0) + n
+    return dict(sorted(counts.items()))
+
+
+def _reduction_text(entry: Mapping[str, Any]) -> str:
+    return format_ci({"mean": entry["percent"], "low": entry["low"], "high": entry["high"]}, 0) + " %"
+
+
+def _reduction_verdict(metrics: Mapping[str, Any], label: str) -> str:
+    readings = _readings(metrics)
+    theirs = thesis_reduction(label)
+
+    def holds(name: str) -> bool:
+        entry = metrics["damage_reduction_percent"][label][name]
+        return entry["low"] is not None and entry["low"] <= theirs <= entry["high"]
+
+    default = metrics["damage_reduction_percent"][label][readings[0]]
+    if holds(readings[0]):
+        return "reproduced (the thesis's value within the 95% CI)"
+    others = [name for name in readings[1:] if holds(name)]
+    side = "below" if (default["percent"] or 0) < theirs else "above"
+    tail = f"; within the CI under {', '.join(others)}" if others else ""
+    return f"not reproduced: default {side} the thesis{tail}"
+
+
 def verdict(metrics: Mapping[str, Any]) -> list[str]:
-    """Bullet lines on the thesis's trends, from this run's numbers."""
+    """Bullet lines on the thesis's trends, from this run's numbers, per reading."""
     labels = list(NOVICE_TYPES)
-    reduction = metrics["damage_reduction_percent"]
-    over_half = [label for label in labels if (reduction[label] or 0) > 50]
     steps = metrics["measures"]["steps_until_threshold"]
     cells = metrics["measures"]["cells_explored"]
-    longer = [label for label in labels if steps[label]["with"]["mean"] >= steps[label]["without"]["mean"]]
-    wider = [label for label in labels if cells[label]["with"]["mean"] > cells[label]["without"]["mean"]]
-    return [
-        f"* Damage falls by more than half with the caregiver for {len(over_half)} of {len(labels)} novice types "
-        f"({', '.join(f'{label} {reduction[label]:.0f} %' for label in labels if reduction[label] is not None)}; "
-        "thesis: 61–87 %, \"generally … by over 66%\").",
-        f"* Steps until the threshold rise or stay at the maximum for {len(longer)} of {len(labels)} types.",
-        f"* Coverage rises for {len(wider)} of {len(labels)} types"
-        + (f" (not: {', '.join(x for x in labels if x not in wider)})" if len(wider) < len(labels) else "")
-        + "; thesis: for all but the 5 %-random novice.",
-    ]
+    out = []
+    for name in _readings(metrics):
+        reduction = {label: metrics["damage_reduction_percent"][label][name] for label in labels}
+        over = [label for label in labels if (reduction[label]["percent"] or 0) > 66]
+        longer = [label for label in labels if steps[label]["with"][name]["mean"] >= steps[label]["without"]["mean"]]
+        wider = [label for label in labels if cells[label]["with"][name]["mean"] > cells[label]["without"]["mean"]]
+        out += [
+            f"* `{name}`: damage falls by more than 66 % for {len(over)} of {len(labels)} novice types "
+            f"({', '.join(f'{label} {_reduction_text(reduction[label])}' for label in labels)}; thesis: "
+            f"{', '.join(f'{thesis_reduction(label):.0f} %' for label in labels)}, \"generally … by over 66%\"); "
+            f"steps until the threshold rise or stay at the maximum for {len(longer)} of {len(labels)} types; "
+            f"coverage rises for {len(wider)} of {len(labels)}"
+            + (f" (not: {', '.join(x for x in labels if x not in wider)})" if len(wider) < len(labels) else "")
+            + " (thesis: for all but the 5 %-random novice).",
+        ]
+    return out
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """Markdown: each measure per novice type with and without the caregiver (mean ± sd), the thesis beside."""
+    """Markdown: each measure per novice type without the caregiver and with it under every reading (mean ±
+    sd), the thesis beside; damage reductions with 95% CIs."""
+    readings = _readings(metrics)
     lines = [
         "# Caregiver: keeping a novice safe while it explores (§3.5, Tables 3.1–3.3)",
         "",
         f"Map `{metrics['map']}`; {metrics['episodes']} episodes of {THESIS['steps']} steps per novice type and "
-        f"condition (the same seed with and without the caregiver); critical damage {THESIS['threshold']}. "
-        f"Damage is normalised by the largest damage of one episode in this run ({metrics['max_damage']}). "
-        "Mean ± standard deviation over episodes (the thesis's error bars), the thesis's mean beside.",
+        f"condition (thesis: {THESIS['episodes']}; the same seed without the caregiver and with it under every "
+        f"reading); critical damage {THESIS['threshold']}. Damage is normalised by the largest damage of one "
+        f"episode in this run ({metrics['max_damage']}). Mean ± standard deviation over episodes (the thesis's "
+        "error bars), the thesis's mean beside; damage reductions = 1 − mean damage with / without, with a 95% "
+        "confidence interval (paired episodes, delta method).",
+        "",
+        "## Readings: how much of the trajectory P(safe | τ) weighs",
+        "",
+        *readings_table(
+            READINGS, readings, "P(safe | τ)", ("memory γ", {n: f"{metrics['memory'][n]:g}" for n in readings})
+        ),
     ]
     for key, title in MEASURES.items():
-        digits = 4 if key == "damage_normalized" else 2
+        digits = _DIGITS[key]
         lines += [
             "",
             f"## {title}",
             "",
-            "| novice | no caregiver | thesis | with caregiver | thesis |",
-            "|---|---:|---:|---:|---:|",
+            "| novice | no caregiver | thesis | "
+            + " | ".join(f"with, `{name}`" for name in readings)
+            + " | thesis, with |",
+            "|---|---:|---:|" + "---:|" * len(readings) + "---:|",
         ]
         for label in NOVICE_TYPES:
             ours = metrics["measures"][key][label]
             theirs = THESIS[key][label]
-            lines.append(
-                f"| {label} | {format_sd(ours['without'], digits)} | {theirs[0]} | "
-                f"{format_sd(ours['with'], digits)} | {theirs[1]} |"
-            )
+            cells = " | ".join(format_sd(ours["with"][name], digits) for name in readings)
+            lines.append(f"| {label} | {format_sd(ours['without'], digits)} | {theirs[0]} | {cells} | {theirs[1]} |")
     lines += [
         "",
-        "## Damage reduction and completed episodes",
+        "## Damage reduction (95% CI) and completed episodes",
         "",
-        "| novice | damage reduction | thesis | episodes without reaching the threshold (no caregiver / with) |",
-        "|---|---:|---:|---:|",
+        "| novice | " + " | ".join(f"reduction, `{name}`" for name in readings) + " | thesis | "
+        "episodes not reaching the threshold: none / " + " / ".join(readings) + " |",
+        "|---|" + "---:|" * len(readings) + "---:|---:|",
     ]
     for label in NOVICE_TYPES:
-        theirs = THESIS["damage_normalized"][label]
-        thesis_reduction = 100.0 * (theirs[0] - theirs[1]) / theirs[0]
         done = metrics["episodes_completed"][label]
+        cells = " | ".join(_reduction_text(metrics["damage_reduction_percent"][label][name]) for name in readings)
         lines.append(
-            f"| {label} | {metrics['damage_reduction_percent'][label]} % | {thesis_reduction:.0f} % | "
-            f"{done['without']} / {done['with']} |"
+            f"| {label} | {cells} | {thesis_reduction(label):.0f} % | "
+            f"{done['without']} / " + " / ".join(str(done["with"][name]) for name in readings) + " |"
         )
     lines += ["", "## Verdict", "", *verdict(metrics), ""]
     return "\n".join(lines)
 
 
-def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
-    """Per novice type: normalised damage without → with the caregiver, beside Table 3.1."""
-    rows: list[HeadlineRow] = []
-    for label in NOVICE_TYPES:
-        ours = metrics["measures"]["damage_normalized"][label]
-        theirs = THESIS["damage_normalized"][label]
-        rows.append(
-            (
-                f"{label}: damage without → with",
-                f"{ours['without']['mean']:.3f} → {ours['with']['mean']:.3f}",
-                f"{theirs[0]:.3f} → {theirs[1]:.3f}",
-            )
+def findings(metrics: Mapping[str, Any]) -> list[Finding]:
+    """One row per novice type: the damage reduction under each reading, beside Table 3.1's."""
+    return [
+        Finding(
+            f"damage reduction, {label} novice",
+            f"{thesis_reduction(label):.0f} %",
+            tuple(
+                (name, _reduction_text(metrics["damage_reduction_percent"][label][name]))
+                for name in _readings(metrics)
+            ),
+            _reduction_verdict(metrics, label),
         )
-    return rows
+        for label in NOVICE_TYPES
+    ]
+
+
+def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
+    """Per novice type: the damage reduction under each reading, beside Table 3.1's."""
+    return [
+        (
+            f"{label}: damage reduction",
+            " · ".join(
+                f"{name} {metrics['damage_reduction_percent'][label][name]['percent']:.0f} %"
+                for name in _readings(metrics)
+                if metrics["damage_reduction_percent"][label][name]["percent"] is not None
+            ),
+            f"{thesis_reduction(label):.0f} %",
+        )
+        for label in NOVICE_TYPES
+    ]

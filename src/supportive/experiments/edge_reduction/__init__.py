@@ -20,7 +20,7 @@ from supportive.experiments.edge_reduction.measure import (
     task_for,
 )
 from supportive.experiments.edge_reduction.plots import plots
-from supportive.experiments.edge_reduction.report import THESIS, headline, report
+from supportive.experiments.edge_reduction.report import THESIS, findings, headline, report
 from supportive.experiments.edge_reduction.summary import summarize
 from supportive.experiments.registry import Experiment, register
 
@@ -30,6 +30,7 @@ __all__ = [
     "ORDERINGS_LIMIT",
     "SIZES",
     "THESIS",
+    "findings",
     "headline",
     "make_trials",
     "measure_task",
@@ -54,6 +55,7 @@ EDGE_REDUCTION = register(
         report=report,
         plots=plots,
         headline=headline,
+        findings=findings,
     )
 )
 """The registered experiment."""

@@ -22,6 +22,7 @@ from supportive.experiments.goal_inference.design import (
     make_trials,
     steps_for,
 )
+from supportive.experiments.goal_inference.findings import findings
 from supportive.experiments.goal_inference.measure import (
     measure_setting,
     measure_task,
@@ -77,6 +78,7 @@ GOAL_INFERENCE = register(
         plots=plots,
         headline=headline,
         timing_report=timing_report,
+        findings=findings,
     )
 )
 """The registered experiment."""

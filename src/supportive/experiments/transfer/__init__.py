@@ -14,7 +14,9 @@ from supportive.experiments.registry import Experiment, register
 from supportive.experiments.transfer.explore import TaskModel, execute, explore
 from supportive.experiments.transfer.measure import (
     CONDITIONS,
+    MACRO_CONDITIONS,
     MAX_EPISODES,
+    READINGS,
     SEEDS,
     STEP_CAP,
     make_trials,
@@ -22,12 +24,14 @@ from supportive.experiments.transfer.measure import (
     run_trial,
 )
 from supportive.experiments.transfer.plots import plots
-from supportive.experiments.transfer.report import CLAIM, THESIS, headline, report, summarize
+from supportive.experiments.transfer.report import CLAIM, THESIS, findings, headline, report, summarize
 
 __all__ = [
     "CLAIM",
     "CONDITIONS",
+    "MACRO_CONDITIONS",
     "MAX_EPISODES",
+    "READINGS",
     "SEEDS",
     "STEP_CAP",
     "THESIS",
@@ -35,6 +39,7 @@ __all__ = [
     "TaskModel",
     "execute",
     "explore",
+    "findings",
     "headline",
     "make_trials",
     "plots",
@@ -57,6 +62,8 @@ TRANSFER = register(
         report=report,
         plots=plots,
         headline=headline,
+        readings=READINGS,
+        findings=findings,
     )
 )
 """The registered experiment."""

@@ -2,10 +2,12 @@
 
 **The task SMDP.** A state is the set of the task's actions completed so far (a bitmask; every action of a
 transfer task occurs once). An episode starts from the empty state. At each state the agent picks one option
-of its dictionary: a primitive action (the 39 shared ones) or, in condition (c), a macro action (a sequence of
-primitives). A primitive that the task allows next (:func:`~supportive.tasks.htn.allowed_next`) advances the
-state; any other primitive *fails*: the step is spent and the state does not change. A macro performs its
-actions in order and stops at the first one that is not allowed (that one fails). An episode ends when the
+of its dictionary: a primitive action (the 39 shared ones) or, in condition (c), a macro action (a subtask
+performed as a sequence of primitives). A primitive that the task allows next
+(:func:`~supportive.tasks.htn.allowed_next`) advances the state; any other primitive *fails*: the step is
+spent and the state does not change. A macro performs one of its sequences in order and stops at the first
+action that is not allowed (that one fails): a macro with several sequences (a clique's, performing any
+admissible order of its subtask) draws one uniformly each time it is chosen, from the run's generator. An episode ends when the
 task is complete or after ``step_cap`` primitive attempts (a macro spends one attempt per action it tries).
 
 **Rewards.** ``FAIL`` (−1) for a failed primitive; ``STEP`` (−0.01) for a valid one, plus ``NOVELTY`` (+1)
@@ -45,6 +47,7 @@ __all__ = [
     "GAMMA",
     "NOVELTY",
     "START",
+    "ActionSequence",
     "ExplorationResult",
     "Option",
     "TaskModel",
@@ -69,8 +72,11 @@ COMPLETION = 1.0
 START = "<start>"
 """The feature of the empty state (no last action)."""
 
-Option = tuple[str, ...]
-"""An entry of the agent's dictionary: one primitive ``(a,)`` or a macro ``(a, b, …)``."""
+ActionSequence = tuple[str, ...]
+Option = tuple[ActionSequence, ...]
+"""An entry of the agent's dictionary, as the action sequences it may perform: a primitive ``((a,),)``, a
+macro that always runs one order ``((a, b, c),)``, or one that runs any of its admissible orders
+``((a, b, c), (a, c, b))`` (one drawn uniformly each time)."""
 
 
 @dataclass(frozen=True)
@@ -132,13 +138,13 @@ class Step:
 def execute(
     model: TaskModel,
     state: int,
-    option: Option,
+    option: ActionSequence,
     seen: set[tuple[int, str]],
     last: str,
     path: list[str],
     paths: set[tuple[str, ...]],
 ) -> Step:
-    """Perform ``option`` from ``state``: its primitives in order, stopping after the first one the task does
+    """Perform the action sequence ``option`` from ``state``: its primitives in order, stopping after the first one the task does
     not allow (which fails) or when the task is complete. ``seen`` (valid transitions performed so far) and
     ``path`` (the episode's primitives so far) are updated; ``last`` is the last action performed before;
     ``paths`` holds the orderings completed before.
@@ -216,7 +222,7 @@ def explore(
 
     Args:
         model: The task.
-        options: The agent's dictionary (primitives and macros).
+        options: The agent's dictionary (primitives and macros, each as the sequences it may perform).
         rng: The run's random numbers.
         initial: Feature (last action, or :data:`START`) -> initial Q values, one per option; missing
             features start at 0 (no transfer: ``None``).
@@ -232,7 +238,7 @@ def explore(
     graph = TaskGraph()
     paths: set[tuple[str, ...]] = set()
     completed = macro_uses = steps = 0
-    is_macro = [len(o) > 1 for o in options]
+    is_macro = [len(o[0]) > 1 for o in options]
 
     def row(state: int, last: str) -> list[float]:
         values = q.get(state)
@@ -252,7 +258,9 @@ def explore(
                 ties = [i for i, v in enumerate(values) if v >= best - 1e-12]
                 choice = ties[0] if len(ties) == 1 else ties[rng.randrange(len(ties))]
             macro_uses += is_macro[choice]
-            step = execute(model, state, options[choice], seen, last, path, paths)
+            sequences = options[choice]
+            sequence = sequences[0] if len(sequences) == 1 else sequences[rng.randrange(len(sequences))]
+            step = execute(model, state, sequence, seen, last, path, paths)
             spent += step.tried
             if step.state == model.full:
                 target = step.reward

@@ -5,8 +5,9 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
-from supportive.experiments.statistics import format_ci, mean_ci
+from supportive.experiments.statistics import below_zero, format_ci, mean_ci
 from supportive.experiments.transfer.explore import (
     ALPHA,
     COMPLETION,
@@ -16,10 +17,22 @@ from supportive.experiments.transfer.explore import (
     NOVELTY,
     STEP,
 )
-from supportive.experiments.transfer.measure import CONDITIONS
+from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS
 from supportive.experiments.transfer.sources import PRIOR_SCALE
 
-__all__ = ["CLAIM", "LABELS", "THESIS", "headline", "report", "summarize"]
+__all__ = [
+    "CLAIM",
+    "LABELS",
+    "THESIS",
+    "column",
+    "columns",
+    "findings",
+    "headline",
+    "label",
+    "pair",
+    "report",
+    "summarize",
+]
 
 CLAIM = (
     "the macro actions produced by the CC-HTNs allowed the agent to achieve full task comprehension faster "
@@ -46,7 +59,25 @@ LABELS = {
 """Report labels of the conditions."""
 
 PAIRS = (("cchtn", "q"), ("cchtn", "none"), ("q", "none"), ("cchtn_raw", "q_raw"), ("cchtn_raw", "none"))
-"""Paired comparisons reported: (first, second): in how many trials first needed fewer episodes."""
+"""Paired comparisons reported: (first, second): in how many trials first needed fewer episodes (a win),
+as many (a tie) or more (a loss)."""
+
+
+def column(condition: str, reading: str | None) -> str:
+    """The key of a condition under a reading in per-task and per-trial tables (``cchtn:any-order``);
+    conditions without macros have no reading."""
+    return condition if reading is None or condition not in MACRO_CONDITIONS else f"{condition}:{reading}"
+
+
+def columns(readings: Sequence[str]) -> list[str]:
+    """Every (condition, reading) column, in report order."""
+    return [column(c, r) for c in CONDITIONS for r in (readings if c in MACRO_CONDITIONS else [None])]
+
+
+def label(key: str) -> str:
+    """``(c) Q-function + CC-HTN macros, any-order`` for ``cchtn:any-order``."""
+    condition, _, reading = key.partition(":")
+    return f"{LABELS[condition]}, {reading}" if reading else LABELS[condition]
 
 
 def _episodes(run: Mapping[str, Any]) -> int:
@@ -54,83 +85,108 @@ def _episodes(run: Mapping[str, Any]) -> int:
     return int(run["episodes"] if run["episodes"] is not None else run["episodes_run"])
 
 
+def _runs(result: Mapping[str, Any]) -> dict[str, Mapping[str, Any]]:
+    """One trial's runs by column."""
+    out = dict(result["conditions"])
+    for reading, runs in result["readings"].items():
+        for condition, run in runs.items():
+            out[column(condition, reading)] = run
+    return out
+
+
+def _condition(runs: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    return {
+        "episodes": mean_ci([_episodes(run) for run in runs], digits=2, bounds=(0.0, 1e12)),
+        "censored": sum(run["censored"] for run in runs),
+        "macros": round(sum(run["macros"] for run in runs) / len(runs), 2),
+        "macro_uses": round(sum(run["macro_uses"] for run in runs) / len(runs), 2),
+        "steps": round(sum(run["steps"] for run in runs) / len(runs), 1),
+    }
+
+
+def _pair(first: str, second: str, trials: Sequence[Mapping[str, Mapping[str, Any]]]) -> dict[str, Any]:
+    a = [_episodes(t[first]) for t in trials]
+    b = [_episodes(t[second]) for t in trials]
+    return {
+        "first": first,
+        "second": second,
+        "difference": mean_ci([x - y for x, y in zip(a, b, strict=True)], 2),
+        "wins": sum(x < y for x, y in zip(a, b, strict=True)),
+        "ties": sum(x == y for x, y in zip(a, b, strict=True)),
+        "losses": sum(x > y for x, y in zip(a, b, strict=True)),
+        "trials": len(trials),
+    }
+
+
 def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """Means with 95% CIs per condition, paired win counts, per-task means and per-trial episodes."""
-    conditions = {}
-    for c in CONDITIONS:
-        runs = [r["conditions"][c] for r in results]
-        conditions[c] = {
-            "episodes": mean_ci([_episodes(run) for run in runs], digits=2, bounds=(0.0, 1e12)),
-            "censored": sum(run["censored"] for run in runs),
-            "macros": round(sum(run["macros"] for run in runs) / len(runs), 2),
-            "macro_uses": round(sum(run["macro_uses"] for run in runs) / len(runs), 2),
-            "steps": round(sum(run["steps"] for run in runs) / len(runs), 1),
-        }
+    """Means with 95% CIs per condition (and reading), per-trial wins/ties/losses, per-task means and
+    per-trial episodes."""
+    readings = list(results[0]["readings"])
+    trials = [_runs(r) for r in results]
+    keys = columns(readings)
     pairs = []
     for first, second in PAIRS:
-        a = [_episodes(r["conditions"][first]) for r in results]
-        b = [_episodes(r["conditions"][second]) for r in results]
-        pairs.append(
-            {
-                "first": first,
-                "second": second,
-                "fewer": sum(x < y for x, y in zip(a, b, strict=True)),
-                "equal": sum(x == y for x, y in zip(a, b, strict=True)),
-                "more": sum(x > y for x, y in zip(a, b, strict=True)),
-                "trials": len(results),
-            }
-        )
+        for reading in readings if first in MACRO_CONDITIONS else [None]:
+            pairs.append(_pair(column(first, reading), column(second, reading), trials))
+    for condition in MACRO_CONDITIONS:
+        for i, reading in enumerate(readings):
+            for other in readings[i + 1 :]:
+                pairs.append(_pair(column(condition, reading), column(condition, other), trials))
     tasks: dict[str, dict[str, Any]] = {}
-    for r in results:
+    for r, runs in zip(results, trials, strict=True):
         t = tasks.setdefault(
             r["task"], {"task": r["task"], "actions": r["actions"], "orderings": r["orderings"], "runs": []}
         )
-        t["runs"].append({c: _episodes(r["conditions"][c]) for c in CONDITIONS})
+        t["runs"].append({key: _episodes(runs[key]) for key in keys})
     per_task = [
         {
             "task": t["task"],
             "actions": t["actions"],
             "orderings": t["orderings"],
             "trials": len(t["runs"]),
-            "episodes": {c: round(sum(run[c] for run in t["runs"]) / len(t["runs"]), 2) for c in CONDITIONS},
+            "episodes": {key: round(sum(run[key] for run in t["runs"]) / len(t["runs"]), 2) for key in keys},
         }
         for _, t in sorted(tasks.items())
     ]
     return {
-        "conditions": conditions,
+        "columns": keys,
+        "conditions": {key: _condition([runs[key] for runs in trials]) for key in keys},
         "pairs": pairs,
         "tasks": per_task,
         "runs": [
-            {
-                "task": r["task"],
-                "repeat": r["repeat"],
-                **{c: r["conditions"][c]["episodes"] for c in CONDITIONS},
-            }
-            for r in results
+            {"task": r["task"], "repeat": r["repeat"], **{key: runs[key]["episodes"] for key in keys}}
+            for r, runs in zip(results, trials, strict=True)
         ],
     }
 
 
-def _pair(metrics: Mapping[str, Any], first: str, second: str) -> Mapping[str, Any]:
+def pair(metrics: Mapping[str, Any], first: str, second: str) -> Mapping[str, Any]:
+    """The paired comparison of columns ``first`` and ``second``."""
     return next(p for p in metrics["pairs"] if p["first"] == first and p["second"] == second)
 
 
-def verdict(metrics: Mapping[str, Any]) -> str:
-    """Does (c) beat (a) and (b) in every trial?"""
-    vs_q, vs_none = _pair(metrics, "cchtn", "q"), _pair(metrics, "cchtn", "none")
+def _readings(metrics: Mapping[str, Any]) -> list[str]:
+    return list(metrics["readings"])
+
+
+def verdict(metrics: Mapping[str, Any], reading: str) -> str:
+    """Does (c) beat (a) and (b) in every trial, under ``reading``?"""
+    vs_q = pair(metrics, column("cchtn", reading), "q")
+    vs_none = pair(metrics, column("cchtn", reading), "none")
     n = metrics["trials"]
-    if vs_q["fewer"] == n and vs_none["fewer"] == n:
-        return f"**Holds**: (c) needed fewer episodes than both (a) and (b) in all {n} trials."
+    if vs_q["wins"] == n and vs_none["wins"] == n:
+        return f"**Holds** (`{reading}`): (c) needed fewer episodes than both (a) and (b) in all {n} trials."
     return (
-        f"**Not reproduced**: (c) needed fewer episodes than (b) in {vs_q['fewer']} of {n} trials "
-        f"({vs_q['equal']} equal, {vs_q['more']} more) and fewer than (a) in {vs_none['fewer']} of {n} "
-        f"({vs_none['equal']} equal, {vs_none['more']} more)."
+        f"**Not reproduced** (`{reading}`): (c) needed fewer episodes than (b) in {vs_q['wins']} of {n} trials "
+        f"({vs_q['ties']} ties, {vs_q['losses']} losses) and than (a) in {vs_none['wins']} of {n} "
+        f"({vs_none['ties']} ties, {vs_none['losses']} losses)."
     )
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report: this run beside the thesis's claim."""
+    """The markdown report: this run beside the thesis's claim, every reading side by side."""
     m = metrics
+    readings = _readings(m)
     lines = [
         "# Transfer: task exploration with Q-function and CC-HTN transfer (§2.1.7.4, Figure 2.6)",
         "",
@@ -140,14 +196,14 @@ def report(metrics: Mapping[str, Any]) -> str:
         f'actions added. Claim: "{CLAIM}". Figure 2.6 prints no numbers.',
         "",
         "**This run.** Leave-one-out over the 25 transfer tasks (`supportive.examples.food.load_transfer`); "
-        f"{m['trials']} trials, one (task, seed) each, every condition explored with its own seed. A state is "
-        "the set of completed actions; a primitive the task does not allow next fails (the step is spent, the "
-        "state kept); a macro runs its actions in order and stops at the first disallowed one. Q-learning "
-        f"(α {ALPHA}, γ {GAMMA}, ε {EPSILON}); rewards {FAIL:+g} for a failure, {STEP:+g} for a valid step, "
-        f"{NOVELTY:+g} more for a transition never performed before and {COMPLETION:+g} more for completing "
-        "along a new ordering. Comprehension: the completed episodes' task graph has as many paths as the "
-        "task has valid orderings. Iterations = episodes until then (a censored run counts as its budget, "
-        "a lower bound: see the censored column).",
+        f"{m['trials']} trials, one (task, seed) each, every condition explored with its own seed (the same "
+        "under every reading). A state is the set of completed actions; a primitive the task does not allow "
+        "next fails (the step is spent, the state kept); a macro runs one of its sequences and stops at the "
+        f"first disallowed action. Q-learning (α {ALPHA}, γ {GAMMA}, ε {EPSILON}); rewards {FAIL:+g} for a "
+        f"failure, {STEP:+g} for a valid step, {NOVELTY:+g} more for a transition never performed before and "
+        f"{COMPLETION:+g} more for completing along a new ordering. Comprehension: the completed episodes' "
+        "task graph has as many paths as the task has valid orderings. Iterations = episodes until then (a "
+        "censored run counts as its budget, a lower bound: see the censored column).",
         "",
         "Q-function transfer: the other tasks' converged Q-functions (exact, by value iteration), as "
         "advantages Q − V, aggregated by the last action performed (max over the other tasks' states with that "
@@ -156,54 +212,122 @@ def report(metrics: Mapping[str, Any]) -> str:
         "the chains and cliques (≥ 2 actions) of the CC-HTNs learned from all valid orderings of the other "
         "tasks, when every action of the macro belongs to the task.",
         "",
+        "## Readings: what a CC-HTN macro performs",
+        "",
+        *readings_table(READINGS, readings, "a macro performs"),
+        "",
+        "## Episodes to full comprehension",
+        "",
         "| condition | episodes to comprehension, mean [95% CI] | censored | macros in dictionary | macro uses | "
         "primitive attempts |",
         "|---|---:|---:|---:|---:|---:|",
     ]
-    for c in CONDITIONS:
-        s = m["conditions"][c]
+    for key in m["columns"]:
+        s = m["conditions"][key]
         lines.append(
-            f"| {LABELS[c]} | {format_ci(s['episodes'], 1)} | {s['censored']} | {s['macros']:g} | "
+            f"| {label(key)} | {format_ci(s['episodes'], 1)} | {s['censored']} | {s['macros']:g} | "
             f"{s['macro_uses']:g} | {s['steps']:g} |"
         )
     lines += [
         "",
-        "| comparison | fewer episodes | equal | more |",
-        "|---|---:|---:|---:|",
+        "## Trial by trial: wins, ties and losses",
+        "",
+        "| comparison | wins (fewer episodes) | ties | losses (more) | mean difference in episodes [95% CI] |",
+        "|---|---:|---:|---:|---:|",
     ]
     for p in m["pairs"]:
         lines.append(
-            f"| {LABELS[p['first']]} vs {LABELS[p['second']]} | {p['fewer']} of {p['trials']} | "
-            f"{p['equal']} | {p['more']} |"
+            f"| {label(p['first'])} vs {label(p['second'])} | {p['wins']} of {p['trials']} | {p['ties']} | "
+            f"{p['losses']} | {format_ci(p['difference'], 1, signed=True)} |"
         )
+    lines += ["", "| the thesis | this run |", "|---|---|"]
+    for reading in readings:
+        lines.append(f'| "{CLAIM}" | {verdict(m, reading)} |')
     lines += [
-        "",
-        "| the thesis | this run |",
-        "|---|---|",
-        f'| "{CLAIM}" | {verdict(m)} |',
         "",
         "Per task (mean episodes over its trials):",
         "",
-        "| task | actions | orderings | " + " | ".join(LABELS[c] for c in CONDITIONS) + " |",
-        "|---|---:|---:|" + "---:|" * len(CONDITIONS),
+        "| task | actions | orderings | " + " | ".join(label(k) for k in m["columns"]) + " |",
+        "|---|---:|---:|" + "---:|" * len(m["columns"]),
     ]
     for t in m["tasks"]:
         lines.append(
             f"| {t['task']} | {t['actions']} | {t['orderings']} | "
-            + " | ".join(f"{t['episodes'][c]:g}" for c in CONDITIONS)
+            + " | ".join(f"{t['episodes'][k]:g}" for k in m["columns"])
             + " |"
         )
     lines.append("")
     return "\n".join(lines)
 
 
+def findings(metrics: Mapping[str, Any]) -> list[Finding]:
+    """The summary rows: mean episodes (a)/(b)/(c), and (c)'s wins over (b) and (a), per reading."""
+    n = metrics["trials"]
+    readings = _readings(metrics)
+
+    def mean(key: str) -> str:
+        return f"{metrics['conditions'][key]['episodes']['mean']:.1f}"
+
+    episodes = tuple((r, f"{mean('none')} / {mean('q')} / {mean(column('cchtn', r))}") for r in readings)
+    wins = tuple(
+        (
+            r,
+            f"{pair(metrics, column('cchtn', r), 'q')['wins']}/{n} vs (b), "
+            f"{pair(metrics, column('cchtn', r), 'none')['wins']}/{n} vs (a)",
+        )
+        for r in readings
+    )
+    every = {
+        r: pair(metrics, column("cchtn", r), "q")["wins"]
+        == n
+        == pair(metrics, column("cchtn", r), "none")["wins"]
+        for r in readings
+    }
+    faster = {
+        r: all(below_zero(pair(metrics, column("cchtn", r), c)["difference"]) for c in ("q", "none"))
+        for r in readings
+    }
+    if every[readings[0]]:
+        claim = "reproduced"
+    else:
+        best = max(readings, key=lambda r: pair(metrics, column("cchtn", r), "q")["wins"])
+        claim = (
+            f"not reproduced: (c) wins {pair(metrics, column('cchtn', best), 'q')['wins']} of {n} against (b) at "
+            f"best ({best}), not every trial"
+        )
+    means = (
+        "(c) faster than (a) and (b) on average (paired differences' 95% CIs below 0)" if faster[readings[0]]
+        else "(c) not faster than both on average (a paired difference's CI reaches 0)" + (
+            f"; under {', '.join(r for r in readings if faster[r])} it is" if any(faster.values()) else ""
+        )
+    )  # fmt: skip
+    return [
+        Finding("episodes to comprehension, (a) / (b) / (c)", "plotted, no values", episodes, means),
+        Finding("trials in which (c) needs fewer episodes", "every trial", wins, claim),
+    ]
+
+
 def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     """Mean episodes per condition and the (c) win counts, beside the thesis."""
     n = metrics["trials"]
     rows: list[HeadlineRow] = [
-        (f"episodes, {LABELS[c]}", format_ci(metrics["conditions"][c]["episodes"], 1), "plotted, no values")
-        for c in ("none", "q", "cchtn")
+        (f"episodes, {label(k)}", format_ci(metrics["conditions"][k]["episodes"], 1), "plotted, no values")
+        for k in metrics["columns"]
+        if k.partition(":")[0] in ("none", "q", "cchtn")
     ]
-    rows.append(("trials (c) < (b)", f"{_pair(metrics, 'cchtn', 'q')['fewer']} of {n}", "every trial"))
-    rows.append(("trials (c) < (a)", f"{_pair(metrics, 'cchtn', 'none')['fewer']} of {n}", "every trial"))
+    for reading in _readings(metrics):
+        rows.append(
+            (
+                f"trials (c) < (b), {reading}",
+                f"{pair(metrics, column('cchtn', reading), 'q')['wins']} of {n}",
+                "every trial",
+            )
+        )
+        rows.append(
+            (
+                f"trials (c) < (a), {reading}",
+                f"{pair(metrics, column('cchtn', reading), 'none')['wins']} of {n}",
+                "every trial",
+            )
+        )
     return rows

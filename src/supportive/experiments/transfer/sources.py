@@ -19,7 +19,10 @@ reached it; features no other task has start at 0.
 :func:`~supportive.learning.macros.macro_library` collects their chains and cliques (each subtask once, at
 least two actions). Condition (c) adds those :meth:`~supportive.learning.macros.MacroAction.applicable` to
 the target (every action of the macro is one of the target's) to the agent's dictionary, and the other
-tasks' Q-functions are computed with the same dictionary, so macros get transferred initial values too.
+tasks' Q-functions are computed with the same dictionary, so macros get transferred initial values too. A
+macro performs any admissible order of its subtask (one drawn uniformly each time; at most 24 per macro
+here) or, in the ``fixed-order`` reading, always the one order ``MacroAction.actions``
+(:func:`macro_option`).
 """
 
 from __future__ import annotations
@@ -50,6 +53,7 @@ __all__ = [
     "PRIOR_SCALE",
     "aggregate",
     "dictionary",
+    "macro_option",
     "macros_for",
     "source_q",
     "task_model",
@@ -91,32 +95,60 @@ def macros_for(target: str) -> tuple[MacroAction, ...]:
 
 @cache
 def source_q(name: str, options: tuple[Option, ...]) -> dict[int, list[float]]:
-    """The converged Q-function of task ``name`` for the dictionary ``options`` (no novelty), per state."""
+    """The converged Q-function of task ``name`` for the dictionary ``options`` (no novelty), per state.
+
+    An option with several sequences (a macro performing any admissible order) is worth the mean over its
+    sequences, drawn uniformly; a sequence whose first action fails leaves the state unchanged
+    (``FAIL + γ V(s)``), so ``V(s)`` is found as the fixed point of ``V = max_o Q(s, o)`` (a contraction;
+    with one sequence per option it is reached at once, from the best option that always progresses)."""
     model = task_model(name)
     value: dict[int, float] = {model.full: 0.0}
     q: dict[int, list[float]] = {}
     for state in sorted(model.allowed, key=lambda s: -s.bit_count()):
         if state == model.full:
             continue
-        row: list[float | None] = []
+        parts: list[tuple[float, int, int]] = []  # per option: sum over progressing sequences, count, failing
         for option in options:
-            reward, discount, current = 0.0, 1.0, state
-            for action in option:
-                bit = model.allowed[current].get(action)
-                if bit is None:
-                    reward += discount * FAIL
-                    discount *= GAMMA
-                    break
-                current |= bit
-                reward += discount * STEP
-                discount *= GAMMA
-                if current == model.full:
-                    break
-            row.append(None if current == state else reward + discount * value[current])
-        best = max(v for v in row if v is not None)
+            total, fails = 0.0, 0
+            for sequence in option:
+                worth = _sequence_value(model, state, sequence, value)
+                if worth is None:
+                    fails += 1
+                else:
+                    total += worth
+            parts.append((total, len(option) - fails, fails))
+        best = max(total / count for total, count, fails in parts if count and not fails)
+        mixed = [part for part in parts if part[1] and part[2]]
+        for _ in range(200):
+            stay = FAIL + GAMMA * best
+            new = max([best, *((total + fails * stay) / (count + fails) for total, count, fails in mixed)])
+            if abs(new - best) <= 1e-13:
+                break
+            best = new
         value[state] = best
-        q[state] = [FAIL + GAMMA * best if v is None else v for v in row]
+        stay = FAIL + GAMMA * best
+        q[state] = [(total + fails * stay) / (count + fails) for total, count, fails in parts]
     return q
+
+
+def _sequence_value(
+    model: TaskModel, state: int, sequence: tuple[str, ...], value: dict[int, float]
+) -> float | None:
+    """Discounted rewards of performing ``sequence`` from ``state`` plus the value where it stops; None when
+    its first action fails (the state does not change)."""
+    reward, discount, current = 0.0, 1.0, state
+    for action in sequence:
+        bit = model.allowed[current].get(action)
+        if bit is None:
+            reward += discount * FAIL
+            discount *= GAMMA
+            break
+        current |= bit
+        reward += discount * STEP
+        discount *= GAMMA
+        if current == model.full:
+            break
+    return None if current == state else reward + discount * value[current]
 
 
 def _lasts(model: TaskModel) -> dict[int, list[str]]:
@@ -175,12 +207,27 @@ def aggregate(
 
 @cache
 def transfer_initial(
-    target: str, with_macros: bool, how: str = "max", scale: float = PRIOR_SCALE
+    target: str, with_macros: bool, how: str = "max", scale: float = PRIOR_SCALE, order: str = "any"
 ) -> tuple[tuple[Option, ...], dict[str, list[float]]]:
     """The dictionary and the initial Q values for ``target`` (leave-one-out over the transfer tasks):
-    condition (b) without macros, (c) with them."""
-    options: tuple[Option, ...] = tuple((a,) for a in dictionary())
+    condition (b) without macros, (c) with them; ``order`` says what a macro performs (:func:`macro_option`).
+    """
+    options: tuple[Option, ...] = tuple(((a,),) for a in dictionary())
     if with_macros:
-        options += tuple(dict.fromkeys(m.actions for m in macros_for(target)))
+        options += tuple(dict.fromkeys(macro_option(m, order) for m in macros_for(target)))
     sources = [n for n in transfer_names() if n != target]
     return options, aggregate(sources, options, how, scale)
+
+
+def macro_option(macro: MacroAction, order: str) -> Option:
+    """A macro as a dictionary entry: ``"any"``, every admissible order of its subtask (a clique's children
+    in any order, one drawn each time it is used); ``"fixed"``, always the one order ``macro.actions``.
+
+    Raises:
+        ValueError: for another ``order``.
+    """
+    if order == "fixed":
+        return (macro.actions,)
+    if order == "any":
+        return tuple(macro.sequences())
+    raise ValueError(f"macro order must be 'any' or 'fixed', not {order!r}")
