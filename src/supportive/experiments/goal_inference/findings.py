@@ -26,6 +26,28 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
         verdict = "no difference at this size of run"
     largest = metrics["sizes"][-1]
     entries = largest["operator_entries"]
+    progress = accuracy.get("progress_difference", {}).get("subgoal")
+    sizes_ahead = [
+        row for row in metrics["sizes"] if row.get("progress_difference", {}).get(hardest["key"], {}).get("mean", 0) > 0
+    ]
+    extra: list[Finding] = []
+    if progress is not None:
+        extra.append(
+            Finding(
+                f"subgoal accuracy, progress-aware tracker − hierarchical, overlap {hardest['overlap']:g} "
+                f"{hardest['noise']}",
+                "– (issue #14)",
+                (
+                    (
+                        "",
+                        f"{accuracy['progress']['subgoal']['mean']:.3f} vs {accuracy['hierarchical']['subgoal']['mean']:.3f} "
+                        f"({format_ci(progress, 3, signed=True)}); ahead in {len(sizes_ahead)} of "
+                        f"{len(metrics['sizes'])} sizes",
+                    ),
+                ),
+                "progress-aware ahead" if above_zero(progress) else "no difference at this size of run",
+            )
+        )
     return [
         Finding(
             f"subgoal accuracy, flat / hierarchical (Δ), overlap {hardest['overlap']:g} {hardest['noise']}",
@@ -47,4 +69,5 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
             if entries["hierarchical"] < entries["flat"]
             else "no benefit at these sizes",
         ),
+        *extra,
     ]
