@@ -19,9 +19,9 @@ import statistics
 import time
 from pathlib import Path
 
-from supportive.envs.household import EpsilonGreedyNovice, HouseholdWorld, load_map
 from supportive.experiments import run_experiment
 from supportive.safety import Caregiver, map_model
+from supportive.worlds.household import EpsilonGreedyNovice, HouseholdWorld, load_map
 
 EXPERIMENT_TARGET_SECONDS = 30.0
 FULL_TARGET_SECONDS = 180.0

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from supportive.envs.household import load_map
 from supportive.errors import ExportError, MissingExtraError
 from supportive.safety.episode import run_episode
 from supportive.safety.render import GIF_SIGNATURE, write_gif
+from supportive.worlds.household import load_map
 
 RUN = ["caregiver", "--map", "playroom", "--novice", "0.5", "--seed", "1", "--steps", "5"]
 

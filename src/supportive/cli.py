@@ -341,9 +341,9 @@ def captaincook(
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph."""
+    from supportive.experiments.captaincook.recipes import captaincook_report, recipe_means
     from supportive.io.captaincook import load_captaincook
     from supportive.io.tables import fitted_table
-    from supportive.learning.precedence import captaincook_report
 
     reports = captaincook_report(load_captaincook(data))
     if as_json:
@@ -366,13 +366,10 @@ def captaincook(
     ]
     title = "CaptainCook4D: implied precedences vs the published task graphs"
     out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
-    mean = {
-        k: sum(getattr(r.score, k) for r in reports) / len(reports) for k in ("precision", "recall", "f1")
-    }
+    means = recipe_means(reports)
     out.print(
-        f"mean over {len(reports)} recipes: precision {mean['precision']:.3f}, recall {mean['recall']:.3f}, "
-        f"F1 {mean['f1']:.3f}; every learned model admits all its recordings: "
-        f"{all(r.admits_demonstrations for r in reports)}"
+        f"mean over {means.recipes} recipes: precision {means.precision:.3f}, recall {means.recall:.3f}, "
+        f"F1 {means.f1:.3f}; every learned model admits all its recordings: {means.all_admitted}"
     )
 
 
@@ -515,9 +512,9 @@ def caregiver(
 
     from rich.live import Live
 
-    from supportive.envs.household import load_map
     from supportive.safety.episode import THRESHOLD, run_episode
     from supportive.safety.render import LEGEND, render_frame, summary, write_gif
+    from supportive.worlds.household import load_map
 
     if not 0.0 <= novice <= 1.0:
         raise ExperimentError(f"--novice: ε must be in [0, 1] (the share of random moves), got {novice}")

@@ -13,7 +13,6 @@ from rich.panel import Panel
 from rich.table import Table
 
 from supportive import examples
-from supportive.envs.household import Collision, load_map
 from supportive.errors import LearningError
 from supportive.inference import ObservationModel, ProgressHMM
 from supportive.io.tables import fitted_table
@@ -21,7 +20,6 @@ from supportive.io.tree import htn_tree
 from supportive.learning.active import QuerySchedule, TeachingSession, run_session
 from supportive.learning.instructors import SimulatedInstructor
 from supportive.learning.learner import HTNLearner, learn
-from supportive.learning.naming import known_names
 from supportive.learning.precedence import implied_precedences
 from supportive.safety.episode import Frame, run_episode
 from supportive.safety.render import LEGEND, render_frame
@@ -36,8 +34,10 @@ from supportive.tasks.htn import (
     internal_nodes,
     to_leaves,
 )
+from supportive.tasks.naming import known_names
 from supportive.tasks.spec import TaskSpec
 from supportive.teach import ask_in_words
+from supportive.worlds.household import Collision, load_map
 
 __all__ = [
     "CaregiverContrast",

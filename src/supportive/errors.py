@@ -8,9 +8,12 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Literal
 
 __all__ = [
     "BagError",
+    "BoardError",
+    "BoardRefusal",
     "CircuitError",
     "DatasetError",
     "ExperimentError",
@@ -124,6 +127,26 @@ class CircuitError(PlanningError):
 class SocialError(SupportiveError, ValueError):
     """Social force or a role policy was given input it cannot use (a sample out of time order, a non-finite
     position, a threshold out of range, a subtask both claimed by another agent and one's own, …)."""
+
+
+BoardRefusal = Literal["invalid", "forbidden", "missing", "conflict"]
+"""Why the task board refuses an operation."""
+
+
+class BoardError(SupportiveError):
+    """An operation the task board refuses (the service answers it with an HTTP status of its choosing).
+
+    Args:
+        reason: Why: ``"invalid"`` a malformed operation (an unknown operation, progress outside [0, 1], a
+            lead-only name that is no subtask's), ``"forbidden"`` the agent's role may not, ``"missing"`` no
+            such node, ``"conflict"`` the board's state does not allow it now.
+        message: What was wrong, for people.
+    """
+
+    def __init__(self, reason: BoardRefusal, message: str) -> None:
+        self.reason: BoardRefusal = reason
+        self.message = message
+        super().__init__(message)
 
 
 class DatasetError(SupportiveError, ValueError):

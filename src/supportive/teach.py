@@ -21,8 +21,8 @@ from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
 from supportive.learning.active import QuerySchedule, TeachingSession
 from supportive.learning.learner import HTNLearner
-from supportive.learning.naming import known_names
 from supportive.tasks.htn import leaf_actions
+from supportive.tasks.naming import known_names
 from supportive.tasks.spec import Demonstration, TaskSpec
 
 __all__ = ["Repertoire", "TeachingConsole", "ask_in_words"]

@@ -13,7 +13,10 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 from pettingzoo.test import parallel_api_test, parallel_seed_test
 
-from supportive.envs.household import (
+from supportive.envs.household.encoding import CODE_CHARS, MAX_CODE, CellCode, encode, render_codes
+from supportive.envs.household.gym_env import ENV_ID, NoviceEnv, register_envs
+from supportive.envs.household.parallel_env import HouseholdParallelEnv, parallel_env
+from supportive.worlds.household import (
     CAREGIVER_ACTIONS,
     DAMAGE,
     NOVICE_ACTIONS,
@@ -21,9 +24,6 @@ from supportive.envs.household import (
     map_names,
     parse_map,
 )
-from supportive.envs.household.encoding import CODE_CHARS, MAX_CODE, CellCode, encode, render_codes
-from supportive.envs.household.gym_env import ENV_ID, NoviceEnv, register_envs
-from supportive.envs.household.parallel_env import HouseholdParallelEnv, parallel_env
 
 NORTH, EAST, SOUTH, WEST = range(4)
 C = {name: CAREGIVER_ACTIONS.index(name) for name in CAREGIVER_ACTIONS}

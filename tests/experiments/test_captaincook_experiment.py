@@ -17,10 +17,10 @@ from supportive.experiments.captaincook import (
     run_trial,
     summarize,
 )
+from supportive.experiments.captaincook.recipes import compare_recipe
 from supportive.experiments.registry import register, unregister
 from supportive.io.captaincook import load_captaincook, load_recipe
 from supportive.learning.instructors import SimulatedInstructor, demonstrate
-from supportive.learning.precedence import compare_recipe
 from supportive.tasks.htn import to_leaves
 
 SUBSET = ("zoodles", "panfriedtofu", "coffee")

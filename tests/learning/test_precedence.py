@@ -8,14 +8,10 @@ from collections.abc import Iterator, Sequence
 import numpy as np
 import pytest
 
+from supportive.experiments.captaincook.recipes import captaincook_report, compare_recipe
 from supportive.io.captaincook import Recipe, load_captaincook
 from supportive.learning.learner import learn
-from supportive.learning.precedence import (
-    captaincook_report,
-    compare_recipe,
-    implied_precedences,
-    precedence_scores,
-)
+from supportive.learning.precedence import implied_precedences, precedence_scores
 from supportive.tasks.htn import (
     HTN,
     ActionNode,

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from supportive.envs.household import HouseholdWorld, MapDistances, load_map, map_names, parse_map
 from supportive.safety import ActionPriors, Caregiver, run_episode
+from supportive.worlds.household import HouseholdWorld, MapDistances, load_map, map_names, parse_map
 
 
 def _carer(text: str, **options: float) -> tuple[Caregiver, MapDistances]:

@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.envs.household import MOVES, HouseholdWorld, MapDistances, load_map, parse_map
 from supportive.safety import ActionPriors, DangerModel, SafetyEstimate
+from supportive.worlds.household import MOVES, HouseholdWorld, MapDistances, load_map, parse_map
 
 # Two bins at the ends of a corridor:  B . . . B  — row 1, columns 1..5.
 CORRIDOR = "#######\n#B...B#\n#######\n"

@@ -10,7 +10,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.social.board import BoardError, TaskBoard
+from supportive.errors import BoardError
+from supportive.service.statuses import board_status
+from supportive.social.board import TaskBoard
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node
 
 # n0 chain "Chair"
@@ -36,7 +38,7 @@ def chair() -> TaskBoard:
 def refused(status: int, text: str, operation: object, *args: object) -> None:
     with pytest.raises(BoardError) as caught:
         operation(*args)  # type: ignore[operator]
-    assert caught.value.status == status and text in caught.value.message
+    assert board_status(caught.value) == status and text in caught.value.message
 
 
 def test_an_assistant_may_not_claim_a_lead_only_node() -> None:

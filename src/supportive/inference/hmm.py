@@ -25,8 +25,8 @@ import numpy as np
 from supportive.errors import LearningError
 from supportive.inference.observations import ObservationModel
 from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions, TaskLayout
-from supportive.learning.naming import named
 from supportive.tasks.htn import HTN, ActionNode, Leaf
+from supportive.tasks.naming import named
 
 __all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM"]
 

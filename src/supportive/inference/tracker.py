@@ -36,9 +36,9 @@ from supportive.inference.observations import ObservationModel
 from supportive.inference.progress import END, ProgressModel
 from supportive.inference.progress_matrices import ProgressMatrices
 from supportive.inference.transitions import TaskLayout
-from supportive.learning.naming import named
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode
+from supportive.tasks.naming import named
 
 __all__ = ["END_LABEL", "ProgressBelief", "ProgressFilter", "ProgressHMM"]
 

@@ -21,8 +21,8 @@ from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
 from supportive.learning.deviations import Deviation
 from supportive.learning.general import GeneralSettings, learn_general
-from supportive.learning.naming import known_names, named
 from supportive.tasks.htn import HTN, Leaf
+from supportive.tasks.naming import known_names, named
 from supportive.tasks.spec import Demonstration, TaskSpec
 from supportive.tasks.task_graph import TaskGraph
 

@@ -11,7 +11,6 @@ from collections.abc import Collection, Iterable, Iterator
 from dataclasses import dataclass
 from itertools import islice
 
-from supportive.learning.naming import named
 from supportive.seeding import Seed
 from supportive.tasks.htn import (
     HTN,
@@ -22,6 +21,7 @@ from supportive.tasks.htn import (
     iter_orderings,
     sample_ordering,
 )
+from supportive.tasks.naming import named
 
 __all__ = ["MacroAction", "macro_actions", "macro_library"]
 

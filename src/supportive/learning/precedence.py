@@ -5,29 +5,20 @@ tree that happens exactly when the lowest common ancestor of the two leaves is a
 comes first (a clique lets its children go in any order). Between the roots of a partial hierarchy it happens
 when every path of the top-level graph that performs ``b``'s root has performed ``a``'s root before.
 
-Used to score hierarchies learned from CaptainCook4D recordings against the recipes' published task graphs.
+Used to score learned hierarchies against a published "must come before" relation (the CaptainCook4D
+experiments in :mod:`supportive.experiments.captaincook`).
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
 
-from supportive.io.captaincook import Recipe
-from supportive.learning.learner import learn
 from supportive.learning.reachability import reachable
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel
 
-__all__ = [
-    "PrecedenceScore",
-    "RecipeReport",
-    "captaincook_report",
-    "compare_recipe",
-    "implied_precedences",
-    "precedence_scores",
-]
+__all__ = ["PrecedenceScore", "implied_precedences", "precedence_scores"]
 
 Pair = tuple[Leaf, Leaf]
 
@@ -46,50 +37,6 @@ class PrecedenceScore:
     true_positives: int
     learned: int
     published: int
-
-
-@dataclass(frozen=True)
-class RecipeReport:
-    """What learning one recipe gave, and how its implied orderings compare with the published graph.
-
-    Attributes:
-        recipe: The recipe's name (slug).
-        demonstrations: Error-free recordings learned from.
-        actions: Distinct actions of the recipe.
-        known_paths: Distinct executions in the learned task graph (orders seen in the demonstrations).
-        complete: True when the learned hierarchy has a single root.
-        roots: Number of roots of the learned hierarchy.
-        score: Implied precedences of the learned hierarchy against the published ones.
-        admits_demonstrations: True when the learned hierarchy admits every demonstration it did not set
-            aside as a deviation (invariant 1).
-        deviations: Demonstrations with a step set aside as a slip.
-    """
-
-    recipe: str
-    demonstrations: int
-    actions: int
-    known_paths: int
-    complete: bool
-    roots: int
-    score: PrecedenceScore
-    admits_demonstrations: bool
-    deviations: int = 0
-
-    def as_dict(self) -> dict[str, object]:
-        """Plain-data form (one row of ``supportive captaincook --json``)."""
-        return {
-            "recipe": self.recipe,
-            "demonstrations": self.demonstrations,
-            "actions": self.actions,
-            "known_paths": self.known_paths,
-            "complete": self.complete,
-            "roots": self.roots,
-            "admits_demonstrations": self.admits_demonstrations,
-            "deviations": self.deviations,
-            "precision": self.score.precision,
-            "recall": self.score.recall,
-            "f1": self.score.f1,
-        }
 
 
 def implied_precedences(htn: HTN) -> frozenset[Pair]:
@@ -160,37 +107,3 @@ def precedence_scores(learned: Iterable[Pair], published: Iterable[Pair]) -> Pre
     total = precision + recall
     f1 = 2 * precision * recall / total if total else 0.0
     return PrecedenceScore(precision, recall, f1, hits, len(mine), len(truth))
-
-
-def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = None) -> RecipeReport:
-    """Learn ``recipe``'s hierarchy from its demonstrations and score its implied precedences.
-
-    Args:
-        recipe: A loaded CaptainCook4D recipe.
-        learner_options: Keyword arguments for :class:`~supportive.learning.learner.HTNLearner`.
-
-    Raises:
-        LearningError: when the recipe has no demonstration.
-    """
-    learner = learn(recipe.spec, **dict(learner_options or {}))
-    htn = learner.htn_
-    deviating = {d.demonstration for d in learner.deviations_}
-    demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
-    return RecipeReport(
-        recipe=recipe.name,
-        demonstrations=len(recipe.spec.demonstrations),
-        actions=len(recipe.spec.actions),
-        known_paths=learner.task_graph_.path_count(),
-        complete=htn.complete,
-        roots=len(htn.roots),
-        score=precedence_scores(implied_precedences(htn), recipe.published),
-        admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
-        deviations=len(deviating),
-    )
-
-
-def captaincook_report(
-    recipes: Iterable[Recipe], learner_options: Mapping[str, Any] | None = None
-) -> list[RecipeReport]:
-    """:func:`compare_recipe` for each recipe, in order."""
-    return [compare_recipe(recipe, learner_options) for recipe in recipes]

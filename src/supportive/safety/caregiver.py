@@ -26,13 +26,13 @@ from dataclasses import dataclass
 
 import networkx as nx
 
-from supportive.envs.household.distances import UNREACHABLE, MapDistances
-from supportive.envs.household.grid_map import MOVES, Cell, Terrain
-from supportive.envs.household.world import DAMAGE, HouseholdWorld
 from supportive.safety.danger import HORIZON, DangerModel
 from supportive.safety.priors import ActionPriors
 from supportive.safety.safe_probability import SafetyEstimate
 from supportive.seeding import Seed, rng_from
+from supportive.worlds.household.distances import UNREACHABLE, MapDistances
+from supportive.worlds.household.grid_map import MOVES, Cell, Terrain
+from supportive.worlds.household.world import DAMAGE, HouseholdWorld
 
 __all__ = ["MEMORY", "Caregiver", "Decision", "Intervention"]
 
@@ -107,7 +107,7 @@ class Caregiver:
             trajectory).
         seed: Seed or generator for breaking ties between equally short moves.
 
-    >>> from supportive.envs.household import HouseholdWorld, MapDistances, parse_map
+    >>> from supportive.worlds.household import HouseholdWorld, MapDistances, parse_map
     >>> d = MapDistances(parse_map("#######\\n#B...S#\\n#R....#\\n#######\\n"))
     >>> carer = Caregiver(d, ActionPriors.from_experts(d, seed=0), seed=0)
     >>> world = HouseholdWorld.start(d.grid, novice=(1, 4), caregiver=(2, 1))

@@ -21,9 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from supportive.envs.household.distances import UNREACHABLE, MapDistances
-from supportive.envs.household.grid_map import Cell
-from supportive.envs.household.world import DAMAGE, HouseholdWorld
+from supportive.worlds.household.distances import UNREACHABLE, MapDistances
+from supportive.worlds.household.grid_map import Cell
+from supportive.worlds.household.world import DAMAGE, HouseholdWorld
 
 __all__ = ["HORIZON", "DangerModel", "Hazard"]
 
@@ -47,7 +47,7 @@ class DangerModel:
         distances: The map's distances.
         horizon: H of the reach normalisation, in novice steps.
 
-    >>> from supportive.envs.household import parse_map
+    >>> from supportive.worlds.household import parse_map
     >>> model = DangerModel(MapDistances(parse_map("######\\n#B...#\\n#...S#\\n######\\n")), horizon=4)
     >>> model.reach((2, 4), (2, 3)), model.reach((2, 4), (2, 1)), model.reach((2, 4), (1, 1))
     (1.0, 0.5, 0.0)

@@ -19,13 +19,13 @@ from functools import cache
 
 import numpy as np
 
-from supportive.envs.household.distances import MapDistances
-from supportive.envs.household.grid_map import Cell, GridMap
-from supportive.envs.household.novice import EpsilonGreedyNovice
-from supportive.envs.household.world import Collision, HouseholdWorld
 from supportive.safety.caregiver import Caregiver, Decision
 from supportive.safety.priors import ActionPriors
 from supportive.seeding import Seed, rng_from
+from supportive.worlds.household.distances import MapDistances
+from supportive.worlds.household.grid_map import Cell, GridMap
+from supportive.worlds.household.novice import EpsilonGreedyNovice
+from supportive.worlds.household.world import Collision, HouseholdWorld
 
 __all__ = ["EPISODE_STEPS", "THRESHOLD", "EpisodeResult", "Frame", "map_model", "run_episode"]
 
@@ -117,7 +117,7 @@ def run_episode(
         record: Keep a :class:`Frame` per step.
         caregiver_options: Passed to :class:`~supportive.safety.caregiver.Caregiver` (``cost_per_step`` …).
 
-    >>> from supportive.envs.household import load_map
+    >>> from supportive.worlds.household import load_map
     >>> a = run_episode(load_map("playroom"), 1.0, caregiver=False, seed=3)
     >>> a == run_episode(load_map("playroom"), 1.0, caregiver=False, seed=3)
     True

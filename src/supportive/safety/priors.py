@@ -18,9 +18,9 @@ from functools import cached_property
 
 import numpy as np
 
-from supportive.envs.household.distances import MapDistances
-from supportive.envs.household.grid_map import MOVES, Cell
 from supportive.seeding import Seed, rng_from
+from supportive.worlds.household.distances import MapDistances
+from supportive.worlds.household.grid_map import MOVES, Cell
 
 __all__ = ["ActionPriors", "expert_trajectory"]
 
@@ -57,7 +57,7 @@ class ActionPriors:
     """θ_s(a) for every play-area cell and move.
 
     Attributes:
-        cells: The play-area cells, in :class:`~supportive.envs.household.distances.CellGraph` order.
+        cells: The play-area cells, in :class:`~supportive.worlds.household.distances.CellGraph` order.
         counts: α_s(a) without the hyperprior, shape (cells, 4), moves in ``MOVES`` order.
         theta: θ_s(a), shape (cells, 4); each row sums to 1.
         hyperprior: α⁰ (the same for every state and action).
@@ -93,7 +93,7 @@ class ActionPriors:
         Raises:
             ValueError: for ``hyperprior`` <= 0, ``delta`` outside [0, 1) or ``starts`` < 1.
 
-        >>> from supportive.envs.household.grid_map import parse_map
+        >>> from supportive.worlds.household.grid_map import parse_map
         >>> priors = ActionPriors.from_experts(MapDistances(parse_map("#####\\n#B..#\\n#####\\n")), hyperprior=1.0)
         >>> priors.probability((1, 3), "west"), priors.probability((1, 3), "east")
         (0.4, 0.2)

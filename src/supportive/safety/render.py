@@ -32,10 +32,10 @@ from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
 
-from supportive.envs.household.grid_map import Cell, GridMap, Terrain
 from supportive.errors import ExportError, MissingExtraError
 from supportive.io.terminal import plain
 from supportive.safety.episode import THRESHOLD, EpisodeResult, Frame
+from supportive.worlds.household.grid_map import Cell, GridMap, Terrain
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -92,7 +92,7 @@ def map_rows(grid: GridMap, frame: Frame) -> list[str]:
         grid: The episode's map.
         frame: One recorded step.
 
-    >>> from supportive.envs.household import parse_map
+    >>> from supportive.worlds.household import parse_map
     >>> grid = parse_map("######\\n#B..C#\\n#R..S#\\n######\\n", "tiny")
     >>> frame = Frame(1, (1, 2), "east", None, (2, 4), None, frozenset(), False, 0, None)
     >>> print("\\n".join(map_rows(grid, frame)))
@@ -135,7 +135,7 @@ def status_rows(
         steps: The episode's length, shown as "step 4 of 200" when given.
         top: How many hazards to list, most expected damage first.
 
-    >>> from supportive.envs.household import parse_map
+    >>> from supportive.worlds.household import parse_map
     >>> grid = parse_map("######\\n#B..C#\\n#R..S#\\n######\\n", "tiny")
     >>> bump = Frame(2, (2, 3), "east", None, None, None, frozenset({(1, 4)}), False, 5, None)
     >>> for label, text in status_rows(grid, bump, steps=10):
@@ -194,7 +194,7 @@ def frame_text(grid: GridMap, frame: Frame, *, steps: int | None = None, top: in
         steps: The episode's length, when known.
         top: How many hazards to list.
 
-    >>> from supportive.envs.household import load_map
+    >>> from supportive.worlds.household import load_map
     >>> from supportive.safety.episode import run_episode
     >>> grid = load_map("playroom")
     >>> frame = run_episode(grid, 0.5, seed=1, steps=3, record=True).frames[-1]
@@ -253,7 +253,7 @@ def summary(result: EpisodeResult, *, threshold: int = THRESHOLD, steps: int | N
         threshold: The critical damage the episode was run with.
         steps: The episode's length (default: the number of recorded frames, when there are any).
 
-    >>> from supportive.envs.household import load_map
+    >>> from supportive.worlds.household import load_map
     >>> from supportive.safety.episode import run_episode
     >>> print(summary(run_episode(load_map("playroom"), 0.0, caregiver=False, seed=0, steps=10), steps=10))
     damage 0 in 10 steps · steps until damage 15: 10 (never reached) · cells explored: 11 · collisions: none

@@ -18,8 +18,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from supportive.envs.household.grid_map import MOVES, Cell
 from supportive.safety.priors import ActionPriors
+from supportive.worlds.household.grid_map import MOVES, Cell
 
 __all__ = ["SafetyEstimate"]
 
@@ -34,7 +34,7 @@ class SafetyEstimate:
         unsafe: ρ_s(a), the unsafe model's probability of any move (uniform: 1/4).
         memory: γ in (0, 1]: how much of the past trajectory's evidence each step keeps (1: all of it).
 
-    >>> from supportive.envs.household import MapDistances, parse_map
+    >>> from supportive.worlds.household import MapDistances, parse_map
     >>> priors = ActionPriors.from_experts(MapDistances(parse_map("#####\\n#B..#\\n#####\\n")), hyperprior=1.0)
     >>> estimate = SafetyEstimate(priors)
     >>> estimate.update((1, 3), "west")

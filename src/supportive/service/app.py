@@ -24,13 +24,14 @@ from fastapi.staticfiles import StaticFiles
 from fastapi_offline import FastAPIOffline
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from supportive.errors import BoardError
 from supportive.service.hub import Hub
 from supportive.service.routes import board, insight, live, social
 from supportive.service.schemas import ErrorOut
 from supportive.service.settings import ServiceSettings
 from supportive.service.state import ServiceState
+from supportive.service.statuses import board_status
 from supportive.service.store import BoardStore
-from supportive.social.board import BoardError
 
 __all__ = ["create_app"]
 
@@ -134,7 +135,7 @@ def create_app(settings: ServiceSettings) -> FastAPI:
 
     @app.exception_handler(BoardError)
     async def _board_error(request: Request, exc: BoardError) -> JSONResponse:
-        return JSONResponse({"detail": exc.message}, status_code=exc.status)
+        return JSONResponse({"detail": exc.message}, status_code=board_status(exc))
 
     @app.exception_handler(RequestValidationError)
     async def _invalid(request: Request, exc: RequestValidationError) -> JSONResponse:

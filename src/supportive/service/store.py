@@ -41,8 +41,8 @@ from sqlalchemy import (
 from sqlalchemy.engine import Connection
 from sqlalchemy.exc import ArgumentError, DatabaseError, OperationalError
 
-from supportive.errors import SupportiveError
-from supportive.social.board import ROLES, BoardError, Role, TaskBoard
+from supportive.errors import BoardError, SupportiveError
+from supportive.social.board import ROLES, Role, TaskBoard
 
 __all__ = ["Agent", "AgentKind", "AgentSpec", "BoardEvent", "BoardStore", "StoreError", "token_hash"]
 

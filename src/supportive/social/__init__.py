@@ -12,7 +12,7 @@
 See docs/social.md for the model and every reading of the thesis it takes.
 """
 
-from supportive.social.board import BoardError, BoardNode, TaskBoard
+from supportive.social.board import BoardNode, TaskBoard
 from supportive.social.ellipse import ForceEllipse, fit_ellipse
 from supportive.social.field import ForceField
 from supportive.social.force import ForceSource, SocialForce
@@ -21,7 +21,6 @@ from supportive.social.reading import reading
 from supportive.social.roles import Candidate, PeerPolicy, RoleAction, RoleDecision, StudentPolicy
 
 __all__ = [
-    "BoardError",
     "BoardNode",
     "Candidate",
     "ForceEllipse",

@@ -11,8 +11,8 @@ progress on and complete — pure logic, no storage.
   on a node the board reserves for leads (``lead_only``), nor on any node containing one or inside one (its
   ancestors are checked as well as its subtree); observers only read.
 
-Every operation either returns the changed board or raises :class:`BoardError` with an HTTP-like status and
-a message; boards are immutable.
+Every operation either returns the changed board or raises :class:`~supportive.errors.BoardError` with a reason
+(invalid, forbidden, missing, conflict) and a message; boards are immutable.
 
 >>> from supportive.tasks.htn import ActionNode, ChainNode
 >>> board = TaskBoard.from_node("demo", ChainNode((ActionNode("a"), ActionNode("b")), name="A then B"))
@@ -29,29 +29,14 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Literal
 
-from supportive.errors import SupportiveError
+from supportive.errors import BoardError
 from supportive.tasks.htn import ActionNode, ChainNode, Node
 
-__all__ = ["ROLES", "BoardError", "BoardNode", "Role", "TaskBoard"]
+__all__ = ["ROLES", "BoardNode", "Role", "TaskBoard"]
 
 Role = Literal["lead", "assistant", "observer"]
 ROLES: tuple[Role, ...] = ("lead", "assistant", "observer")
 """The roles an agent may have."""
-
-
-class BoardError(SupportiveError):
-    """An operation the board refuses.
-
-    Args:
-        status: The HTTP status that says why: 403 not allowed, 404 no such node, 409 in conflict with the
-            board's state.
-        message: What was wrong, for people.
-    """
-
-    def __init__(self, status: int, message: str) -> None:
-        self.status = status
-        self.message = message
-        super().__init__(message)
 
 
 @dataclass(frozen=True)
@@ -109,7 +94,7 @@ class TaskBoard:
             lead_only: Names (or action ids) of nodes reserved for leads.
 
         Raises:
-            BoardError: (400) for a lead_only name that is no node's.
+            BoardError: (invalid) for a lead_only name that is no node's.
         """
         texts = texts or {}
         reserved = set(lead_only)
@@ -141,7 +126,7 @@ class TaskBoard:
         add(root, None)
         unknown = reserved - {n.name for n in nodes} - {n.action for n in nodes if n.action}
         if unknown:
-            raise BoardError(400, f"lead-only names that are no subtask's: {', '.join(sorted(unknown))}")
+            raise BoardError("invalid", f"lead-only names that are no subtask's: {', '.join(sorted(unknown))}")
         return cls(task, tuple(nodes))
 
     # -- reading ---------------------------------------------------------------------------------------------
@@ -150,11 +135,11 @@ class TaskBoard:
         """The node ``ident``.
 
         Raises:
-            BoardError: (404) for an unknown id.
+            BoardError: (missing) for an unknown id.
         """
         index = _index(ident)
         if index is None or index >= len(self.nodes):
-            raise BoardError(404, f"no subtask {ident!r} on the board")
+            raise BoardError("missing", f"no subtask {ident!r} on the board")
         return self.nodes[index]
 
     def subtree(self, ident: str) -> list[BoardNode]:
@@ -208,16 +193,16 @@ class TaskBoard:
         """``agent`` claims ``ident`` and its unfinished descendants.
 
         Raises:
-            BoardError: 403 for an observer, or an assistant and a lead-only node; 404 unknown node; 409 when it
-                is done or another agent owns it, an ancestor or a descendant.
+            BoardError: forbidden for an observer, or an assistant and a lead-only node; missing for an unknown
+                node; conflict when it is done or another agent owns it, an ancestor or a descendant.
         """
         node = self.node(ident)
         self._may_act(node, role, "claim")
         if node.done:
-            raise BoardError(409, f"{node.name!r} is already done")
+            raise BoardError("conflict", f"{node.name!r} is already done")
         for other in (*self.ancestors(ident), *self.subtree(ident)):
             if other.owner is not None and other.owner != agent and not other.done:
-                raise BoardError(409, f"{other.name!r} is claimed by {other.owner}")
+                raise BoardError("conflict", f"{other.name!r} is claimed by {other.owner}")
         if node.owner == agent:
             return self
         return self._set({n.id: replace(n, owner=agent) for n in self.subtree(ident) if not n.done})
@@ -226,12 +211,12 @@ class TaskBoard:
         """``agent`` gives up ``ident``: its unfinished subtasks go back to the pool.
 
         Raises:
-            BoardError: 403 for an observer; 404 unknown node; 409 when ``agent`` does not own it.
+            BoardError: forbidden for an observer; missing for an unknown node; conflict when ``agent`` does not own it.
         """
         node = self.node(ident)
         self._may_act(node, role, "release", reserved=False)
         if node.owner != agent:
-            raise BoardError(409, f"{node.name!r} is not claimed by {agent}")
+            raise BoardError("conflict", f"{node.name!r} is not claimed by {agent}")
         return self._set(
             {n.id: replace(n, owner=None) for n in self.subtree(ident) if n.owner == agent and not n.done}
         )
@@ -240,26 +225,26 @@ class TaskBoard:
         """``agent`` reports progress (0–1) on a leaf it owns.
 
         Raises:
-            BoardError: 400 for progress outside [0, 1]; 403, 404, 409 as for complete.
+            BoardError: invalid for progress outside [0, 1]; forbidden, missing, conflict as for complete.
         """
         node = self._owned_leaf(ident, agent, role, "report progress on")
         if not 0.0 <= progress <= 1.0:
-            raise BoardError(400, f"progress must be between 0 and 1, got {progress}")
+            raise BoardError("invalid", f"progress must be between 0 and 1, got {progress}")
         return self._set({ident: replace(node, progress=progress)})
 
     def complete(self, ident: str, agent: str, role: Role) -> TaskBoard:
         """``agent`` completes a leaf it owns whose prerequisites are done; finished parents complete too.
 
         Raises:
-            BoardError: 403 not allowed; 404 unknown; 409 an internal node, not owned by ``agent``,
-                already done, or a prerequisite not done.
+            BoardError: forbidden when not allowed; missing for an unknown node; conflict for an internal node,
+                one not owned by ``agent``, already done, or a prerequisite not done.
         """
         node = self._owned_leaf(ident, agent, role, "complete")
         if node.done:
-            raise BoardError(409, f"{node.name!r} is already done")
+            raise BoardError("conflict", f"{node.name!r} is already done")
         waiting = [n.name for n in self.prerequisites(ident) if not n.done]
         if waiting:
-            raise BoardError(409, f"{node.name!r} must wait for {', '.join(repr(w) for w in waiting[:3])}")
+            raise BoardError("conflict", f"{node.name!r} must wait for {', '.join(repr(w) for w in waiting[:3])}")
         changes = {ident: replace(node, done=True, progress=1.0)}
         board = self._set(changes)
         for ancestor in self.ancestors(ident):
@@ -271,7 +256,7 @@ class TaskBoard:
         """The operation named ``op`` (``claim``, ``release``, ``progress``, ``complete``), for replaying a log.
 
         Raises:
-            BoardError: as the operation does, and 400 for an unknown operation.
+            BoardError: as the operation does, and invalid for an unknown operation.
         """
         if op == "claim":
             return self.claim(ident, agent, role)
@@ -281,7 +266,7 @@ class TaskBoard:
             return self.complete(ident, agent, role)
         if op == "progress":
             return self.report(ident, agent, role, 0.0 if progress is None else progress)
-        raise BoardError(400, f"unknown operation {op!r}")
+        raise BoardError("invalid", f"unknown operation {op!r}")
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> TaskBoard:
@@ -347,24 +332,24 @@ class TaskBoard:
 
     def _may_act(self, node: BoardNode, role: Role, verb: str, *, reserved: bool = True) -> None:
         if role == "observer":
-            raise BoardError(403, f"observers may not {verb} subtasks")
+            raise BoardError("forbidden", f"observers may not {verb} subtasks")
         if not reserved or role != "assistant":
             return
         if node.lead_only or any(n.lead_only for n in self.subtree(node.id)):
-            raise BoardError(403, f"{node.name!r} is reserved for leads: an assistant may not {verb} it")
+            raise BoardError("forbidden", f"{node.name!r} is reserved for leads: an assistant may not {verb} it")
         above = next((n for n in self.ancestors(node.id) if n.lead_only), None)
         if above is not None:
             raise BoardError(
-                403, f"{node.name!r} is part of {above.name!r}, reserved for leads: an assistant may not {verb} it"
+                "forbidden", f"{node.name!r} is part of {above.name!r}, reserved for leads: an assistant may not {verb} it"
             )
 
     def _owned_leaf(self, ident: str, agent: str, role: Role, verb: str) -> BoardNode:
         node = self.node(ident)
         self._may_act(node, role, verb)
         if node.kind != "action":
-            raise BoardError(409, f"{node.name!r} is not a single action: {verb} its actions one by one")
+            raise BoardError("conflict", f"{node.name!r} is not a single action: {verb} its actions one by one")
         if node.owner != agent:
-            raise BoardError(409, f"{node.name!r} is not claimed by {agent}")
+            raise BoardError("conflict", f"{node.name!r} is not claimed by {agent}")
         return node
 
     def _set(self, changes: Mapping[str, BoardNode]) -> TaskBoard:

@@ -31,9 +31,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from supportive.envs.household.grid_map import Cell, GridMap, Terrain, load_map
-from supportive.envs.household.world import Collision, HouseholdWorld
 from supportive.errors import MissingExtraError
+from supportive.worlds.household.grid_map import Cell, GridMap, Terrain, load_map
+from supportive.worlds.household.world import Collision, HouseholdWorld
 
 try:
     from gymnasium import spaces
@@ -110,7 +110,7 @@ def resolve_grid(grid: GridMap | str) -> GridMap:
 def terrain_codes(grid: GridMap) -> NDArray[np.int8]:
     """The codes of the map's fixed terrain (tables without candles, no agents), read-only (cached per map).
 
-    >>> from supportive.envs.household.grid_map import parse_map
+    >>> from supportive.worlds.household.grid_map import parse_map
     >>> terrain_codes(parse_map("#####\\n#B.C#\\n#R.S#\\n#####\\n")).tolist()[1:3]
     [[1, 5, 0, 3, 1], [1, 0, 0, 2, 1]]
     """
@@ -122,7 +122,7 @@ def terrain_codes(grid: GridMap) -> NDArray[np.int8]:
 def encode(world: HouseholdWorld) -> NDArray[np.int8]:
     """The observation of ``world``: a fresh (rows, columns) ``int8`` array of :class:`CellCode` s.
 
-    >>> from supportive.envs.household.grid_map import parse_map
+    >>> from supportive.worlds.household.grid_map import parse_map
     >>> world = HouseholdWorld.start(parse_map("#####\\n#B.C#\\n#R.S#\\n#####\\n"), (1, 2), (2, 3))
     >>> encode(world).tolist()[1:3]
     [[1, 5, 6, 4, 1], [1, 0, 0, 7, 1]]
@@ -145,7 +145,7 @@ def render_codes(codes: NDArray[np.integer[Any]], status: str = "") -> str:
     """An observation as text: one line per map row (``N`` novice, ``R`` caregiver, ``C`` candle, the other
     characters as in map files), then ``status`` on its own line when given.
 
-    >>> from supportive.envs.household.grid_map import parse_map
+    >>> from supportive.worlds.household.grid_map import parse_map
     >>> world = HouseholdWorld.start(parse_map("#####\\n#B.C#\\n#R.S#\\n#####\\n"), (1, 2), (2, 3))
     >>> print(render_codes(encode(world), "step 0"), end="")
     #####

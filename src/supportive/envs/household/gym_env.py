@@ -4,7 +4,7 @@ The agent is the novice; optionally the built-in caregiver robot
 (:class:`~supportive.safety.caregiver.Caregiver`) is part of the dynamics. Each step:
 
 1. the caregiver (when present) takes the up to three actions it decides on,
-2. the novice makes its move (the action: an index into :data:`~supportive.envs.household.grid_map.MOVES`,
+2. the novice makes its move (the action: an index into :data:`~supportive.worlds.household.grid_map.MOVES`,
    north, east, south, west),
 3. the caregiver observes the move and updates P(safe | τ).
 
@@ -34,11 +34,11 @@ from supportive.envs.household.encoding import (
     observation_space,
     resolve_grid,
 )
-from supportive.envs.household.grid_map import GridMap
-from supportive.envs.household.world import NOVICE_ACTIONS, HouseholdWorld
 from supportive.errors import MissingExtraError
 from supportive.safety.caregiver import Caregiver
 from supportive.safety.episode import map_model
+from supportive.worlds.household.grid_map import GridMap
+from supportive.worlds.household.world import NOVICE_ACTIONS, HouseholdWorld
 
 try:
     import gymnasium
@@ -57,7 +57,7 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
 
     Args:
         grid: The map, or a shipped map's name or a map file's path (see
-            :func:`~supportive.envs.household.grid_map.load_map`).
+            :func:`~supportive.worlds.household.grid_map.load_map`).
         caregiver: Whether the caregiver robot (with the map's action priors) acts in the house.
         max_steps: Novice steps before the episode is truncated.
         threshold: Total damage at which the episode terminates.

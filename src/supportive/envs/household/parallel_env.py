@@ -1,7 +1,7 @@
 """The household world as a PettingZoo parallel environment: the novice and the caregiver both learn (§3.5).
 
 Each step both agents act at once. The caregiver's action is three indices into
-:data:`~supportive.envs.household.world.CAREGIVER_ACTIONS` (north, east, south, west, wait, get, place: it
+:data:`~supportive.worlds.household.world.CAREGIVER_ACTIONS` (north, east, south, west, wait, get, place: it
 moves three times as fast as the novice, §3.5.5.3), applied in order; then the novice's move (an index into
 north, east, south, west). Both see the grid of cell codes of :mod:`supportive.envs.household.encoding`, and
 both are rewarded minus the damage of the novice's collision (the game is cooperative). The episode
@@ -32,9 +32,9 @@ from supportive.envs.household.encoding import (
     observation_space,
     resolve_grid,
 )
-from supportive.envs.household.grid_map import GridMap
-from supportive.envs.household.world import CAREGIVER_ACTIONS, NOVICE_ACTIONS, HouseholdWorld
 from supportive.errors import MissingExtraError
+from supportive.worlds.household.grid_map import GridMap
+from supportive.worlds.household.world import CAREGIVER_ACTIONS, NOVICE_ACTIONS, HouseholdWorld
 
 try:
     import gymnasium
@@ -174,7 +174,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
 
         Args:
             actions: ``"novice"``: an index into north, east, south, west; ``"caregiver"``: three indices into
-                :data:`~supportive.envs.household.world.CAREGIVER_ACTIONS`.
+                :data:`~supportive.worlds.household.world.CAREGIVER_ACTIONS`.
 
         Returns:
             Observations, rewards (minus the collision's damage, for both), terminations (damage >=

@@ -28,13 +28,14 @@ import numpy as np
 
 from supportive.errors import ExperimentError
 from supportive.experiments.active_learning.common import STRATEGIES
+from supportive.experiments.captaincook.recipes import compare_recipe
 from supportive.experiments.statistics import mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.io.captaincook import Recipe, load_captaincook
 from supportive.learning.active import QuerySchedule, TeachingSession, run_session
 from supportive.learning.instructors import PartialOrder, SimulatedInstructor
 from supportive.learning.learner import HTNLearner
-from supportive.learning.precedence import compare_recipe, implied_precedences, precedence_scores
+from supportive.learning.precedence import implied_precedences, precedence_scores
 from supportive.tasks.htn import Leaf, to_leaves
 
 __all__ = [

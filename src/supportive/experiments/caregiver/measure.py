@@ -13,11 +13,11 @@ from typing import Any
 
 import numpy as np
 
-from supportive.envs.household.grid_map import load_map
-from supportive.envs.household.novice import NOVICE_TYPES
 from supportive.experiments.readings import Reading, reading_names
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.safety.episode import EPISODE_STEPS, THRESHOLD, run_episode
+from supportive.worlds.household.grid_map import load_map
+from supportive.worlds.household.novice import NOVICE_TYPES
 
 __all__ = ["CONDITIONS", "DEFAULT_EPISODES", "MAP", "MEMORIES", "READINGS", "make_trials", "run_trial"]
 

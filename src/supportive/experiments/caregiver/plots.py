@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from supportive.envs.household.novice import NOVICE_TYPES
 from supportive.experiments.caregiver.report import MEASURES, THESIS
 from supportive.experiments.plotting import new_figure, save_png
+from supportive.worlds.household.novice import NOVICE_TYPES
 
 __all__ = ["FILES", "plots"]
 

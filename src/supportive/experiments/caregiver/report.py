@@ -5,11 +5,11 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.envs.household.novice import NOVICE_TYPES
 from supportive.experiments.caregiver.measure import MEMORIES, READINGS
 from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, format_sd, mean_sd, ratio_ci
+from supportive.worlds.household.novice import NOVICE_TYPES
 
 __all__ = ["MEASURES", "THESIS", "findings", "headline", "report", "summarize", "thesis_reduction", "verdict"]
 

@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.envs.household import (
+from supportive.errors import MapFileError
+from supportive.worlds.household import (
     DAMAGE,
     EpsilonGreedyNovice,
     HouseholdWorld,
@@ -19,7 +20,6 @@ from supportive.envs.household import (
     parse_map,
     read_map,
 )
-from supportive.errors import MapFileError
 
 TINY = """\
 ; a comment

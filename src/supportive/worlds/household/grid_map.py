@@ -313,7 +313,7 @@ def map_names() -> tuple[str, ...]:
     >>> "house" in map_names()
     True
     """
-    folder = resources.files("supportive.envs.household") / "maps"
+    folder = resources.files("supportive.worlds.household") / "maps"
     return tuple(sorted(p.name.removesuffix(".map") for p in folder.iterdir() if p.name.endswith(".map")))
 
 
@@ -324,7 +324,7 @@ def load_map(name: str) -> GridMap:
         MapFileError: for an unknown name or a bad file.
     """
     if name in map_names():
-        text = (resources.files("supportive.envs.household") / "maps" / f"{name}.map").read_text("utf-8")
+        text = (resources.files("supportive.worlds.household") / "maps" / f"{name}.map").read_text("utf-8")
         return parse_map(text, name, f"maps/{name}.map")
     if Path(name).suffix or "/" in name:
         return read_map(name)

@@ -12,9 +12,9 @@ share, which is what we implement.
 
 from __future__ import annotations
 
-from supportive.envs.household.distances import MapDistances
-from supportive.envs.household.grid_map import MOVES, Cell
 from supportive.seeding import Seed, rng_from
+from supportive.worlds.household.distances import MapDistances
+from supportive.worlds.household.grid_map import MOVES, Cell
 
 __all__ = ["NOVICE_TYPES", "EpsilonGreedyNovice"]
 
@@ -39,7 +39,7 @@ class EpsilonGreedyNovice:
     Attributes:
         goal: The toy bin it is heading for.
 
-    >>> from supportive.envs.household.grid_map import parse_map
+    >>> from supportive.worlds.household.grid_map import parse_map
     >>> d = MapDistances(parse_map("#####\\n#B..#\\n#...#\\n#####\\n"))
     >>> novice = EpsilonGreedyNovice(d, epsilon=0.0, seed=1)
     >>> novice.optimal_moves((2, 3))

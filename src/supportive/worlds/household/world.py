@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from supportive.envs.household.grid_map import MOVES, Cell, GridMap, Terrain
+from supportive.worlds.household.grid_map import MOVES, Cell, GridMap, Terrain
 
 __all__ = [
     "CAREGIVER_ACTIONS",
@@ -52,7 +52,7 @@ class HouseholdWorld:
         candles: The tables holding a candle now (see :meth:`start` for the map's own).
         carrying: Whether the caregiver holds a candle.
 
-    >>> from supportive.envs.household.grid_map import parse_map
+    >>> from supportive.worlds.household.grid_map import parse_map
     >>> world = HouseholdWorld.start(parse_map("######\\n#B..C#\\n#...S#\\n######\\n"), novice=(2, 3))
     >>> world.move_novice("east")
     Collision(kind='stairs', cell=(2, 4), damage=5)

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import shortest_path
 
-from supportive.envs.household.grid_map import Cell, GridMap, Terrain
+from supportive.worlds.household.grid_map import Cell, GridMap, Terrain
 
 __all__ = ["UNREACHABLE", "CellGraph", "MapDistances"]
 
@@ -30,7 +30,7 @@ class CellGraph:
         grid: The map.
         walkable: The cells an agent may stand on.
 
-    >>> from supportive.envs.household.grid_map import parse_map
+    >>> from supportive.worlds.household.grid_map import parse_map
     >>> grid = parse_map("#####\\n#B..#\\n#..S#\\n#####\\n")
     >>> graph = CellGraph(grid, grid.floor)
     >>> graph.distance((1, 2), (2, 1)), graph.distance((1, 2), (2, 3))

@@ -1,0 +1,124 @@
+"""One CaptainCook4D recipe learned from its error-free recordings and scored against its published task graph
+(``supportive captaincook``): the precedences the learned hierarchy implies
+(:func:`~supportive.learning.precedence.implied_precedences`) against the published ones.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from supportive.errors import DatasetError
+from supportive.io.captaincook import Recipe
+from supportive.learning.learner import learn
+from supportive.learning.precedence import PrecedenceScore, implied_precedences, precedence_scores
+
+__all__ = ["RecipeMeans", "RecipeReport", "captaincook_report", "compare_recipe", "recipe_means"]
+
+
+@dataclass(frozen=True)
+class RecipeReport:
+    """What learning one recipe gave, and how its implied orderings compare with the published graph.
+
+    Attributes:
+        recipe: The recipe's name (slug).
+        demonstrations: Error-free recordings learned from.
+        actions: Distinct actions of the recipe.
+        known_paths: Distinct executions in the learned task graph (orders seen in the demonstrations).
+        complete: True when the learned hierarchy has a single root.
+        roots: Number of roots of the learned hierarchy.
+        score: Implied precedences of the learned hierarchy against the published ones.
+        admits_demonstrations: True when the learned hierarchy admits every demonstration it did not set
+            aside as a deviation (invariant 1).
+        deviations: Demonstrations with a step set aside as a slip.
+    """
+
+    recipe: str
+    demonstrations: int
+    actions: int
+    known_paths: int
+    complete: bool
+    roots: int
+    score: PrecedenceScore
+    admits_demonstrations: bool
+    deviations: int = 0
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form (one row of ``supportive captaincook --json``)."""
+        return {
+            "recipe": self.recipe,
+            "demonstrations": self.demonstrations,
+            "actions": self.actions,
+            "known_paths": self.known_paths,
+            "complete": self.complete,
+            "roots": self.roots,
+            "admits_demonstrations": self.admits_demonstrations,
+            "deviations": self.deviations,
+            "precision": self.score.precision,
+            "recall": self.score.recall,
+            "f1": self.score.f1,
+        }
+
+
+def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = None) -> RecipeReport:
+    """Learn ``recipe``'s hierarchy from its demonstrations and score its implied precedences.
+
+    Args:
+        recipe: A loaded CaptainCook4D recipe.
+        learner_options: Keyword arguments for :class:`~supportive.learning.learner.HTNLearner`.
+
+    Raises:
+        LearningError: when the recipe has no demonstration.
+    """
+    learner = learn(recipe.spec, **dict(learner_options or {}))
+    htn = learner.htn_
+    deviating = {d.demonstration for d in learner.deviations_}
+    demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
+    return RecipeReport(
+        recipe=recipe.name,
+        demonstrations=len(recipe.spec.demonstrations),
+        actions=len(recipe.spec.actions),
+        known_paths=learner.task_graph_.path_count(),
+        complete=htn.complete,
+        roots=len(htn.roots),
+        score=precedence_scores(implied_precedences(htn), recipe.published),
+        admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
+        deviations=len(deviating),
+    )
+
+
+def captaincook_report(
+    recipes: Iterable[Recipe], learner_options: Mapping[str, Any] | None = None
+) -> list[RecipeReport]:
+    """:func:`compare_recipe` for each recipe, in order."""
+    return [compare_recipe(recipe, learner_options) for recipe in recipes]
+
+
+@dataclass(frozen=True)
+class RecipeMeans:
+    """Means over recipes of their scores, and whether every learned model admits all its recordings."""
+
+    recipes: int
+    precision: float
+    recall: float
+    f1: float
+    all_admitted: bool
+
+
+def recipe_means(reports: Sequence[RecipeReport]) -> RecipeMeans:
+    """The mean precision, recall and F1 of ``reports``.
+
+    Raises:
+        DatasetError: when there is no report (no recipe was loaded).
+    """
+    if not reports:
+        raise DatasetError("no CaptainCook4D recipe to average over")
+    n = len(reports)
+    return RecipeMeans(
+        recipes=n,
+        precision=sum(r.score.precision for r in reports) / n,
+        recall=sum(r.score.recall for r in reports) / n,
+        f1=sum(r.score.f1 for r in reports) / n,
+        all_admitted=all(r.admits_demonstrations for r in reports),
+    )
