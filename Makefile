@@ -58,7 +58,7 @@ bench: $(VENV)/.dev
 # The example bags in examples/bags/, made again from the bundled task files (the same messages every time).
 example-bags: $(VENV)/.dev
 	rm -rf examples/bags/ikea-chair examples/bags/workbench-blocks
-	$(BIN)/python -m supportive.example_bags examples/bags
+	$(BIN)/python -m supportive.examples.recordings examples/bags
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache .hypothesis

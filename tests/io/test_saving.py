@@ -20,7 +20,7 @@ from supportive.io.atomic import atomic_write, exclusive
 from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
 from supportive.tasks.spec import Demonstration
-from supportive.teach import TeachingConsole
+from supportive.cli.teach_console import TeachingConsole
 
 ORDER = ["red", "yellow", "green", "white", "orange", "purple", "black", "blue"]
 
@@ -50,7 +50,7 @@ def test_teach_keeps_comments_layout_and_every_untouched_line(tmp_path: Path) ->
 
 
 def test_chat_keeps_comments_and_changes_only_the_behavior(tmp_path: Path) -> None:
-    from supportive.chat import ChatConsole
+    from supportive.cli.chat_console import ChatConsole
 
     path = tmp_path / "chair.yaml"
     shutil.copy(examples.path("ikea-chair"), path)

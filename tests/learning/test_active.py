@@ -399,7 +399,7 @@ def test_errors() -> None:
 
 
 def test_questions_buy_known_orders_in_the_demo_session() -> None:
-    from supportive.demo import teach_tower
+    from supportive.cli.demo_tour import teach_tower
 
     quiet, asking = teach_tower(None), teach_tower("distance")
     assert quiet.questions == ()

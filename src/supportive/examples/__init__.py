@@ -14,7 +14,7 @@ from supportive.errors import ScenarioFileError, TaskFileError
 from supportive.io.taskfile import parse_task_file
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["circuit_names", "circuit_path", "load", "names", "path", "task_path"]
+__all__ = ["circuit_names", "circuit_path", "load", "names", "path", "scenario_path", "task_path"]
 
 
 def _folder() -> Path:
@@ -71,3 +71,16 @@ def circuit_path(name: str) -> Path:
     if not file.is_file():
         raise ScenarioFileError(f"no bundled circuit scenario {name!r}; known: {', '.join(circuit_names())}")
     return file
+
+
+def scenario_path(file: str | Path) -> Path:
+    """A circuit scenario the user named: the file when it exists (or has a suffix), else the bundled scenario of
+    that name, else the path as given (reading it then says it is missing).
+
+    >>> scenario_path("two-cells-led").name, str(scenario_path("my-table.yaml"))
+    ('two-cells-led.yaml', 'my-table.yaml')
+    """
+    given = Path(file)
+    if not given.suffix and not given.exists() and str(file) in circuit_names():
+        return circuit_path(str(file))
+    return given

@@ -1,4 +1,5 @@
-"""Files in and out: task files (YAML/JSON/CSV), learned HTNs (JSON, DOT, HDDL, text tree), datasets."""
+"""Files in and out: task files (YAML/JSON/CSV), learned HTNs (JSON, DOT, HDDL), observation streams, ROS
+bags, datasets; safe reading of hostile files and atomic, comment-keeping saves."""
 
 from supportive.io.observation_file import parse_observation_file
 from supportive.io.taskfile import (

@@ -3,7 +3,8 @@
 :func:`advise` makes one decision at the scenario's table: the supportive actions chosen, the seconds they
 take, the lead's expected saving, the known plans they favour most (with their estimated durations before and
 after), and how many hypothetical environments were sampled, kept and discarded. :func:`simulate` runs the
-lead alone and with the support agent and compares makespans and the lead's planning effort.
+lead alone and with the support agent and compares makespans and the lead's planning effort
+(:class:`SupportSimulation`).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from supportive.envs.tabletop.team import TeamResult, run_team
 from supportive.planning.problem import SupportProblem
 from supportive.planning.selection import SupportDecision
 
-__all__ = ["FavouredPlan", "SupportAdvice", "advise", "describe_plan", "simulate"]
+__all__ = ["FavouredPlan", "SupportAdvice", "SupportSimulation", "advise", "describe_plan", "simulate"]
 
 LeadKind = Literal["plans", "greedy"]
 
@@ -127,6 +128,51 @@ def advise(
     return advice, decision
 
 
+@dataclass(frozen=True)
+class SupportSimulation:
+    """The lead alone and with the support agent on one table.
+
+    Attributes:
+        lead: Which lead ran (``plans`` or ``greedy``).
+        alone: The lead's run alone.
+        supported: Its run with the support agent.
+    """
+
+    lead: str
+    alone: TeamResult[Any]
+    supported: TeamResult[Any]
+
+    @property
+    def gain_percent(self) -> float:
+        """How much faster the supported lead finished, in percent of its makespan alone (0 when that is 0)."""
+        alone = self.alone.makespan
+        return 100.0 * (1.0 - self.supported.makespan / alone) if alone else 0.0
+
+    def line(self) -> str:
+        """The comparison as one sentence."""
+        alone, helped = self.alone, self.supported
+        return (
+            f"Simulated ({self.lead} lead): alone {alone.makespan:.1f} s, with support {helped.makespan:.1f} s "
+            f"({self.gain_percent:+.1f} % faster, {helped.support_actions} supportive actions); lead search nodes "
+            f"{alone.lead_nodes} -> {helped.lead_nodes}"
+        )
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain JSON data."""
+        alone, helped = self.alone, self.supported
+        return {
+            "lead": self.lead,
+            "alone": {"makespan": alone.makespan, "completed": alone.completed, "lead_nodes": alone.lead_nodes},
+            "supported": {
+                "makespan": helped.makespan,
+                "completed": helped.completed,
+                "lead_nodes": helped.lead_nodes,
+                "support_actions": helped.support_actions,
+                "conflicts": dict(helped.conflicts),
+            },
+        }
+
+
 def simulate(
     scenario: CircuitScenario,
     plans: Sequence[CircuitPlan],
@@ -134,7 +180,7 @@ def simulate(
     *,
     seed: int = 0,
     workers: int = 1,
-) -> tuple[TeamResult[Any], TeamResult[Any]]:
+) -> SupportSimulation:
     """The lead alone, then with the support agent: the thesis's makespan comparison on one table.
 
     Args:
@@ -154,4 +200,4 @@ def simulate(
     alone = run_team(world, policy())
     with scenario.planner(workers=workers).fit(SupportProblem.of(world, known)) as planner:
         helped = run_team(world, policy(), planner, known, seed=seed, record=True)
-    return alone, helped
+    return SupportSimulation(lead, alone, helped)

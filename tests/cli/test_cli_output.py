@@ -18,7 +18,7 @@ import pytest
 from supportive.cli import app
 from supportive.examples import load
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 SCRIPT = Path(sys.executable).parent / "supportive"
 GUIDES = re.compile(r"[│├└─╭╮╯╰┃━┏┓┗┛┡┩╇╈┳┻]+")
 

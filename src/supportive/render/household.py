@@ -33,7 +33,7 @@ from rich.table import Table
 from rich.text import Text
 
 from supportive.errors import ExportError, MissingExtraError
-from supportive.io.terminal import plain
+from supportive.render.terminal import plain
 from supportive.safety.episode import THRESHOLD, EpisodeResult, Frame
 from supportive.worlds.household.grid_map import Cell, GridMap, Terrain
 

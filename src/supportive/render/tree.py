@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from rich.text import Text
 from rich.tree import Tree
 
-from supportive.io.terminal import plain, printable, terminal_console
+from supportive.render.terminal import plain, printable, terminal_console
 from supportive.tasks.htn import HTN, ActionNode, Node
 
 __all__ = ["htn_tree", "render_tree"]
@@ -16,7 +16,7 @@ _KIND = {"chain": ("in order", "bold cyan"), "clique": ("any order", "bold magen
 
 
 def _add(parent: Tree, node: Node, texts: Mapping[str, str]) -> None:
-    """Labels are rich Text, never markup: ids and names are the user's (see :mod:`supportive.io.terminal`)."""
+    """Labels are rich Text, never markup: ids and names are the user's (see :mod:`supportive.render.terminal`)."""
     optional = Text("optional ", style="yellow") if node.optional else Text("")
     if isinstance(node, ActionNode):
         text = texts.get(node.action)

@@ -19,7 +19,7 @@ from rich.console import Console, Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
-from supportive.io.terminal import plain
+from supportive.render.terminal import plain
 
 __all__ = ["fitted_table"]
 

@@ -6,101 +6,43 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
 from rich.console import Console
 from rich.markup import escape
 from rich.panel import Panel
 from rich.table import Table
 
 from supportive import examples
+from supportive.cli.teach_console import ask_in_words
 from supportive.errors import LearningError
-from supportive.inference import ObservationModel, ProgressHMM
-from supportive.io.tables import fitted_table
-from supportive.io.tree import htn_tree
+from supportive.evaluation.findings import subtask_findings
+from supportive.evaluation.replay import watch
 from supportive.learning.active import QuerySchedule, TeachingSession, run_session
 from supportive.learning.instructors import SimulatedInstructor
 from supportive.learning.learner import HTNLearner, learn
 from supportive.learning.precedence import implied_precedences
-from supportive.safety.episode import Frame, run_episode
-from supportive.safety.render import LEGEND, render_frame
+from supportive.render.household import LEGEND, render_frame
+from supportive.render.tables import fitted_table
+from supportive.render.tree import htn_tree
+from supportive.safety.contrast import CaregiverContrast, caregiver_contrast
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
-    ChainNode,
-    CliqueNode,
     Leaf,
-    canonical,
     count_orderings,
-    internal_nodes,
-    to_leaves,
 )
-from supportive.tasks.naming import known_names
 from supportive.tasks.spec import TaskSpec
-from supportive.teach import ask_in_words
 from supportive.worlds.household import Collision, load_map
 
 __all__ = [
-    "CaregiverContrast",
-    "SubtaskFinding",
     "TeachingOutcome",
-    "WatchedStep",
-    "caregiver_contrast",
     "keep_novice_safe",
     "rearrange_the_table",
     "run_demo",
-    "subtask_findings",
     "talk_about_helping",
     "teach_tower",
     "teach_with_questions",
-    "watch",
     "watch_held_out",
 ]
-
-
-@dataclass(frozen=True)
-class SubtaskFinding:
-    """Whether one ground-truth subtask was learned, and how many orders of its parts the data showed."""
-
-    name: str
-    kind: str
-    learned: bool
-    orders_seen: int
-    orders_valid: int
-
-
-def _child_orders(node: ChainNode | CliqueNode, demonstrations: list[tuple[Leaf, ...]]) -> int:
-    """Distinct orders in which the demonstrations performed ``node``'s children (by first leaf)."""
-    owner = {leaf: i for i, child in enumerate(node.children) for leaf in child.leaves}
-    orders = set()
-    for demo in demonstrations:
-        order: list[int] = []
-        for leaf in demo:
-            child = owner.get(leaf)
-            if child is not None and child not in order:
-                order.append(child)
-        orders.add(tuple(order))
-    return len(orders)
-
-
-def subtask_findings(spec: TaskSpec, htn: HTN) -> list[SubtaskFinding]:
-    """For every subtask of the spec's ground-truth structure: learned exactly or not, and the evidence."""
-    if spec.structure is None:
-        return []
-    learned = {canonical(node) for root in (htn.roots) for node in internal_nodes(root)}
-    demos = [to_leaves(d) for d in spec.action_sequences()]
-    findings = []
-    for node in internal_nodes(spec.structure):
-        valid = math.factorial(len(node.children)) if isinstance(node, CliqueNode) else 1
-        findings.append(
-            SubtaskFinding(
-                name=node.name or "(unnamed)",
-                kind=node.kind,
-                learned=canonical(node) in learned,
-                orders_seen=_child_orders(node, demos),
-                orders_valid=valid,
-            )
-        )
-    return findings
 
 
 def _root_names(htn: HTN) -> dict[Leaf, str]:
@@ -195,40 +137,6 @@ def run_demo(console: Console, example: str = "ikea-chair") -> HTNLearner:
 
 
 @dataclass(frozen=True)
-class WatchedStep:
-    """What the robot believed at the last moment of one action of a watched demonstration."""
-
-    truth: str
-    subgoal: tuple[str, float]
-    subtask: tuple[str, float]
-    next_subgoal: tuple[str, float]
-
-
-def watch(spec: TaskSpec, held_out: int = -1, seed: int = 7, mean_duration: float = 4.0) -> list[WatchedStep]:
-    """Learn from every demonstration but one, then replay that one as a stream of contact events (drawn from
-    the task's observation model) through the hierarchical HMM, and report the belief at the end of each action."""
-    demos = list(spec.demonstrations)
-    watched = demos.pop(held_out)
-    htn = HTNLearner(names=known_names(spec.structure)).fit(demos, spec.name).htn_
-    model = ObservationModel.from_spec(spec)
-    running = ProgressHMM(htn, model, mean_duration=mean_duration).filter()
-    rng = np.random.default_rng(seed)
-    steps = []
-    for action in watched.actions:
-        for _ in range(int(rng.geometric(1.0 / mean_duration))):
-            belief = running.update(model.sample(action, rng))
-        steps.append(
-            WatchedStep(
-                truth=action,
-                subgoal=running.top(belief.subgoals, running.subgoal_labels, 1)[0],
-                subtask=running.top(belief.enclosing, running.enclosing_labels, 1)[0],
-                next_subgoal=max(belief.next_actions.items(), key=lambda kv: (kv[1], kv[0])),
-            )
-        )
-    return steps
-
-
-@dataclass(frozen=True)
 class TeachingOutcome:
     """A simulated teaching session: the questions asked and the valid orders the learner came to know."""
 
@@ -301,52 +209,6 @@ def watch_held_out(console: Console, spec: TaskSpec) -> None:
     )
 
 
-@dataclass(frozen=True)
-class CaregiverContrast:
-    """One short household episode played twice from the same seed, with and without the caregiver.
-
-    Attributes:
-        map_name: The map played on.
-        epsilon: The novice's share of random moves.
-        steps: Novice steps per episode.
-        with_caregiver: Damage with the caregiver; ``without``: damage alone.
-        frames: The caregiver episode's frames around the first step where the two runs differ (or its first
-            steps, when they never do).
-        moment: That step, or None.
-        bumps: What the novice bumped into at that step with and without the caregiver (None: nothing).
-    """
-
-    map_name: str
-    epsilon: float
-    steps: int
-    with_caregiver: int
-    without: int
-    frames: tuple[Frame, ...]
-    moment: int | None
-    bumps: tuple[Collision | None, Collision | None] = (None, None)
-
-
-def caregiver_contrast(
-    map_name: str = "playroom", epsilon: float = 0.75, steps: int = 40, seed: int = 8
-) -> CaregiverContrast:
-    """Play a novice on ``map_name`` with and without the caregiver (common random numbers: the same seed gives
-    the same start and first goal), and pick the frames where the caregiver first made a difference."""
-    grid = load_map(map_name)
-    helped = run_episode(grid, epsilon, caregiver=True, steps=steps, seed=seed, record=True)
-    alone = run_episode(grid, epsilon, caregiver=False, steps=steps, seed=seed, record=True)
-    moment = next(
-        (a.step for a, b in zip(helped.frames, alone.frames, strict=True) if a.collision != b.collision), None
-    )
-    end = moment if moment is not None else 2
-    frames = helped.frames[max(0, end - 2) : end]
-    bumps = (
-        (helped.frames[moment - 1].collision, alone.frames[moment - 1].collision)
-        if moment is not None
-        else (None, None)
-    )
-    return CaregiverContrast(map_name, epsilon, steps, helped.damage, alone.damage, frames, moment, bumps)
-
-
 def _bump_words(collision: Collision | None) -> str:
     if collision is None:
         return "walked on"
@@ -391,38 +253,11 @@ def talk_about_helping(console: Console, spec: TaskSpec) -> list[tuple[str, str]
     """Print the dialogue section of the demo (§3.3): a person asks how the robot will help, states a new
     preference (the robot grounds it, asks to confirm, and says back what it will do) and asks about a behavior.
     Nothing is saved. Returns the exchange as (who, what) pairs."""
-    from dataclasses import replace
-
-    from supportive.language.explain import explain_behavior, explain_subtask
-    from supportive.language.grammar import ExplainBehavior, ExplainSubtask, Preference, parse_utterance
-    from supportive.language.states import TaskStates
-    from supportive.language.understand import Understanding
+    from supportive.language.dialogue import scripted_dialogue
 
     if not spec.behaviors or spec.structure is None:
         return []
-    states = TaskStates.of(spec)
-    understanding = Understanding(states)
-    exchange: list[tuple[str, str]] = []
-    for line in CHAT_SCRIPT:
-        exchange.append(("person", line))
-        utterance = parse_utterance(line)
-        if isinstance(utterance, ExplainSubtask):
-            key = understanding.subtask_matcher.best(utterance.subtask_phrase).key
-            exchange.append(("robot", explain_subtask(states, key).text))
-        elif isinstance(utterance, ExplainBehavior):
-            behavior = understanding.behavior_for(utterance.behavior_phrase)
-            if behavior is not None:
-                exchange.append(("robot", explain_behavior(states, behavior).text))
-        elif isinstance(utterance, Preference):
-            understood = understanding.apply(utterance)
-            if not understood.confident:
-                exchange.append(("robot", understood.confirmation))
-                exchange.append(("person", "yes"))
-            states = TaskStates.of(
-                replace(spec, behaviors=(*spec.behaviors, understood.behavior)), states.structure
-            )
-            understanding = Understanding(states)
-            exchange.append(("robot", f"OK. {explain_behavior(states, understood.behavior).text}"))
+    exchange = scripted_dialogue(spec, CHAT_SCRIPT)
     console.print(
         "\n[bold]Asking for help, and hearing it explained[/] (§3.3): the chair's task file lists supportive "
         "behaviors, each with the states where it starts and stops. A person talks to the robot; it grounds what "
@@ -455,7 +290,8 @@ def rearrange_the_table(console: Console, scenario_name: str = "two-cells-led") 
     scenario = parse_scenario_file(examples.circuit_path(scenario_name))
     plans = scenario.plans()
     advice, _ = advise(scenario, plans)
-    alone, helped = simulate(scenario, plans)
+    simulation = simulate(scenario, plans)
+    alone, helped = simulation.alone, simulation.supported
     console.print(
         "\n[bold]Helping without touching the goal[/] (§3.2): a slow lead builds a circuit (two cells in series "
         f"drive an LED through a switch) from {len(scenario.world.items)} pieces scattered on a table; the "
@@ -468,7 +304,7 @@ def rearrange_the_table(console: Console, scenario_name: str = "two-cells-led") 
     console.print(
         f"  Simulated with both arms moving at once (the lead follows the quickest plan, {quickest}): alone "
         f"{alone.makespan:.1f} s, supported {helped.makespan:.1f} s after {helped.support_actions} supportive "
-        f"actions ({100 * (1 - helped.makespan / alone.makespan):.0f} % faster)."
+        f"actions ({simulation.gain_percent:.0f} % faster)."
     )
     console.print(
         "  Try it: supportive support two-cells-led --simulate --render table.png;"

@@ -14,14 +14,14 @@ import pytest
 from rosbags.highlevel import AnyReader
 
 from supportive import examples
-from supportive.example_bags import EXAMPLES, write_example_bags
+from supportive.examples.recordings import EXAMPLES, write_example_bags
 from supportive.io.rosbag import BagWriter, Storage, write_contact_frames
 from supportive.io.rosbag.writing import LATCHED
 from supportive.io.taskfile import dump_task, parse_task_file, task_to_dict, write_task_file
 from supportive.tasks.spec import Demonstration, Step, TaskSpec
 
 CliRunner = Callable[[list[str]], tuple[int, str, str]]
-SHIPPED = Path(__file__).resolve().parents[1] / "examples" / "bags"
+SHIPPED = Path(__file__).resolve().parents[2] / "examples" / "bags"
 T0 = 1_700_000_000 * 1_000_000_000
 
 

@@ -10,7 +10,7 @@ from pathlib import Path
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.io.terminal import printable
+from supportive.render.terminal import printable
 
 MARKUP_TASK = """name: "x[/]y"
 actions:

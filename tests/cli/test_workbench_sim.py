@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from supportive.workbench import Line, run_workbench
+from supportive.cli.workbench_sim import Line, run_workbench
 
 
 @pytest.fixture(scope="module")

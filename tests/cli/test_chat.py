@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 from supportive import examples
-from supportive.chat import ChatConsole
+from supportive.cli.chat_console import ChatConsole
 from supportive.io import parse_task_file
 
 
@@ -215,7 +215,7 @@ def test_a_sentence_over_the_limit_is_answered_in_one_line_at_once(tmp_path: Pat
     import time
 
     from supportive import examples
-    from supportive.chat import ChatConsole
+    from supportive.cli.chat_console import ChatConsole
     from supportive.io.limits import MAX_SENTENCE_CHARS
 
     path = tmp_path / "chair.yaml"

@@ -1,0 +1,108 @@
+"""The ``supportive`` command: a typer app whose commands live one family per module of this package
+(:mod:`~supportive.cli.learn`, :mod:`~supportive.cli.infer`, :mod:`~supportive.cli.bag`, …). Commands parse
+arguments, call the library and print what it returns; they compute nothing the library should own.
+
+Bad input never shows a traceback: :func:`main` is the one handler, turning any
+:class:`~supportive.errors.SupportiveError` into one line on stderr and exit status 2.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Annotated, Any
+
+import typer
+
+from supportive.cli import caregiver, chat, demo, infer, learn, reproduce, serve, support, teach, workbench
+from supportive.cli.bag import bag_app
+from supportive.cli.output import out, say
+from supportive.errors import SupportiveError
+from supportive.render.terminal import printable
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
+)
+app.add_typer(bag_app, name="bag")
+for command in (
+    learn.learn,
+    infer.infer,
+    learn.generate,
+    learn.evaluate,
+    learn.captaincook,
+    teach.teach,
+    chat.chat,
+    demo.demo,
+    caregiver.caregiver,
+    support.support,
+    serve.serve,
+):
+    app.command()(command)
+app.command("workbench-sim")(workbench.workbench_sim)
+app.command()(reproduce.reproduce)
+
+
+def _print_version(wanted: bool) -> None:
+    if wanted:
+        from importlib.metadata import version
+
+        out.print(f"supportive {version('supportive')}", markup=False)
+        raise typer.Exit
+
+
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", is_eager=True, callback=_print_version, help="Print the version and exit."),
+    ] = False,
+) -> None:
+    """Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more."""
+
+
+def _plain_placeholders(command: Any) -> None:
+    """Help without typer's ``<bool>``/``<str>``/``<path>`` placeholders (typer ≥ 0.2x shows every parameter's
+    Python type): a flag shows none, a value its kind in capitals (``TEXT``, ``INTEGER``, ``NUMBER``,
+    ``PATH``), a choice its choices, an argument its name (``FILE``) and no type. A typer without them has no
+    ``display_type`` and is left alone."""
+    kinds = {"str": "TEXT", "int": "INTEGER", "float": "NUMBER", "path": "PATH", "file": "PATH"}
+    helper = command.get_help_option(command.context_class(command))
+    for param in [*command.params, *([helper] if helper is not None else [])]:
+        if param.metavar is not None or not hasattr(param, "display_type"):
+            continue
+        if param.param_type_name == "argument":
+            param.metavar = str(param.name).upper()
+            param.display_type_rich = lambda ctx: None  # the name says it; no type column
+        elif getattr(param, "is_flag", False):
+            param.metavar = ""
+        else:
+            label = str(param.display_type(None)).strip("<>").removesuffix(" range")
+            param.metavar = kinds.get(label, label)
+    for sub in getattr(command, "commands", {}).values():
+        _plain_placeholders(sub)
+
+
+def main() -> None:
+    """Entry point: run the app, turning library errors into one line and exit status 2 (a missing optional
+    dependency too: the line names the extra that installs it)."""
+    from supportive.extras import missing_extra
+
+    command = typer.main.get_command(app)
+    _plain_placeholders(command)
+    try:
+        command()
+    except SupportiveError as exc:
+        say(f"supportive: error: {printable(str(exc), newlines=False)}", to_stderr=True)
+        sys.exit(2)
+    except ModuleNotFoundError as exc:
+        problem = missing_extra(exc, " ".join(sys.argv[1:2]) or "this command")
+        if problem is None:
+            raise
+        say(f"supportive: error: {problem}", to_stderr=True)
+        sys.exit(2)
+
+

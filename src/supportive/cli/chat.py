@@ -1,0 +1,54 @@
+"""``supportive chat``: tell the robot how to help and hear it explain its policy, in a copy of the task file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from supportive.cli.output import about, out, say
+from supportive.render.terminal import printable
+
+__all__ = ["chat"]
+
+
+def chat(
+    file: Annotated[
+        Path,
+        typer.Argument(help="Task file with a structure, or a bundled example's name; it is not changed."),
+    ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy changed behaviors are saved to (default: NAME.edited.yaml beside FILE, or here for a "
+            "bundled example); when it exists, the conversation carries on in it.",
+        ),
+    ] = None,
+    matcher: Annotated[
+        str,
+        typer.Option(
+            "--matcher", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra)."
+        ),
+    ] = "bow",
+) -> None:
+    """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
+    from supportive.cli.chat_console import ChatConsole
+    from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
+    from supportive.language.understand import MATCHERS
+
+    if matcher not in MATCHERS:
+        raise LearningError(f"--matcher: unknown matcher {matcher!r}; choose {' or '.join(MATCHERS)}")
+
+    def read() -> str:
+        return input("> ")
+
+    copy = working_copy(task_path(file), save)
+    with about(file):
+        console = ChatConsole(copy.reads(), read, say, matcher)
+        console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console.run()

@@ -1,0 +1,118 @@
+"""``supportive infer``: what the teammate is doing after each observation, known action or bag frame."""
+
+from __future__ import annotations
+
+import json
+import sys
+from enum import StrEnum
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from supportive.cli.output import about, finite
+from supportive.errors import SupportiveError, TaskFileError
+
+__all__ = ["infer"]
+
+
+class InferenceModel(StrEnum):
+    """Goal-inference models."""
+
+    progress = "progress"
+    hierarchical = "hierarchical"
+    flat = "flat"
+
+
+def infer(
+    file: Annotated[
+        Path,
+        typer.Argument(help="Task file whose actions declare their 'observations', or a bundled example's name."),
+    ],
+    observations: Annotated[
+        Path | None,
+        typer.Option("--observations", "-O", help="Observation stream: .jsonl, .json, .yaml or .yml."),
+    ] = None,
+    actions: Annotated[
+        Path | None,
+        typer.Option("--actions", "-A", help="Known actions instead, one action id per line (progress model)."),
+    ] = None,
+    model: Annotated[
+        InferenceModel,
+        typer.Option("--model", help="progress: knows what is done (default); or the thesis's HMMs."),
+    ] = InferenceModel.progress,
+    top: Annotated[
+        int, typer.Option("--top", min=1, max=10_000, help="How many entries of each belief to print.")
+    ] = 3,
+    mean_duration: Annotated[
+        float,
+        typer.Option("--mean-duration", min=1.0, max=1e6, callback=finite, help="Mean observations per subgoal."),
+    ] = 5.0,
+    bag: Annotated[
+        Path | None, typer.Option("--bag", help="Read contact events from a ROS bag instead (ros extra).")
+    ] = None,
+    contacts_topic: Annotated[
+        str, typer.Option("--contacts-topic", help="The bag's contacts topic (see docs/ros.md).")
+    ] = "/contacts",
+    write_bag: Annotated[
+        Path | None,
+        typer.Option("--write-bag", help="Also write the beliefs as a new MCAP bag (with --bag)."),
+    ] = None,
+    types: Annotated[
+        list[Path] | None,
+        typer.Option(
+            "--types", help="A .msg/.idl file or folder of message types the bag lacks; repeatable."
+        ),
+    ] = None,
+) -> None:
+    """Learn the task's CC-HTN, then print what the teammate is doing after each observation or known action
+    (one JSON line each: top subgoals, enclosing subtasks and next steps, with probabilities)."""
+    from supportive.examples import task_path
+    from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM
+    from supportive.inference.bags import belief_record, infer_bag
+    from supportive.io.action_file import parse_action_file
+    from supportive.io.htn_json import htn_to_dict
+    from supportive.io.observation_file import parse_observation_file
+    from supportive.io.taskfile import parse_task_file
+    from supportive.learning.learner import learn as learn_htn
+
+    if sum(source is not None for source in (observations, bag, actions)) != 1:
+        raise SupportiveError("give one source: --observations FILE, --actions FILE or --bag BAG")
+    if write_bag is not None and bag is None:
+        raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
+    if actions is not None and model is not InferenceModel.progress:
+        raise SupportiveError("--actions needs --model progress (the HMMs read contact events)")
+    spec = parse_task_file(task_path(file))
+    if not spec.demonstrations:
+        raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
+    steps = parse_action_file(actions) if actions is not None else []
+    stream = parse_observation_file(observations) if observations is not None else []
+    with about(file):
+        learner = learn_htn(spec)
+        if model is InferenceModel.progress:
+            events = ObservationModel.from_spec(spec) if actions is None else None
+            running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).filter()
+        else:
+            kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
+            model_events = ObservationModel.from_spec(spec)
+            running = kind(learner.htn_, model_events, mean_duration=mean_duration).filter()
+
+    def emit(record: dict[str, object]) -> None:
+        sys.stdout.write(json.dumps(record) + "\n")
+
+    if bag is not None:
+        hierarchy = htn_to_dict(learner.htn_, learner.stats_.as_dict())
+        infer_bag(
+            running,
+            bag,
+            contacts_topic,
+            top=top,
+            emit=emit,
+            write_bag=write_bag,
+            hierarchy=hierarchy,
+            definitions=types or (),
+        )
+    for moment, time in stream:
+        emit(belief_record(running, running.update(moment), top, time))
+    for action in steps:
+        emit(belief_record(running, running.observe(action), top, None))

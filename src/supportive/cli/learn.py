@@ -1,0 +1,210 @@
+"""The learning commands: ``learn`` (a task's CC-HTN as a tree, JSON, DOT or HDDL), ``generate`` (a random
+task file), ``evaluate`` (cross-validation of a user's demonstrations) and ``captaincook`` (the real recipes
+against their published graphs)."""
+
+from __future__ import annotations
+
+import json
+import sys
+from enum import StrEnum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from supportive.cli.output import about, out, say, write_text
+from supportive.errors import SupportiveError, TaskFileError
+from supportive.render.terminal import printable
+
+__all__ = ["captaincook", "evaluate", "generate", "learn"]
+
+
+class LearnFormat(StrEnum):
+    """Output formats of ``learn``."""
+
+    tree = "tree"
+    json = "json"
+    dot = "dot"
+    hddl = "hddl"
+
+
+class LearnMode(StrEnum):
+    """Which learner (see :class:`~supportive.learning.learner.HTNLearner`)."""
+
+    general = "general"
+    strict = "strict"
+
+
+class Profile(StrEnum):
+    """Generator profiles."""
+
+    ikea = "ikea"
+    uniform = "uniform"
+
+
+def learn(
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
+    ],
+    format: Annotated[LearnFormat, typer.Option("--format", "-f", help="What to print.")] = LearnFormat.tree,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="File to write (a directory for hddl).")
+    ] = None,
+    mode: Annotated[
+        LearnMode,
+        typer.Option(
+            "--mode",
+            help="general: what the evidence supports (optional steps, repeats, slips); "
+            "strict: only what was seen in full (the thesis's reading).",
+        ),
+    ] = LearnMode.general,
+) -> None:
+    """Learn the CC-HTN of a task from its demonstrations and print or write it."""
+    from supportive.examples import task_path
+    from supportive.io.dot import htn_to_dot
+    from supportive.io.htn_json import htn_to_dict
+    from supportive.io.taskfile import parse_task_file
+    from supportive.learning.learner import learn as learn_htn
+    from supportive.render.tree import render_tree
+
+    spec = parse_task_file(task_path(file))
+    if not spec.demonstrations:
+        raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
+    with about(file):
+        learner = learn_htn(spec, mode=mode.value)
+    if format is LearnFormat.hddl:
+        from supportive.io.hddl import write_hddl
+
+        if output is None:
+            raise TaskFileError("--format hddl needs --output DIR (it writes domain.hddl and problem.hddl)")
+        domain, problem = write_hddl(learner.htn_, output)
+        say(f"wrote {domain} and {problem}", to_stderr=True)
+        return
+    if format is LearnFormat.json:
+        data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
+        ids = [d.id for d in spec.demonstrations]
+        data["deviations"] = [d.as_dict(ids) for d in learner.deviations_]
+        text = json.dumps(data, indent=2) + "\n"
+    elif format is LearnFormat.dot:
+        text = htn_to_dot(learner.htn_)
+    else:
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
+    write_text(text, output)
+
+
+def generate(
+    actions: Annotated[
+        int, typer.Option("--actions", "-n", min=2, max=100_000, help="Number of primitive actions.")
+    ] = 20,
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same task).")] = 0,
+    demonstrations: Annotated[
+        int,
+        typer.Option(
+            "--demonstrations", "-d", min=0, max=10_000, help="Valid orderings to sample as demonstrations."
+        ),
+    ] = 4,
+    profile: Annotated[Profile, typer.Option("--profile", help="Shape of the structure.")] = Profile.ikea,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="Task file to write (.yaml, .json or .csv).")
+    ] = None,
+) -> None:
+    """Generate a random nested chain/clique task with sampled demonstrations (a task file)."""
+    from supportive.generate import generate_task
+    from supportive.io.taskfile import dump_task, format_of
+
+    spec = generate_task(actions, seed, demonstrations=demonstrations, profile=profile.value)
+    fmt = format_of(output) if output is not None else "yaml"
+    write_text(dump_task(spec, fmt), output)
+
+
+def evaluate(
+    file: Annotated[Path, typer.Argument(help="Task file with at least two demonstrations.")],
+    folds: Annotated[
+        str, typer.Option("--folds", help="loo (leave one out) or a number of folds K.")
+    ] = "loo",
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the folds (K folds only).")] = 0,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
+) -> None:
+    """Cross-validate your demonstrations: does the hierarchy learned from the others admit the one held out
+    (with a ground-truth structure: recall and precision of its orderings), and how well the progress-aware
+    next-step predictor and three simple baselines predict each step."""
+    from supportive.evaluation import evaluate_task
+    from supportive.examples import task_path
+    from supportive.experiments.progress import progress_bar
+    from supportive.io.taskfile import parse_task_file
+    from supportive.render.tables import fitted_table
+
+    if folds != "loo" and not (folds.isdigit() and int(folds) >= 2):
+        raise SupportiveError(f"--folds: expected loo or a number of folds of at least 2, got {folds!r}")
+    spec = parse_task_file(task_path(file))
+    if len(spec.demonstrations) < 2:
+        raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")
+    k = None if folds == "loo" else int(folds)
+    with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
+        result = evaluate_task(spec, k=k, seed=seed, progress=advance)
+    data = result.as_dict()
+    if as_json:
+        out.print_json(json.dumps(data))
+        return
+    learning = [
+        f"{data['admitted']} of {data['held_out']} held-out demonstrations admitted ({data['admission']:.1%})",
+    ]
+    if data["recall"] is not None:
+        learning.append(f"orderings of the structure: recall {data['recall']:.3f}, precision {data['precision']:.3f}")
+    say(f"{spec.name}: {'leave one out' if k is None else f'{k} folds'}, {result.folds} folds")
+    for line in learning:
+        say("  " + line)
+    rows = [
+        [
+            name,
+            f"{m['top1']:.3f}",
+            f"{m['top3']:.3f}",
+            f"{m['zero']:.3f}",
+            f"{m['log2']:.3f}",
+            f"{m['done_top1']:.3f}",
+        ]
+        for name, m in result.as_dict()["prediction"].items()  # type: ignore[attr-defined]
+    ]
+    headers = ["next-step predictor", "top-1", "top-3", "P = 0", "log2 P / step", "top-1 done"]
+    out.print(fitted_table(out, f"{result.prediction['progress-aware'].steps} steps", headers, rows, numeric=range(1, 6)))
+
+
+def captaincook(
+    data: Annotated[
+        Path | None,
+        typer.Option("--data", help="CaptainCook4D directory (default: ../shared/data/captaincook4d)."),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
+) -> None:
+    """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
+    the learned model implies against the recipe's published task graph."""
+    from supportive.experiments.captaincook.recipes import captaincook_report, recipe_means
+    from supportive.io.captaincook import load_captaincook
+    from supportive.render.tables import fitted_table
+
+    reports = captaincook_report(load_captaincook(data))
+    if as_json:
+        rows = [r.as_dict() for r in reports]
+        sys.stdout.write(json.dumps(rows, indent=2) + "\n")
+        return
+    headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
+    cells = [
+        [
+            r.recipe,
+            str(r.demonstrations),
+            str(r.actions),
+            str(r.known_paths),
+            str(r.roots),
+            f"{r.score.precision:.3f}",
+            f"{r.score.recall:.3f}",
+            f"{r.score.f1:.3f}",
+        ]
+        for r in reports
+    ]
+    title = "CaptainCook4D: implied precedences vs the published task graphs"
+    out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
+    means = recipe_means(reports)
+    out.print(
+        f"mean over {means.recipes} recipes: precision {means.precision:.3f}, recall {means.recall:.3f}, "
+        f"F1 {means.f1:.3f}; every learned model admits all its recordings: {means.all_admitted}"
+    )

@@ -1,0 +1,55 @@
+"""What every command shares: the consoles it prints to, one line of a user's text, checks of option values,
+and naming the file in an error about its contents."""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import typer
+
+from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError
+from supportive.render.terminal import printable, terminal_console
+
+__all__ = ["about", "err", "finite", "out", "say", "write_text"]
+
+out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
+err = terminal_console(stderr=True)  # an error is one line, whatever its length
+
+
+def say(line: object, *, to_stderr: bool = False) -> None:
+    """Print one line that may hold a user's text: as text (never markup or emoji), escaped for the terminal
+    (:mod:`supportive.render.terminal`)."""
+    (err if to_stderr else out).print(printable(str(line)), markup=False)
+
+
+def finite(value: float | None) -> float | None:
+    """A float option's value when it is a number (click lets ``nan`` through its ranges)."""
+    if value is not None and not math.isfinite(value):
+        raise typer.BadParameter(f"expected a finite number, got {value}")
+    return value
+
+
+@contextmanager
+def about(path: Path) -> Iterator[None]:
+    """Name ``path`` in an error the library raises about its contents (a demonstration, the task) without
+    naming the file; file errors name it already, and a missing extra is not the file's fault."""
+    try:
+        yield
+    except (FileFormatError, MissingExtraError):
+        raise
+    except SupportiveError as exc:
+        raise SupportiveError(f"{path}: {exc}") from None
+
+
+def write_text(text: str, output: Path | None) -> None:
+    """Print ``text``, or write it to ``output`` (atomically; a failure names the file)."""
+    if output is None:
+        sys.stdout.write(text)
+        return
+    from supportive.io.atomic import atomic_write
+
+    atomic_write(output, text, error=TaskFileError)

@@ -1,0 +1,66 @@
+"""``supportive teach``: teach a task by demonstration at the terminal, in a copy of the task file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from supportive.cli.output import about, out, say
+from supportive.render.terminal import printable
+
+__all__ = ["teach"]
+
+
+def teach(
+    file: Annotated[
+        Path, typer.Argument(help="Task file (.yaml or .json) or a bundled example's name; it is not changed.")
+    ],
+    save: Annotated[
+        Path | None,
+        typer.Option(
+            "--save",
+            help="The copy your demonstrations are saved to (default: NAME.edited.yaml beside FILE, or here for "
+            "a bundled example); when it exists, teaching carries on in it.",
+        ),
+    ] = None,
+    strategy: Annotated[
+        str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
+    ] = "distance",
+    after: Annotated[
+        str,
+        typer.Option("--ask-after", help="Ask after these step counts (0: at the start), comma-separated."),
+    ] = "1,3,5",
+    demonstrations: Annotated[
+        int | None, typer.Option("--demonstrations", "-d", min=1, help="Stop after this many.")
+    ] = None,
+    seed: Annotated[
+        int, typer.Option("--seed", min=0, help="Seeds the choice among equally good questions.")
+    ] = 0,
+) -> None:
+    """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
+    from supportive.cli.teach_console import TeachingConsole
+    from supportive.errors import LearningError
+    from supportive.examples import task_path
+    from supportive.io.working_copy import working_copy
+    from supportive.learning.active import QuerySchedule, strategy_names
+
+    if strategy not in strategy_names():
+        raise LearningError(
+            f"--strategy: unknown strategy {strategy!r}; choose one of {', '.join(strategy_names())}"
+        )
+    try:
+        steps = tuple(int(x) for x in after.split(",") if x.strip())
+    except ValueError:
+        raise LearningError(f"--ask-after: expected step counts like 1,3,5, got {after!r}") from None
+    schedule = QuerySchedule(after_steps=steps, max_per_demonstration=len(steps))
+
+    def read() -> str:
+        return input("> ")
+
+    copy = working_copy(task_path(file), save)
+    with about(file):
+        console = TeachingConsole(copy.start(), read, say, strategy, schedule, seed)
+        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console.run(demonstrations)
