@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from supportive.errors import ExportError, MissingExtraError
-from supportive.safety.episode import run_episode
 from supportive.render.household import GIF_SIGNATURE, write_gif
+from supportive.safety.episode import run_episode
 from supportive.worlds.household import load_map
 
 RUN = ["caregiver", "--map", "playroom", "--novice", "0.5", "--seed", "1", "--steps", "5"]

@@ -7,9 +7,9 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from supportive import examples
+from supportive.cli.teach_console import TeachingConsole
 from supportive.io.taskfile import parse_task_file
 from supportive.learning.active import QuerySchedule
-from supportive.cli.teach_console import TeachingConsole
 
 TOWERS = ["yellow", "green", "white", "red", "blue", "purple", "black", "orange"]
 

@@ -7,8 +7,8 @@ import pytest
 from supportive import examples
 from supportive.io.dot import htn_to_dot
 from supportive.io.htn_json import htn_from_dict, htn_to_dict
-from supportive.render.tree import render_tree
 from supportive.learning import learn
+from supportive.render.tree import render_tree
 from supportive.tasks.htn import HTN, ActionNode, ChainNode
 
 

@@ -14,13 +14,13 @@ from pathlib import Path
 import pytest
 
 from supportive import examples
+from supportive.cli.teach_console import TeachingConsole
 from supportive.errors import TaskFileError
 from supportive.io import atomic
 from supportive.io.atomic import atomic_write, exclusive
 from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
 from supportive.tasks.spec import Demonstration
-from supportive.cli.teach_console import TeachingConsole
 
 ORDER = ["red", "yellow", "green", "white", "orange", "purple", "black", "blue"]
 
