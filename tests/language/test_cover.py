@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.errors import SupportiveError
-from supportive.language.cover import Cover, NoCoverError, describe_precision, minimal_cover
+from supportive.errors import NoCoverError, SupportiveError
+from supportive.language.cover import Cover, describe_precision, minimal_cover
 from supportive.language.dnf import DNF, Conjunction, Literal, TruthTable
 
 

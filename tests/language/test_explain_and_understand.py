@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from supportive.errors import UnderstandingError
 from supportive.io import parse_task_file, parse_task_string
 from supportive.language.explain import (
     explain_behavior,
@@ -14,7 +15,7 @@ from supportive.language.explain import (
     initiation_states,
     verbalize,
 )
-from supportive.language.grammar import UnderstandingError, parse_utterance
+from supportive.language.grammar import parse_utterance
 from supportive.language.states import TaskStates
 from supportive.language.understand import ConditionReader, Understanding, Understood, guess_category
 from supportive.language.wording import activity, gerund

@@ -11,12 +11,11 @@ import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.errors import SupportiveError
+from supportive.errors import SupportiveError, UnderstandingError
 from supportive.language.grammar import (
     ExplainBehavior,
     ExplainSubtask,
     Preference,
-    UnderstandingError,
     normalise_text,
     parse_condition,
     parse_utterance,

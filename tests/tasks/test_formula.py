@@ -4,8 +4,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from supportive.errors import FormulaError
 from supportive.tasks.behaviors import PredicateSpec
-from supportive.tasks.formula import DNF, Conjunction, FormulaError, Literal, atom, parse_formula, split_atom
+from supportive.tasks.formula import DNF, Conjunction, Literal, atom, parse_formula, split_atom
 
 
 def test_parse_precedence_negation_and_arguments() -> None:

@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from supportive.errors import SupportiveError, TaskFileError
+from supportive.errors import OptionError, TaskFileError
 
 __all__ = ["bag_app"]
 
@@ -77,7 +77,7 @@ def import_bags(
     from supportive.tasks.spec import TaskSpec
 
     if segment_topic == actions_topic:
-        raise SupportiveError(f"--segment-topic and --actions-topic are both {actions_topic}: give two topics")
+        raise OptionError(f"--segment-topic and --actions-topic are both {actions_topic}: give two topics")
     if task is not None and output is not None and output.resolve() == task.resolve():
         raise TaskFileError("-o names the --task file itself; write the result to another file", path=output)
     fmt = format_of(output) if output is not None else "yaml"

@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.output import finite, out, say
-from supportive.errors import ExperimentError
+from supportive.errors import OptionError
 from supportive.extras import require_extra
 from supportive.render.terminal import markup_safe
 
@@ -54,7 +54,7 @@ def caregiver(
     from supportive.worlds.household import load_map
 
     if not 0.0 <= novice <= 1.0:
-        raise ExperimentError(f"--novice: ε must be in [0, 1] (the share of random moves), got {novice}")
+        raise OptionError(f"ε must be in [0, 1] (the share of random moves), got {novice}", "--novice")
     if gif is not None:
         require_extra("drawing an episode as a GIF (--gif)", "matplotlib", "plot")
     grid = load_map(map_name)

@@ -35,13 +35,13 @@ def chat(
 ) -> None:
     """Tell the robot how to help and ask it to explain its policy, in plain sentences (§3.3)."""
     from supportive.cli.chat_console import ChatConsole
-    from supportive.errors import LearningError
+    from supportive.errors import OptionError
     from supportive.examples import task_path
     from supportive.io.working_copy import working_copy
     from supportive.language.understand import MATCHERS
 
     if matcher not in MATCHERS:
-        raise LearningError(f"--matcher: unknown matcher {matcher!r}; choose {' or '.join(MATCHERS)}")
+        raise OptionError(f"unknown matcher {matcher!r}; choose {' or '.join(MATCHERS)}", "--matcher")
 
     def read() -> str:
         return input("> ")

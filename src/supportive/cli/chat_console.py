@@ -25,16 +25,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from supportive.errors import UnderstandingError
 from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
 from supportive.language.explain import explain_behavior, explain_subtask
-from supportive.language.grammar import (
-    ExplainBehavior,
-    ExplainSubtask,
-    Preference,
-    UnderstandingError,
-    parse_utterance,
-)
+from supportive.language.grammar import ExplainBehavior, ExplainSubtask, Preference, parse_utterance
 from supportive.language.grounding import Candidate, is_confident
 from supportive.language.states import TaskStates
 from supportive.language.understand import Understanding

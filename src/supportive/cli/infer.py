@@ -11,7 +11,7 @@ from typing import Annotated, Any
 import typer
 
 from supportive.cli.output import about, finite
-from supportive.errors import SupportiveError, TaskFileError
+from supportive.errors import OptionError, TaskFileError
 
 __all__ = ["infer"]
 
@@ -77,11 +77,11 @@ def infer(
     from supportive.learning.learner import learn as learn_htn
 
     if sum(source is not None for source in (observations, bag, actions)) != 1:
-        raise SupportiveError("give one source: --observations FILE, --actions FILE or --bag BAG")
+        raise OptionError("give one source: --observations FILE, --actions FILE or --bag BAG")
     if write_bag is not None and bag is None:
-        raise SupportiveError("--write-bag needs --bag: it writes the beliefs beside a recording")
+        raise OptionError("--write-bag needs --bag: it writes the beliefs beside a recording")
     if actions is not None and model is not InferenceModel.progress:
-        raise SupportiveError("--actions needs --model progress (the HMMs read contact events)")
+        raise OptionError("--actions needs --model progress (the HMMs read contact events)")
     spec = parse_task_file(task_path(file))
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")

@@ -13,7 +13,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.output import about, out, say, write_text
-from supportive.errors import SupportiveError, TaskFileError
+from supportive.errors import OptionError, TaskFileError
 from supportive.render.terminal import printable
 
 __all__ = ["captaincook", "evaluate", "generate", "learn"]
@@ -76,7 +76,7 @@ def learn(
         from supportive.io.hddl import write_hddl
 
         if output is None:
-            raise TaskFileError("--format hddl needs --output DIR (it writes domain.hddl and problem.hddl)")
+            raise OptionError("--format hddl needs --output DIR (it writes domain.hddl and problem.hddl)")
         domain, problem = write_hddl(learner.htn_, output)
         say(f"wrote {domain} and {problem}", to_stderr=True)
         return
@@ -135,7 +135,7 @@ def evaluate(
     from supportive.render.tables import fitted_table
 
     if folds != "loo" and not (folds.isdigit() and int(folds) >= 2):
-        raise SupportiveError(f"--folds: expected loo or a number of folds of at least 2, got {folds!r}")
+        raise OptionError(f"expected loo or a number of folds of at least 2, got {folds!r}", "--folds")
     spec = parse_task_file(task_path(file))
     if len(spec.demonstrations) < 2:
         raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")

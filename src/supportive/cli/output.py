@@ -11,7 +11,7 @@ from pathlib import Path
 
 import typer
 
-from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError
+from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError, naming
 from supportive.render.terminal import printable, terminal_console
 
 __all__ = ["about", "err", "finite", "out", "say", "write_text"]
@@ -42,7 +42,7 @@ def about(path: Path) -> Iterator[None]:
     except (FileFormatError, MissingExtraError):
         raise
     except SupportiveError as exc:
-        raise SupportiveError(f"{path}: {exc}") from None
+        raise naming(exc, path) from None
 
 
 def write_text(text: str, output: Path | None) -> None:

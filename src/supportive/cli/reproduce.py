@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.output import out, say
-from supportive.errors import ExperimentError
+from supportive.errors import OptionError
 from supportive.extras import require_extra
 
 __all__ = ["reproduce"]
@@ -53,7 +53,7 @@ def reproduce(
     from supportive.render.tables import fitted_table
 
     if workers is not None and scheduler is not None:
-        raise ExperimentError("--workers and --scheduler are mutually exclusive: give one or the other")
+        raise OptionError("--workers and --scheduler are mutually exclusive: give one or the other")
     require_extra("plotting experiment results", "matplotlib", "plot")
     results = run_reproduce(name, trials, seed, workers or 1, scheduler, output, readings=reading or None)
     for result in results:

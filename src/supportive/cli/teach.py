@@ -41,19 +41,19 @@ def teach(
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.cli.teach_console import TeachingConsole
-    from supportive.errors import LearningError
+    from supportive.errors import OptionError
     from supportive.examples import task_path
     from supportive.io.working_copy import working_copy
     from supportive.learning.active import QuerySchedule, strategy_names
 
     if strategy not in strategy_names():
-        raise LearningError(
-            f"--strategy: unknown strategy {strategy!r}; choose one of {', '.join(strategy_names())}"
+        raise OptionError(
+            f"unknown strategy {strategy!r}; choose one of {', '.join(strategy_names())}", "--strategy"
         )
     try:
         steps = tuple(int(x) for x in after.split(",") if x.strip())
     except ValueError:
-        raise LearningError(f"--ask-after: expected step counts like 1,3,5, got {after!r}") from None
+        raise OptionError(f"expected step counts like 1,3,5, got {after!r}", "--ask-after") from None
     schedule = QuerySchedule(after_steps=steps, max_per_demonstration=len(steps))
 
     def read() -> str:

@@ -7,7 +7,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.output import finite, say
-from supportive.errors import SupportiveError
+from supportive.errors import OptionError
 
 __all__ = ["workbench_sim"]
 
@@ -32,6 +32,6 @@ def workbench_sim(
     from supportive.cli.workbench_sim import ROLES, run_workbench
 
     if role not in ROLES:
-        raise SupportiveError(f"--role: unknown role {role!r}; choose {', '.join(ROLES)}")
+        raise OptionError(f"unknown role {role!r}; choose {', '.join(ROLES)}", "--role")
     say(f"workbench-blocks, the robot as {role}:")
     run_workbench(role, url=url, seconds=seconds, seed=seed, tell=say)

@@ -30,7 +30,7 @@ import httpx
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from supportive.errors import SupportiveError
+from supportive.errors import ServiceError, SocialError
 from supportive.examples import path as example_path
 from supportive.io.taskfile import parse_task_file
 from supportive.social.ellipse import ForceEllipse
@@ -111,7 +111,7 @@ class BoardClient:
     @staticmethod
     def _json(response: httpx.Response) -> Any:
         if response.status_code >= 400:
-            raise SupportiveError(f"the board answered {response.status_code}: {response.text}")
+            raise ServiceError(f"the board answered {response.status_code}: {response.text}")
         return response.json()
 
 
@@ -442,7 +442,7 @@ def run_workbench(
         SupportiveError: for an unknown role, or a service that refuses what the simulation needs.
     """
     if role not in _SCENARIOS:
-        raise SupportiveError(f"unknown role {role!r}: choose {', '.join(ROLES)}")
+        raise SocialError(f"unknown role {role!r}: choose {', '.join(ROLES)}")
     spec = parse_task_file(example_path("workbench-blocks"))
     if url is None:
         with serve_in_background() as local:

@@ -10,6 +10,8 @@ from typing import Any
 
 from scipy import stats
 
+from supportive.errors import ExperimentError
+
 __all__ = [
     "above_zero",
     "below_zero",
@@ -64,7 +66,7 @@ def ratio_ci(numerators: Sequence[float], denominators: Sequence[float], digits:
     True
     """
     if len(numerators) != len(denominators):
-        raise ValueError("ratio_ci: numerators and denominators must pair up")
+        raise ExperimentError("ratio_ci: numerators and denominators must pair up")
     n = len(numerators)
     if not n or statistics.fmean(denominators) == 0:
         return {"mean": None, "low": None, "high": None, "n": n}

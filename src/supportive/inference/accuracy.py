@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from supportive.errors import LearningError
 from supportive.inference.hmm import FlatHMM, HierarchicalHMM
 from supportive.inference.observations import Observation, ObservationModel
 from supportive.inference.tracker import ProgressHMM
@@ -73,10 +74,10 @@ def filter_accuracy(
     ``timed``, also time each filter update alone with :func:`time.perf_counter`.
 
     Raises:
-        ValueError: when the stream is empty or its observations and truth differ in length.
+        LearningError: when the stream is empty or its observations and truth differ in length.
     """
     if not truth:
-        raise ValueError("accuracy needs a non-empty stream")
+        raise LearningError("accuracy needs a non-empty stream")
     layout = model.layout_
     index = {leaf: i for i, leaf in enumerate(layout.leaves)}
     running = model.filter()

@@ -19,6 +19,7 @@ from pydantic import (
     model_validator,
 )
 
+from supportive.errors import InvalidValueError
 from supportive.io.values import ActionId, Coordinate, Ident, Seconds, Text
 
 __all__ = [
@@ -53,7 +54,7 @@ def _keyframe_pair(value: Any) -> Any:
     """``[x, y]`` → ``{x, y}``; any other list is refused with the expected forms."""
     if isinstance(value, list | tuple):
         if len(value) != 2:
-            raise ValueError(f"a keyframe is [x, y] or {{x, y, text, goal}}, got a list of length {len(value)}")
+            raise InvalidValueError(f"a keyframe is [x, y] or {{x, y, text, goal}}, got a list of length {len(value)}")
         return {"x": value[0], "y": value[1]}
     return value
 
@@ -99,7 +100,7 @@ class StepIn(_Strict):
     @model_validator(mode="after")
     def _timing(self) -> StepIn:
         if self.start is not None and self.end is not None and self.start > self.end:
-            raise ValueError(f"start {self.start} is after end {self.end}")
+            raise InvalidValueError(f"start {self.start} is after end {self.end}")
         return self
 
 
@@ -126,12 +127,12 @@ class NodeIn(_Strict):
     def _one_kind(self) -> NodeIn:
         kinds = [k for k in ("action", "chain", "clique", "optional") if getattr(self, k) is not None]
         if len(kinds) != 1:
-            raise ValueError(
+            raise InvalidValueError(
                 "a structure node needs exactly one of 'chain', 'clique', 'optional' or an action id"
             )
         children = self.chain if self.chain is not None else self.clique
         if children is not None and not children:
-            raise ValueError(f"'{kinds[0]}' needs at least one child")
+            raise InvalidValueError(f"'{kinds[0]}' needs at least one child")
         return self
 
 
@@ -152,7 +153,7 @@ class PredicateIn(_Strict):
     def _one_type_each(cls, params: list[str | dict[str, str]]) -> list[str | dict[str, str]]:
         for i, param in enumerate(params):
             if isinstance(param, dict) and len(param) != 1:
-                raise ValueError(f"a typed parameter is one 'name: type' pair, got {param} (parameter {i + 1})")
+                raise InvalidValueError(f"a typed parameter is one 'name: type' pair, got {param} (parameter {i + 1})")
         return params
 
     def typed(self) -> list[tuple[str, str | None]]:

@@ -17,7 +17,7 @@ from typing import Any, Literal
 import yaml
 from pydantic import ValidationError
 
-from supportive.errors import TaskFileError
+from supportive.errors import FormulaError, TaskFileError
 from supportive.io.atomic import atomic_write
 from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
 from supportive.io.safe_load import read_csv, read_text
@@ -31,7 +31,7 @@ from supportive.tasks.behaviors import (
     SupportiveBehavior,
     placeholders,
 )
-from supportive.tasks.formula import FormulaError, parse_formula, split_atom
+from supportive.tasks.formula import parse_formula, split_atom
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, internal_nodes
 from supportive.tasks.spec import Action, Demonstration, Keyframe, Step, TaskSpec
 

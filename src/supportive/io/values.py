@@ -15,11 +15,11 @@ observation streams, command-line options).
 >>> check_number(float("nan"), "start", low=0, high=1)
 Traceback (most recent call last):
 ...
-ValueError: start must be a finite number, got nan
+supportive.errors.InvalidValueError: start must be a finite number, got nan
 >>> check_id("a#2", action=True)
 Traceback (most recent call last):
 ...
-ValueError: an action id may not contain '#' (a#2 names the second performance of a), got 'a#2'
+supportive.errors.InvalidValueError: an action id may not contain '#' (a#2 names the second performance of a), got 'a#2'
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ from typing import Annotated
 
 from pydantic import AfterValidator, Field, StringConstraints
 
+from supportive.errors import InvalidValueError
 from supportive.io.limits import MAX_ID_LENGTH, MAX_SECONDS
 
 __all__ = [
@@ -52,16 +53,16 @@ def check_number(value: float, what: str, *, low: float, high: float) -> float:
     """``value`` when it is a finite number in ``[low, high]``.
 
     Raises:
-        ValueError: naming ``what``, otherwise.
+        InvalidValueError: naming ``what``, otherwise.
     """
     if isinstance(value, bool) or not isinstance(value, int | float):
-        raise ValueError(f"{what} must be a number, got {value!r}")
+        raise InvalidValueError(f"{what} must be a number, got {value!r}")
     if isinstance(value, int) and not -(10**30) < value < 10**30:
-        raise ValueError(f"{what} must be between {low:g} and {high:g}, got an integer of {len(str(abs(value)))} digits")
+        raise InvalidValueError(f"{what} must be between {low:g} and {high:g}, got an integer of {len(str(abs(value)))} digits")
     if not math.isfinite(value):
-        raise ValueError(f"{what} must be a finite number, got {value}")
+        raise InvalidValueError(f"{what} must be a finite number, got {value}")
     if not low <= value <= high:
-        raise ValueError(f"{what} must be between {low:g} and {high:g}, got {value:g}")
+        raise InvalidValueError(f"{what} must be between {low:g} and {high:g}, got {value:g}")
     return value
 
 
@@ -85,11 +86,11 @@ def check_text(text: str, what: str = "text") -> str:
     """``text`` when it holds no control character (tabs and newlines aside) and no lone surrogate.
 
     Raises:
-        ValueError: naming the first character that may not be there.
+        InvalidValueError: naming the first character that may not be there.
     """
     bad = _unprintable(text, newlines=True)
     if bad is not None:
-        raise ValueError(f"{what} may not contain {bad}")
+        raise InvalidValueError(f"{what} may not contain {bad}")
     return text
 
 
@@ -98,16 +99,16 @@ def check_id(text: str, *, action: bool = False, what: str = "an id") -> str:
     no ``#``.
 
     Raises:
-        ValueError: saying which rule it breaks.
+        InvalidValueError: saying which rule it breaks.
     """
     if len(text) > MAX_ID_LENGTH:
-        raise ValueError(f"{what} is at most {MAX_ID_LENGTH} characters, got {len(text)}")
+        raise InvalidValueError(f"{what} is at most {MAX_ID_LENGTH} characters, got {len(text)}")
     bad = _unprintable(text, newlines=False)
     if bad is not None:
-        raise ValueError(f"{what} may not contain {bad}")
+        raise InvalidValueError(f"{what} may not contain {bad}")
     if action and "#" in text:
         head = text.split("#")[0]
-        raise ValueError(f"an action id may not contain '#' ({head}#2 names the second performance of {head}), got {text!r}")
+        raise InvalidValueError(f"an action id may not contain '#' ({head}#2 names the second performance of {head}), got {text!r}")
     return text
 
 

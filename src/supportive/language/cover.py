@@ -35,18 +35,19 @@ import numpy as np
 from scipy import sparse
 from scipy.optimize import Bounds, LinearConstraint, milp
 
-from supportive.errors import SupportiveError
+from supportive.errors import LanguageError, NoCoverError
 from supportive.language.dnf import DNF, Conjunction, Literal, TruthTable, simplify
 
 __all__ = [
     "ESPRESSO_MAX_ATOMS",
     "Cover",
     "CoverMethod",
-    "NoCoverError",
     "describe_precision",
     "exact_formula",
     "minimal_cover",
 ]
+
+_SHOWN_STATES = 10  # states a message lists before "… and N more"
 
 CoverMethod = typing.Literal["ilp", "espresso", "brute-force"]
 """How `minimal_cover` chooses the formula."""
@@ -57,32 +58,6 @@ ESPRESSO_MAX_ATOMS = 16
 _BRUTE_FORCE_MAX_CANDIDATES = 20
 _MAX_CANDIDATES = 2_000_000  # conjunctions enumerated before pruning; beyond this, lower max_literals
 _DOMINANCE_BLOCK = 512  # candidates compared at once when pruning dominated ones
-_SHOWN_STATES = 10  # states a NoCoverError message lists before "… and N more"
-
-
-class NoCoverError(SupportiveError):
-    """Every target state must be covered, and some cannot be.
-
-    The caller turns this into "I have no words for …": ``uncoverable`` holds the target states that no
-    allowed conjunction (at most ``max_literals`` literals; for ESPRESSO, any) separates from the irrelevant
-    states: every such conjunction that holds in one of them also holds in an irrelevant state.
-
-    Args:
-        uncoverable: The target states that cannot be covered.
-        reason: Why, as the start of the message (the states are appended).
-        order: The table's states, to list ``uncoverable`` in a stable order.
-    """
-
-    def __init__(self, uncoverable: frozenset[Hashable], reason: str, order: Sequence[Hashable] = ()) -> None:
-        self.uncoverable = uncoverable
-        self.reason = reason
-        listed = [s for s in order if s in uncoverable] or sorted(uncoverable, key=repr)
-        shown = ", ".join(repr(s) for s in listed[:_SHOWN_STATES])
-        if len(listed) > _SHOWN_STATES:
-            shown += f", … and {len(listed) - _SHOWN_STATES} more"
-        super().__init__(f"{reason}: {shown}")
-
-
 @dataclass(frozen=True)
 class Cover:
     """A DNF formula chosen to describe a region of states, and how well it does.
@@ -126,7 +101,7 @@ def exact_formula(
     the region, shortened with :func:`~supportive.language.dnf.simplify`.
 
     Raises:
-        ValueError: when a state of ``within`` outside the region has the same atoms as one inside: no formula
+        LanguageError: when a state of ``within`` outside the region has the same atoms as one inside: no formula
             over the table's atoms tells them apart.
 
     >>> table = TruthTable.from_sets(["s0", "s1", "s2", "s3"], {"p": {"s1", "s3"}, "q": {"s2", "s3"}})
@@ -143,7 +118,7 @@ def exact_formula(
         pass
     rows = {tuple(row) for row in table.values[target]}
     if any(tuple(row) in rows for row in table.values[inside & ~target]):
-        raise ValueError("the predicates cannot tell some states outside the region from states in it")
+        raise LanguageError("the predicates cannot tell some states outside the region from states in it")
     clauses = tuple(
         Conjunction(frozenset(Literal(atom, bool(value)) for atom, value in zip(table.atoms, row, strict=True)))
         for row in sorted(rows)
@@ -255,17 +230,17 @@ def minimal_cover(
     Raises:
         NoCoverError: under ``full_coverage`` without ``allow_irrelevant``, when some target state cannot
             be separated from the irrelevant ones (its ``uncoverable`` holds them).
-        ValueError: for λ outside [0, 1], ``max_literals`` below 1, a state both target and irrelevant, an
+        LanguageError: for λ outside [0, 1], ``max_literals`` below 1, a state both target and irrelevant, an
             unknown method, ESPRESSO on more than `ESPRESSO_MAX_ATOMS` atoms, brute force with more than 20
             candidates, or more candidate conjunctions than can be enumerated.
         KeyError: for a state the table does not know.
     """
     if not 0.0 <= lam <= 1.0:
-        raise ValueError(f"lam must be in [0, 1], got {lam}")
+        raise LanguageError(f"lam must be in [0, 1], got {lam}")
     if max_literals < 1:
-        raise ValueError(f"max_literals must be at least 1, got {max_literals}")
+        raise LanguageError(f"max_literals must be at least 1, got {max_literals}")
     if method not in ("ilp", "espresso", "brute-force"):
-        raise ValueError(f"unknown method {method!r}: expected 'ilp', 'espresso' or 'brute-force'")
+        raise LanguageError(f"unknown method {method!r}: expected 'ilp', 'espresso' or 'brute-force'")
     allow = not full_coverage if allow_irrelevant is None else allow_irrelevant
     target_mask = table.mask_of(target)
     if irrelevant is None:
@@ -274,7 +249,7 @@ def minimal_cover(
         irrelevant_mask = table.mask_of(irrelevant)
         both = target_mask & irrelevant_mask
         if both.any():
-            raise ValueError(f"states both target and irrelevant: {_listing(table, both)}")
+            raise LanguageError(f"states both target and irrelevant: {_listing(table, both)}")
     if method == "espresso":
         formula = _espresso(table, target_mask, irrelevant_mask, full_coverage, allow)
         return _make_cover(table, formula, target_mask, irrelevant_mask, method, None, False)
@@ -379,7 +354,7 @@ def _candidates(problem: _Problem, max_literals: int, allow_irrelevant: bool) ->
     longest = min(max_literals, n_atoms)
     total = sum(math.comb(n_atoms, k) * 2**k for k in range(longest + 1))
     if total > _MAX_CANDIDATES:
-        raise ValueError(
+        raise LanguageError(
             f"{total} conjunctions of up to {longest} literals over {n_atoms} atoms is too many to "
             "enumerate: lower max_literals"
         )
@@ -570,7 +545,7 @@ def _solve_ilp(
         cost, integrality=integrality, bounds=Bounds(0.0, 1.0), constraints=constraints, options=options
     )
     if result.x is None:  # pragma: no cover - feasibility is checked before solving
-        raise SupportiveError(f"the cover ILP found no answer: {result.message}")
+        raise LanguageError(f"the cover ILP found no answer: {result.message}")
     return [int(p) for p in np.flatnonzero(result.x[:n_terms] > 0.5)], result.status == 0
 
 
@@ -582,7 +557,7 @@ def _brute_force(problem: _Problem, candidates: _Candidates, lam: float) -> list
     """
     n_terms = len(candidates.lengths)
     if n_terms > _BRUTE_FORCE_MAX_CANDIDATES:
-        raise ValueError(
+        raise LanguageError(
             f"brute force is for at most {_BRUTE_FORCE_MAX_CANDIDATES} candidate terms, this cover has "
             f"{n_terms} after pruning: use method='ilp'"
         )
@@ -638,7 +613,7 @@ def _espresso(
     """ESPRESSO on the truth table over the atoms: target valuations 1, irrelevant 0, the rest don't care."""
     n_atoms = len(table.atoms)
     if n_atoms > ESPRESSO_MAX_ATOMS:
-        raise ValueError(
+        raise LanguageError(
             f"ESPRESSO minimises over the full truth table of 2^{n_atoms} rows; it is limited to "
             f"{ESPRESSO_MAX_ATOMS} atoms: use method='ilp'"
         )

@@ -26,7 +26,7 @@ import numpy as np
 from scipy.spatial.distance import cdist
 from scipy.special import logsumexp
 
-from supportive.errors import LearningError
+from supportive.errors import LanguageError, LearningError
 from supportive.language.cover import exact_formula
 from supportive.language.dnf import TruthTable
 from supportive.language.explain import scope
@@ -101,7 +101,7 @@ def learn_region(
             the least dense marked state's (1: as dense as that; smaller generalises further).
 
     Raises:
-        ValueError: with no marked state, a marked state that is also hazardous, an unknown state or a
+        LanguageError: with no marked state, a marked state that is also hazardous, an unknown state or a
             non-positive bandwidth or level.
 
     >>> table = TruthTable.from_sets(["a", "b", "c", "d"], {"p": {"a", "b"}, "q": {"a", "c"}, "r": {"d"}})
@@ -115,11 +115,11 @@ def learn_region(
     chosen = frozenset(marked)
     danger = frozenset(hazardous)
     if not chosen:
-        raise ValueError("mark at least one state")
+        raise LanguageError("mark at least one state")
     if chosen & danger:
-        raise ValueError(f"a state cannot be both marked and hazardous: {sorted(map(str, chosen & danger))}")
+        raise LanguageError(f"a state cannot be both marked and hazardous: {sorted(map(str, chosen & danger))}")
     if any(h <= 0 for h in bandwidths) or not bandwidths or level <= 0:
-        raise ValueError("bandwidths and level must be > 0")
+        raise LanguageError("bandwidths and level must be > 0")
     features = table.values.astype(float)
     rows = [table.state_index[s] for s in chosen]
     samples = features[rows]
@@ -203,7 +203,7 @@ class BehaviorRecorder:
         """The person started the behavior in this state (or after these actions).
 
         Raises:
-            ValueError: for actions that are no valid beginning of the task.
+            LanguageError: for actions that are no valid beginning of the task.
         """
         self.starts.append(self._state(at))
 
@@ -211,7 +211,7 @@ class BehaviorRecorder:
         """The person stopped the behavior in this state (or after these actions).
 
         Raises:
-            ValueError: for actions that are no valid beginning of the task.
+            LanguageError: for actions that are no valid beginning of the task.
         """
         self.stops.append(self._state(at))
 

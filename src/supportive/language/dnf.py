@@ -19,6 +19,7 @@ from functools import cached_property
 
 import numpy as np
 
+from supportive.errors import LanguageError
 from supportive.tasks.formula import DNF, Conjunction, Literal
 
 __all__ = ["DNF", "Conjunction", "Literal", "TruthTable", "simplify"]
@@ -33,7 +34,7 @@ class TruthTable:
         values: Boolean matrix, ``values[i, j]`` = atom ``j`` holds in state ``i``.
 
     Raises:
-        ValueError: for a shape mismatch or repeated states or atoms.
+        LanguageError: for a shape mismatch or repeated states or atoms.
 
     >>> table = TruthTable.from_sets(["s0", "s1", "s2"], {"p": {"s1", "s2"}, "q": {"s2"}})
     >>> sorted(table.states_of(DNF.of(["p", Literal("q", False)])))
@@ -45,9 +46,9 @@ class TruthTable:
     def __init__(self, states: Sequence[Hashable], atoms: Sequence[str], values: np.ndarray) -> None:
         matrix = np.asarray(values, dtype=bool)
         if matrix.shape != (len(states), len(atoms)):
-            raise ValueError(f"values has shape {matrix.shape}, expected {(len(states), len(atoms))}")
+            raise LanguageError(f"values has shape {matrix.shape}, expected {(len(states), len(atoms))}")
         if len(set(states)) != len(states) or len(set(atoms)) != len(atoms):
-            raise ValueError("states and atoms must not repeat")
+            raise LanguageError("states and atoms must not repeat")
         self.states: tuple[Hashable, ...] = tuple(states)
         self.atoms: tuple[str, ...] = tuple(atoms)
         self.values = matrix
@@ -60,7 +61,7 @@ class TruthTable:
         for j, where in enumerate(holds.values()):
             for state in where:
                 if state not in index:
-                    raise ValueError(f"atom {list(holds)[j]!r} holds in an unknown state {state!r}")
+                    raise LanguageError(f"atom {list(holds)[j]!r} holds in an unknown state {state!r}")
                 values[index[state], j] = True
         return cls(states, list(holds), values)
 

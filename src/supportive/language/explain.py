@@ -15,7 +15,8 @@ from __future__ import annotations
 from collections.abc import Hashable
 from dataclasses import dataclass
 
-from supportive.language.cover import Cover, NoCoverError, describe_precision, minimal_cover
+from supportive.errors import NoCoverError, UnknownNameError
+from supportive.language.cover import Cover, describe_precision, minimal_cover
 from supportive.language.states import TaskStates
 from supportive.tasks.behaviors import SupportiveBehavior
 from supportive.tasks.formula import DNF, Literal
@@ -175,7 +176,7 @@ def explain_subtask(states: TaskStates, subtask: str, *, max_literals: int = 3) 
     """Answer "How will you help me {subtask}?" (Algorithm 7, lines 5–10).
 
     Raises:
-        KeyError: for an unknown subtask.
+        UnknownNameError: for an unknown subtask.
 
     >>> from supportive.io import parse_task_file
     >>> chair = TaskStates.of(parse_task_file("examples/ikea-chair.yaml"))
@@ -184,7 +185,7 @@ def explain_subtask(states: TaskStates, subtask: str, *, max_literals: int = 3) 
     fastening nuts and bolts; and I can point out the next bolt to fasten when you are fastening nuts and bolts,
     until you have finished fastening nuts and bolts.
     """
-    states.during(subtask)  # raises KeyError for an unknown name
+    states.during(subtask)  # raises UnknownNameError for an unknown name
     behaviors = [b for b in states.spec.behaviors if _starts_in(states, b, subtask)]
     if not behaviors:
         return Explanation(f"When you are {states.activity(subtask)}, I have no supportive behavior to offer.", ())
@@ -198,12 +199,12 @@ def explain_behavior(states: TaskStates, behavior: str | SupportiveBehavior, *, 
     """Answer "When will you {behavior}?" (Algorithm 7, lines 11–15).
 
     Raises:
-        KeyError: for a behavior name the task does not have.
+        UnknownNameError: for a behavior name the task does not have.
     """
     if isinstance(behavior, str):
         found = {b.name: b for b in states.spec.behaviors}.get(behavior)
         if found is None:
-            raise KeyError(f"no behavior named {behavior!r}")
+            raise UnknownNameError(f"no behavior named {behavior!r}")
         behavior = found
     if not behavior.subtasks:  # tied to no subtask: it belongs to every state (see `scope`)
         if not initiation_states(states, behavior):

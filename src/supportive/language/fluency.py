@@ -36,6 +36,8 @@ from scipy.optimize import linprog
 from scipy.special import rel_entr
 from scipy.stats import wasserstein_distance
 
+from supportive.errors import LanguageError
+
 __all__ = [
     "BehaviorExpectation",
     "Distribution",
@@ -68,32 +70,32 @@ def _weights(dist: Distribution, name: str) -> dict[Any, float]:
     if isinstance(dist, Mapping):
         items = list(dist.items())
     elif isinstance(dist, str | bytes):
-        raise ValueError(
+        raise LanguageError(
             f"{name}: expected a mapping outcome -> weight or a 1-D sequence of weights, got a string"
         )
     else:
         try:
             array = np.asarray(dist, dtype=float)
         except (TypeError, ValueError) as exc:
-            raise ValueError(
+            raise LanguageError(
                 f"{name}: expected a mapping outcome -> weight or numeric weights ({exc})"
             ) from None
         if array.ndim != 1:
-            raise ValueError(f"{name}: an array of weights must be 1-D, got shape {array.shape}")
+            raise LanguageError(f"{name}: an array of weights must be 1-D, got shape {array.shape}")
         items = list(enumerate(array.tolist()))
     out: dict[Any, float] = {}
     for outcome, raw in items:
         if not isinstance(raw, numbers.Real):
-            raise ValueError(f"{name}: the weight of {outcome!r} is {raw!r}, not a number")
+            raise LanguageError(f"{name}: the weight of {outcome!r} is {raw!r}, not a number")
         weight = float(raw)
         if not math.isfinite(weight):
-            raise ValueError(f"{name}: the weight of {outcome!r} is {weight}, not finite")
+            raise LanguageError(f"{name}: the weight of {outcome!r} is {weight}, not finite")
         if weight < 0:
-            raise ValueError(f"{name}: the weight of {outcome!r} is negative ({weight})")
+            raise LanguageError(f"{name}: the weight of {outcome!r} is negative ({weight})")
         out[outcome] = weight
     if not any(w > 0 for w in out.values()):
         what = "is empty" if not out else "has only zero weights"
-        raise ValueError(f"{name} {what}: a distribution needs some positive weight")
+        raise LanguageError(f"{name} {what}: a distribution needs some positive weight")
     return out
 
 
@@ -113,7 +115,7 @@ def _aligned(p: Mapping[Any, float], q: Mapping[Any, float]) -> tuple[list[Any],
 def _check_smoothing(smoothing: float) -> float:
     value = float(smoothing)
     if not math.isfinite(value) or value < 0:
-        raise ValueError(f"smoothing must be a finite number >= 0, got {smoothing!r}")
+        raise LanguageError(f"smoothing must be a finite number >= 0, got {smoothing!r}")
     return value
 
 
@@ -137,7 +139,7 @@ def earth_movers(p: Distribution, q: Distribution, distance: Callable[[Any, Any]
         The minimal cost of moving ``p``'s mass onto ``q``'s.
 
     Raises:
-        ValueError: A distribution is malformed (negative, non-finite, all-zero weights) or ``distance``
+        LanguageError: A distribution is malformed (negative, non-finite, all-zero weights) or ``distance``
             returned a negative or non-finite value.
 
     Example:
@@ -158,7 +160,7 @@ def earth_movers(p: Distribution, q: Distribution, distance: Callable[[Any, Any]
             raw = distance(x, y)
             d = float(raw)
             if not math.isfinite(d) or d < 0:
-                raise ValueError(
+                raise LanguageError(
                     f"distance({x!r}, {y!r}) = {raw!r}: a ground distance must be finite and >= 0"
                 )
             cost[i, j] = d
@@ -201,7 +203,7 @@ def _wasserstein(
     if ground is None:
         bad = [s for s in support if not isinstance(s, numbers.Real) or not math.isfinite(float(s))]
         if bad:
-            raise ValueError(
+            raise LanguageError(
                 f"kind='wasserstein' needs numeric states or a ground metric; {bad[0]!r} is not a finite number: "
                 "pass ground (state -> position) or distance (state, state -> float)"
             )
@@ -209,15 +211,15 @@ def _wasserstein(
         return float(wasserstein_distance(positions, positions, pv, qv))
     missing = [s for s in support if s not in ground]
     if missing:
-        raise ValueError(f"ground gives no position for state {missing[0]!r}")
+        raise LanguageError(f"ground gives no position for state {missing[0]!r}")
     coords = [np.atleast_1d(np.asarray(ground[s], dtype=float)) for s in support]
     dims = {c.shape for c in coords}
     if len(dims) != 1 or next(iter(dims)) == (0,) or any(c.ndim != 1 for c in coords):
-        raise ValueError(
+        raise LanguageError(
             f"ground positions must all be numbers or 1-D coordinates of one length, got shapes {dims}"
         )
     if not all(np.isfinite(c).all() for c in coords):
-        raise ValueError("ground positions must be finite")
+        raise LanguageError("ground positions must be finite")
     if coords[0].shape == (1,):  # positions on a line: scipy's closed form
         positions = np.array([c[0] for c in coords])
         return float(wasserstein_distance(positions, positions, pv, qv))
@@ -263,7 +265,7 @@ def divergence(
         ``D(p ‖ q) >= 0``; 0 when ``p`` and ``q`` are the same distribution.
 
     Raises:
-        ValueError: Negative, non-finite or all-zero weights, an unknown ``kind``, a negative ``smoothing``,
+        LanguageError: Negative, non-finite or all-zero weights, an unknown ``kind``, a negative ``smoothing``,
             ``ground`` / ``distance`` given with ``kind="kl"`` or both given, or non-numeric states with no
             ground metric.
 
@@ -276,16 +278,16 @@ def divergence(
         3.0
     """
     if kind not in _KINDS:
-        raise ValueError(f"unknown divergence kind {kind!r}: expected one of {', '.join(map(repr, _KINDS))}")
+        raise LanguageError(f"unknown divergence kind {kind!r}: expected one of {', '.join(map(repr, _KINDS))}")
     smoothing = _check_smoothing(smoothing)
     pw = _normalised(_weights(p, "p"))
     qw = _normalised(_weights(q, "q"))
     if kind == "wasserstein":
         if ground is not None and distance is not None:
-            raise ValueError("give ground or distance for kind='wasserstein', not both")
+            raise LanguageError("give ground or distance for kind='wasserstein', not both")
         return _wasserstein(pw, qw, ground, distance)
     if ground is not None or distance is not None:
-        raise ValueError("ground and distance only apply to kind='wasserstein'")
+        raise LanguageError("ground and distance only apply to kind='wasserstein'")
     _, pv, qv = _aligned(pw, qw)
     if smoothing > 0:
         pv = (pv + smoothing) / (pv + smoothing).sum()
@@ -317,7 +319,7 @@ class BehaviorExpectation:
             ``alpha + beta + gamma`` must be positive; the three are normalised by their sum.
 
     Raises:
-        ValueError: A distribution has negative, non-finite or only zero weights, or the weights are negative,
+        LanguageError: A distribution has negative, non-finite or only zero weights, or the weights are negative,
             non-finite or all zero.
 
     Example:
@@ -354,9 +356,9 @@ class BehaviorExpectation:
         for name in ("alpha", "beta", "gamma"):
             raw = getattr(self, name)
             if not isinstance(raw, numbers.Real) or not math.isfinite(float(raw)) or float(raw) < 0:
-                raise ValueError(f"{name} must be a finite number >= 0, got {raw!r}")
+                raise LanguageError(f"{name} must be a finite number >= 0, got {raw!r}")
         if self.weight_sum <= 0:
-            raise ValueError("alpha + beta + gamma must be positive (at least one component must count)")
+            raise LanguageError("alpha + beta + gamma must be positive (at least one component must count)")
 
     @property
     def weight_sum(self) -> float:
@@ -459,7 +461,7 @@ def team_fluency(
         A :class:`FluencyReport`; its ``total`` is ``F >= 0``.
 
     Raises:
-        ValueError: As :func:`divergence`; the message names the collaborator, behavior and component.
+        LanguageError: As :func:`divergence`; the message names the collaborator, behavior and component.
         TypeError: A value of ``expectations`` is not a :class:`BehaviorExpectation`.
 
     Example:
@@ -474,14 +476,14 @@ def team_fluency(
         ('robot', 'hand screwdriver')
     """
     if kind not in _KINDS:
-        raise ValueError(f"unknown divergence kind {kind!r}: expected one of {', '.join(map(repr, _KINDS))}")
+        raise LanguageError(f"unknown divergence kind {kind!r}: expected one of {', '.join(map(repr, _KINDS))}")
     _check_smoothing(smoothing)
 
     def d(p: Distribution, q: Distribution, where: str) -> float:
         try:
             return divergence(p, q, kind=kind, smoothing=smoothing, ground=ground, distance=distance)
         except ValueError as exc:
-            raise ValueError(f"{where}: {exc}") from exc
+            raise LanguageError(f"{where}: {exc}") from exc
 
     terms: dict[tuple[str, str], FluencyTerm] = {}
     for collaborator, behaviors in expectations.items():

@@ -42,7 +42,7 @@ from typing import TypeAlias
 from lark import Lark, Token, Tree
 from lark.exceptions import LarkError
 
-from supportive.errors import SupportiveError
+from supportive.errors import SentenceTooLongError, UnderstandingError
 from supportive.io.limits import MAX_SENTENCE_CHARS
 from supportive.language.wording import EVERYDAY_VERBS
 
@@ -51,8 +51,6 @@ __all__ = [
     "ExplainBehavior",
     "ExplainSubtask",
     "Preference",
-    "SentenceTooLongError",
-    "UnderstandingError",
     "Utterance",
     "normalise_text",
     "parse_condition",
@@ -95,48 +93,6 @@ Utterance: TypeAlias = Preference | ExplainSubtask | ExplainBehavior
 _PREFERENCE_FORM = "When I am …, I want you to …"
 _SUBTASK_FORM = "How will you help me …?"
 _BEHAVIOR_FORM = "When will you …?"
-
-
-class UnderstandingError(SupportiveError, ValueError):
-    """An utterance the grammar cannot read; the message says what was understood and what form to use.
-
-    Args:
-        text: What the person said.
-        understood: The leading part that was understood (as they said it), or None.
-        missing: What is missing after it ("what you want me to do").
-        expected: The forms to use instead.
-    """
-
-    def __init__(self, text: str, understood: str | None, missing: str, expected: str) -> None:
-        self.text = text
-        self.understood = understood
-        self.missing = missing
-        self.expected = expected
-        if understood:
-            message = f"I understood '{understood}' but not {missing}; say: {expected}"
-        else:
-            message = f"I did not understand '{text.strip()}'; say {expected}"
-        super().__init__(message)
-
-
-class SentenceTooLongError(UnderstandingError):
-    """An utterance longer than :data:`~supportive.io.limits.MAX_SENTENCE_CHARS` characters: refused before
-    parsing (the Earley parser's time grows faster than the sentence).
-
-    Args:
-        text: What the person said.
-    """
-
-    def __init__(self, text: str) -> None:
-        SupportiveError.__init__(
-            self,
-            f"That is {len(text):,} characters; I read sentences of at most {MAX_SENTENCE_CHARS}: "
-            "say it in shorter sentences, one at a time.",
-        )
-        self.text = text
-        self.understood = None
-        self.missing = "a shorter sentence"
-        self.expected = f"at most {MAX_SENTENCE_CHARS} characters"
 
 
 # The grammar reads the normalised text (lower-case words and commas, see `normalise_text`) with lark's
@@ -501,10 +457,10 @@ def parse_utterance(text: str) -> Utterance:
     >>> parse_utterance("When I am attaching the seat")
     Traceback (most recent call last):
     ...
-    supportive.language.grammar.UnderstandingError: I understood 'When I am attaching the seat' but not what you want me to do; say: When I am …, I want you to …
+    supportive.errors.UnderstandingError: I understood 'When I am attaching the seat' but not what you want me to do; say: When I am …, I want you to …
     """
     if len(text) > MAX_SENTENCE_CHARS:
-        raise SentenceTooLongError(text)
+        raise SentenceTooLongError(text, MAX_SENTENCE_CHARS)
     words, spans = _tokens(text)
     if not words:
         raise UnderstandingError(text, None, "anything", _ANY_FORM)

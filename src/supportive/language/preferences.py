@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
+from supportive.errors import LanguageError
 from supportive.language.dnf import simplify
 from supportive.language.explain import scope
 from supportive.language.states import TaskStates
@@ -72,7 +73,7 @@ def prefer(
         stop: Where, within the subtasks, it stops (None: as before).
 
     Raises:
-        KeyError: for a subtask the task does not have.
+        UnknownNameError: for a subtask the task does not have.
     """
     for subtask in subtasks:
         states.during(subtask)
@@ -112,13 +113,13 @@ def refuse(
         start: Narrows the request to the states where it holds (None: all of the subtasks).
 
     Raises:
-        KeyError: for a subtask the task does not have.
-        ValueError: with neither subtasks nor a condition (nothing says when not to).
+        UnknownNameError: for a subtask the task does not have.
+        LanguageError: with neither subtasks nor a condition (nothing says when not to).
     """
     for subtask in subtasks:
         states.during(subtask)
     if not subtasks and start is None:
-        raise ValueError("say when not to: name a subtask or a condition")
+        raise LanguageError("say when not to: name a subtask or a condition")
     # not (D and C) = not D or not C: negating the short parts keeps the formula small
     allowed = (~during(subtasks) if subtasks else DNF(())) | (~start if start is not None else DNF(()))
     remaining = tuple(s for s in behavior.subtasks if s not in subtasks)

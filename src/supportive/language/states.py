@@ -24,7 +24,7 @@ from functools import cached_property
 
 import numpy as np
 
-from supportive.errors import LearningError
+from supportive.errors import LanguageError, LearningError, UnknownNameError
 from supportive.language.dnf import TruthTable
 from supportive.language.wording import activity
 from supportive.tasks.behaviors import DERIVED_PREDICATES, PredicateSpec
@@ -106,10 +106,10 @@ class TaskStates:
         (``active``) — what "when I am {subtask}" refers to.
 
         Raises:
-            KeyError: for an unknown subtask name.
+            UnknownNameError: for an unknown subtask name.
         """
         if subtask not in self.subtasks:
-            raise KeyError(f"no subtask named {subtask!r} (known: {', '.join(sorted(self.subtasks))})")
+            raise UnknownNameError(f"no subtask named {subtask!r} (known: {', '.join(sorted(self.subtasks))})")
         return self.table.states_of(DNF.of([f"active({subtask})"], [f"ready({subtask})"]))  # type: ignore[return-value]
 
     def grounded(self, formula: DNF | str) -> DNF:
@@ -141,7 +141,7 @@ class TaskStates:
         performance.
 
         Raises:
-            ValueError: when the actions are no valid beginning of the task.
+            LanguageError: when the actions are no valid beginning of the task.
         """
         counts: Counter[str] = Counter()
         leaves = set()
@@ -150,7 +150,7 @@ class TaskStates:
             leaves.add((action, counts[action]))
         state = frozenset(leaves)
         if state not in self.table.state_index:
-            raise ValueError(f"{', '.join(actions) or 'nothing'}: not a way the task can begin")
+            raise LanguageError(f"{', '.join(actions) or 'nothing'}: not a way the task can begin")
         return state
 
     def say(self, literal: Literal) -> str:

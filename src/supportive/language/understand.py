@@ -21,8 +21,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
+from supportive.errors import LanguageError, UnderstandingError, UnknownHelpError
 from supportive.language.explain import initiation_states, scope
-from supportive.language.grammar import Preference, UnderstandingError, parse_condition
+from supportive.language.grammar import Preference, parse_condition
 from supportive.language.grounding import Candidate, Matcher, from_task, is_confident, normalise_words
 from supportive.language.preferences import prefer, refuse
 from supportive.language.states import TaskStates
@@ -34,7 +35,6 @@ __all__ = [
     "ConditionReader",
     "Understanding",
     "Understood",
-    "UnknownHelpError",
     "category_of",
     "guess_category",
 ]
@@ -79,23 +79,14 @@ def guess_category(phrase: str) -> BehaviorCategory:
     return category_of(phrase) or BehaviorCategory.MATERIALS_RETRIEVAL
 
 
-class UnknownHelpError(UnderstandingError):
-    """A request for help the robot has no behavior for and no verb of help it knows ("juggle"): it is not
-    made up as a new behavior.
-
-    Args:
-        phrase: The behavior phrase.
-        known: The texts of the task's behaviors.
-    """
-
-    def __init__(self, phrase: str, known: Sequence[str]) -> None:
-        super().__init__(phrase, None, "a kind of help", "")
-        kinds = ", ".join(verbs[0] for verbs in _CATEGORY_VERBS.values())
-        have = "; ".join(known) or "nothing yet"
-        self.args = (
-            f"I don't know how to {_second_person(phrase)}. I can help by doing what I already do ({have}), or "
-            f"something new that starts with a verb of help ({kinds}, …).",
-        )
+def _no_such_help(phrase: str, known: Sequence[str]) -> str:
+    """What the robot answers a request for help it has no behavior and no verb of help for."""
+    kinds = ", ".join(verbs[0] for verbs in _CATEGORY_VERBS.values())
+    have = "; ".join(known) or "nothing yet"
+    return (
+        f"I don't know how to {_second_person(phrase)}. I can help by doing what I already do ({have}), or "
+        f"something new that starts with a verb of help ({kinds}, …)."
+    )
 
 
 def _content(text: str) -> frozenset[str]:
@@ -202,12 +193,12 @@ class Understanding:
             ``embeddings`` extra).
 
     Raises:
-        ValueError: for another matcher name.
+        LanguageError: for another matcher name.
     """
 
     def __init__(self, states: TaskStates, alpha: int = 3, matcher: str = "bow") -> None:
         if matcher not in MATCHERS:
-            raise ValueError(f"unknown matcher {matcher!r} (choose {' or '.join(MATCHERS)})")
+            raise LanguageError(f"unknown matcher {matcher!r} (choose {' or '.join(MATCHERS)})")
         self.states = states
         self.alpha = alpha
         self.matcher = matcher
@@ -282,7 +273,7 @@ class Understanding:
         elif existing is None:
             category = category_of(phrase)
             if category is None:
-                raise UnknownHelpError(phrase, [b.text for b in self.states.spec.behaviors])
+                raise UnknownHelpError(phrase, _no_such_help(phrase, [b.text for b in self.states.spec.behaviors]))
             updated = SupportiveBehavior(
                 name=_slug(phrase),
                 text=_second_person(phrase),

@@ -106,14 +106,14 @@ class PartialOrder:
         """The leaves that may be performed next after ``done``: nothing when every leaf is done.
 
         Raises:
-            ValueError: when ``done`` holds an unknown leaf or one whose predecessors are not all done.
+            LearningError: when ``done`` holds an unknown leaf or one whose predecessors are not all done.
         """
         done_set = frozenset(done)
         for leaf in done_set:
             if leaf not in self.predecessors:
-                raise ValueError(f"{leaf[0]!r} (performance {leaf[1]}) is not in the task")
+                raise LearningError(f"{leaf[0]!r} (performance {leaf[1]}) is not in the task")
             if not self.predecessors[leaf] <= done_set:
-                raise ValueError(f"{leaf[0]!r} (performance {leaf[1]}) is done before its predecessors")
+                raise LearningError(f"{leaf[0]!r} (performance {leaf[1]}) is done before its predecessors")
         return frozenset(
             leaf for leaf in self.leaves if leaf not in done_set and self.predecessors[leaf] <= done_set
         )

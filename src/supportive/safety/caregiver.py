@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import networkx as nx
 
+from supportive.errors import SafetyError
 from supportive.safety.danger import HORIZON, DangerModel
 from supportive.safety.priors import ActionPriors
 from supportive.safety.safe_probability import SafetyEstimate
@@ -128,9 +129,9 @@ class Caregiver:
         seed: Seed = None,
     ) -> None:
         if actions_per_step < 1:
-            raise ValueError(f"actions_per_step must be >= 1, got {actions_per_step}")
+            raise SafetyError(f"actions_per_step must be >= 1, got {actions_per_step}")
         if cost_per_step < 0 or switch_margin < 0:
-            raise ValueError("cost_per_step and switch_margin must be >= 0")
+            raise SafetyError("cost_per_step and switch_margin must be >= 0")
         self.distances = distances
         self.grid = distances.grid
         self.actions_per_step = actions_per_step
@@ -194,10 +195,10 @@ class Caregiver:
         """Every intervention open now, with its benefit and cost (a candle in hand: only where to put it).
 
         Raises:
-            ValueError: when the world has no caregiver.
+            SafetyError: when the world has no caregiver.
         """
         if world.caregiver is None:
-            raise ValueError("the world has no caregiver")
+            raise SafetyError("the world has no caregiver")
         here = world.caregiver
         reach = self.danger.reach_all(world.novice)
         unsafe = 1.0 - p_safe
@@ -356,10 +357,10 @@ class Caregiver:
         """Choose this turn's actions (the world is not changed; apply them with ``act_caregiver``).
 
         Raises:
-            ValueError: when the world has no caregiver.
+            SafetyError: when the world has no caregiver.
         """
         if world.caregiver is None:
-            raise ValueError("the world has no caregiver")
+            raise SafetyError("the world has no caregiver")
         p_safe = self.safety.probability
         expected = self.danger.expected_damage(world, p_safe)
         self.intervention = self.choose(world, p_safe)

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from supportive.errors import SafetyError
 from supportive.worlds.household.distances import UNREACHABLE, MapDistances
 from supportive.worlds.household.grid_map import Cell
 from supportive.worlds.household.world import DAMAGE, HouseholdWorld
@@ -57,7 +58,7 @@ class DangerModel:
         self.distances = distances
         self.horizon = horizon
         if self.horizon <= 0:
-            raise ValueError(f"horizon must be > 0, got {self.horizon}")
+            raise SafetyError(f"horizon must be > 0, got {self.horizon}")
 
     def steps(self, hazard: Cell, novice: Cell) -> int:
         """The novice's shortest walk to bump into ``hazard`` (``UNREACHABLE`` when it cannot)."""

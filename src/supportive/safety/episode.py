@@ -19,6 +19,7 @@ from functools import cache
 
 import numpy as np
 
+from supportive.errors import SafetyError
 from supportive.safety.caregiver import Caregiver, Decision
 from supportive.safety.priors import ActionPriors
 from supportive.seeding import Seed, rng_from
@@ -123,7 +124,7 @@ def run_episode(
     True
     """
     if steps < 1 or threshold < 1:
-        raise ValueError("steps and threshold must be >= 1")
+        raise SafetyError("steps and threshold must be >= 1")
     distances, priors = map_model(grid)
     novice_rng, caregiver_rng = rng_from(seed).spawn(2)
     novice = EpsilonGreedyNovice(distances, epsilon, novice_rng)

@@ -18,6 +18,7 @@ from functools import cached_property
 
 import numpy as np
 
+from supportive.errors import SafetyError
 from supportive.seeding import Seed, rng_from
 from supportive.worlds.household.distances import MapDistances
 from supportive.worlds.household.grid_map import MOVES, Cell
@@ -91,7 +92,7 @@ class ActionPriors:
             seed: Seed or generator (start cells, ties between shortest moves, Dirichlet draws).
 
         Raises:
-            ValueError: for ``hyperprior`` <= 0, ``delta`` outside [0, 1) or ``starts`` < 1.
+            SafetyError: for ``hyperprior`` <= 0, ``delta`` outside [0, 1) or ``starts`` < 1.
 
         >>> from supportive.worlds.household.grid_map import parse_map
         >>> priors = ActionPriors.from_experts(MapDistances(parse_map("#####\\n#B..#\\n#####\\n")), hyperprior=1.0)
@@ -99,11 +100,11 @@ class ActionPriors:
         (0.4, 0.2)
         """
         if hyperprior <= 0:
-            raise ValueError(f"hyperprior must be > 0, got {hyperprior}")
+            raise SafetyError(f"hyperprior must be > 0, got {hyperprior}")
         if not 0.0 <= delta < 1.0:
-            raise ValueError(f"delta must be in [0, 1), got {delta}")
+            raise SafetyError(f"delta must be in [0, 1), got {delta}")
         if starts is not None and starts < 1:
-            raise ValueError(f"starts must be >= 1 or None, got {starts}")
+            raise SafetyError(f"starts must be >= 1 or None, got {starts}")
         rng = rng_from(seed)
         graph = distances.novice
         n = len(graph.cells)
@@ -136,10 +137,10 @@ class ActionPriors:
         """θ_cell(move); 0.25 (uniform) for a cell outside the play area.
 
         Raises:
-            ValueError: for an unknown move.
+            SafetyError: for an unknown move.
         """
         if move not in MOVES:
-            raise ValueError(f"unknown move {move!r} (expected one of {', '.join(MOVES)})")
+            raise SafetyError(f"unknown move {move!r} (expected one of {', '.join(MOVES)})")
         row = self._rows.get(cell)
         if row is None:
             return 1.0 / len(MOVES)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from supportive.errors import SafetyError
 from supportive.safety.priors import ActionPriors
 from supportive.worlds.household.grid_map import MOVES, Cell
 
@@ -50,11 +51,11 @@ class SafetyEstimate:
 
     def __post_init__(self) -> None:
         if not 0.0 < self.prior_safe < 1.0:
-            raise ValueError(f"prior_safe must be in (0, 1), got {self.prior_safe}")
+            raise SafetyError(f"prior_safe must be in (0, 1), got {self.prior_safe}")
         if not 0.0 < self.unsafe <= 1.0:
-            raise ValueError(f"unsafe must be in (0, 1], got {self.unsafe}")
+            raise SafetyError(f"unsafe must be in (0, 1], got {self.unsafe}")
         if not 0.0 < self.memory <= 1.0:
-            raise ValueError(f"memory must be in (0, 1], got {self.memory}")
+            raise SafetyError(f"memory must be in (0, 1], got {self.memory}")
         self._prior_log_odds = math.log(self.prior_safe) - math.log1p(-self.prior_safe)
         self.reset()
 

@@ -10,7 +10,7 @@ from functools import cached_property
 from numbers import Real
 from typing import Any
 
-from supportive.errors import SupportiveError
+from supportive.errors import ServiceError
 from supportive.inference import END_LABEL, ObservationModel, ProgressFilter, ProgressHMM
 from supportive.language.states import TaskStates
 from supportive.learning.learner import learn
@@ -59,10 +59,10 @@ class Insight:
         """Feed one moment's contact events to the filter; the belief after it.
 
         Raises:
-            SupportiveError: when the task has no goal inference.
+            ServiceError: when the task has no goal inference.
         """
         if self.model is None:
-            raise SupportiveError(
+            raise ServiceError(
                 "this board's task has no goal inference (no observations or no demonstrations)"
             )
         if self.filter is None:

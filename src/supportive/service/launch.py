@@ -12,11 +12,11 @@ from pathlib import Path
 from sqlalchemy.engine import make_url
 from sqlalchemy.exc import ArgumentError
 
-from supportive.errors import FileFormatError, SupportiveError
+from supportive.errors import FileFormatError, InvalidValueError, StoreError, SupportiveError, naming
 from supportive.io.atomic import atomic_write
 from supportive.io.taskfile import parse_task_file
 from supportive.service.settings import DEFAULT_AGENTS, ServiceSettings, board_of, parse_agent
-from supportive.service.store import AgentSpec, StoreError
+from supportive.service.store import AgentSpec
 
 __all__ = ["Launch", "free_port", "prepare", "serve"]
 
@@ -59,19 +59,19 @@ def prepare(
     Raises:
         TaskFileError: for a bad task file.
         StoreError: for a database URL that cannot be used, or a tokens file that cannot be read.
-        SupportiveError: for an agent named twice, or two agents given one token.
+        InvalidValueError: for an agent named twice, or two agents given one token.
     """
     spec = parse_task_file(task)
     try:
         board = board_of(spec, lead_only)
     except SupportiveError as exc:  # about the task file's contents: name the file
-        raise SupportiveError(f"{task}: {exc}") from None
+        raise naming(exc, task) from None
     texts = list(agents or DEFAULT_AGENTS)
     specs = [parse_agent(text) for text in texts]
     names = [agent.id for agent in specs]
     twice = next((name for name in names if names.count(name) > 1), None)
     if twice is not None:
-        raise SupportiveError(f"--agent: {twice!r} is named twice; give each agent once")
+        raise InvalidValueError(f"--agent: {twice!r} is named twice; give each agent once")
     tokens_file = _tokens_file(database)
     known = _read_tokens(tokens_file)
     resolved: list[AgentSpec] = []
@@ -81,7 +81,7 @@ def prepare(
         resolved.append(AgentSpec(agent.id, agent.kind, agent.role, token))
     shared = [a.token for a in resolved]
     if len(set(shared)) != len(shared):
-        raise SupportiveError("--agent: two agents have the same token; give each its own (or none)")
+        raise InvalidValueError("--agent: two agents have the same token; give each its own (or none)")
     settings = ServiceSettings(database, board, tuple(resolved), spec, client_timeout=client_timeout)
     tokens = {a.id: a.token for a in resolved}
     return Launch(settings, host, port, tokens, tokens_file)

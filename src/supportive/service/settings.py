@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import cast
 
-from supportive.errors import SupportiveError
+from supportive.errors import InvalidValueError, ServiceError
 from supportive.io.values import check_id
 from supportive.learning.learner import learn
 from supportive.service.store import AgentKind, AgentSpec
@@ -64,7 +64,7 @@ def board_of(spec: TaskSpec, lead_only: Sequence[str] = ()) -> TaskBoard:
         htn = learn(spec).htn_
         root = htn.roots[0] if htn.complete else CliqueNode(tuple(htn.roots), name=spec.name)
     else:
-        raise SupportiveError(f"task {spec.name!r} has no structure and no demonstrations to learn one from")
+        raise ServiceError(f"task {spec.name!r} has no structure and no demonstrations to learn one from")
     return TaskBoard.from_node(spec.name, root, spec.texts(), lead_only)
 
 
@@ -82,16 +82,16 @@ def parse_agent(text: str) -> AgentSpec:
         or parts[1] not in ("human", "robot")
         or parts[2] not in ROLES
     ):
-        raise SupportiveError(
+        raise InvalidValueError(
             f"agent {text!r}: expected name:kind:role[:token], kind human or robot, role {', '.join(ROLES)}"
         )
     try:
         check_id(parts[0], what="an agent's name")
         if len(parts[0]) > AGENT_NAME_LENGTH:
-            raise ValueError(f"an agent's name is at most {AGENT_NAME_LENGTH} characters, got {len(parts[0])}")
+            raise InvalidValueError(f"an agent's name is at most {AGENT_NAME_LENGTH} characters, got {len(parts[0])}")
         if len(parts) == 4 and parts[3]:
             check_id(parts[3], what="a token")
     except ValueError as exc:
-        raise SupportiveError(f"agent {parts[0][:AGENT_NAME_LENGTH]!r}: {exc}") from None
+        raise InvalidValueError(f"agent {parts[0][:AGENT_NAME_LENGTH]!r}: {exc}") from None
     token = parts[3] if len(parts) == 4 and parts[3] else secrets.token_urlsafe(18)
     return AgentSpec(parts[0], cast(AgentKind, parts[1]), parts[2], token)

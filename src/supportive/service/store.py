@@ -41,10 +41,10 @@ from sqlalchemy import (
 from sqlalchemy.engine import Connection
 from sqlalchemy.exc import ArgumentError, DatabaseError, OperationalError
 
-from supportive.errors import BoardError, SupportiveError
+from supportive.errors import BoardError, StoreError
 from supportive.social.board import ROLES, Role, TaskBoard
 
-__all__ = ["Agent", "AgentKind", "AgentSpec", "BoardEvent", "BoardStore", "StoreError", "token_hash"]
+__all__ = ["Agent", "AgentKind", "AgentSpec", "BoardEvent", "BoardStore", "token_hash"]
 
 _BATCH = 256  # most operations in one group commit
 
@@ -79,10 +79,6 @@ events_table = Table(
     Column("node", String(16), nullable=False),
     Column("progress", Float, nullable=True),
 )
-
-
-class StoreError(SupportiveError, ValueError):
-    """The database cannot be used (a bad URL, a server that does not answer, another task in it)."""
 
 
 @dataclass(frozen=True)

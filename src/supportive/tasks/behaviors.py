@@ -12,6 +12,8 @@ import enum
 import re
 from dataclasses import dataclass
 
+from supportive.errors import TaskModelError
+
 __all__ = ["DERIVED_PREDICATES", "BehaviorCategory", "PredicateSpec", "SupportiveBehavior", "placeholders"]
 
 DERIVED_PREDICATES: dict[str, PredicateSpec] = {}
@@ -55,14 +57,14 @@ class PredicateSpec:
         """The template filled in with ``args`` (underscores read as spaces).
 
         Raises:
-            ValueError: for the wrong number of arguments.
+            TaskModelError: for the wrong number of arguments.
 
         >>> p = PredicateSpec("attached", ("x", "y"), "?x is attached to ?y")
         >>> p.say(("front_rail", "left_frame")), p.say(("seat", "left_frame"), positive=False)
         ('front rail is attached to left frame', 'seat is not attached to left frame')
         """
         if len(args) != len(self.params):
-            raise ValueError(f"{self.name} takes {len(self.params)} arguments, got {len(args)}")
+            raise TaskModelError(f"{self.name} takes {len(self.params)} arguments, got {len(args)}")
         template = self.text if positive else (self.negative or _negate(self.text))
         values = {param: arg.replace("_", " ") for param, arg in zip(self.params, args, strict=True)}
         return _PLACEHOLDER.sub(lambda m: values.get(m.group(1), m.group(0)), template)

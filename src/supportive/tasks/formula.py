@@ -19,11 +19,9 @@ from functools import cache
 
 from lark import Lark, Token, Transformer, UnexpectedInput
 
-__all__ = ["DNF", "Conjunction", "FormulaError", "Literal", "atom", "parse_formula", "split_atom"]
+from supportive.errors import FormulaError
 
-
-class FormulaError(ValueError):
-    """A formula that does not parse; the message says where."""
+__all__ = ["DNF", "Conjunction", "Literal", "atom", "parse_formula", "split_atom"]
 
 
 @dataclass(frozen=True, order=True)

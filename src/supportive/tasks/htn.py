@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
+from supportive.errors import TaskModelError
 from supportive.seeding import Seed, rng_from
 
 if TYPE_CHECKING:
@@ -447,7 +448,7 @@ def allowed_next(node: Node, done: Iterable[Leaf]) -> frozenset[Leaf]:
     ['carrots', 'celery']
 
     Raises:
-        ValueError: when ``done`` is not a valid prefix (a chain child started before the one ahead of it is
+        TaskModelError: when ``done`` is not a valid prefix (a chain child started before the one ahead of it is
             finished, or two clique children both half done).
     """
     return _allowed(node, frozenset(done))
@@ -467,14 +468,14 @@ def _allowed(node: Node, done: frozenset[Leaf]) -> frozenset[Leaf]:
         for i, state in enumerate(states):
             if state != 2:
                 if any(later for later in states[i + 1 :]):
-                    raise ValueError(
+                    raise TaskModelError(
                         f"{node.name or 'chain'}: a later part is started before an earlier one ends"
                     )
                 return _allowed(node.children[i], done)
         return frozenset()
     under_way = [child for child, state in zip(node.children, states, strict=True) if state == 1]
     if len(under_way) > 1:
-        raise ValueError(f"{node.name or 'clique'}: two parts are under way at once")
+        raise TaskModelError(f"{node.name or 'clique'}: two parts are under way at once")
     if under_way:
         return _allowed(under_way[0], done)
     fresh = [child for child, state in zip(node.children, states, strict=True) if state == 0]

@@ -36,7 +36,7 @@ from supportive.envs.tabletop.arms import ArmModel
 from supportive.envs.tabletop.geometry import Rect
 from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.layout import TableLayout
-from supportive.errors import PlanningError, ScenarioFileError
+from supportive.errors import InvalidValueError, PlanningError, ScenarioFileError
 from supportive.io.safe_load import read_text
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.values import Coordinate
@@ -135,7 +135,7 @@ class ScenarioIn(_Strict):
     @model_validator(mode="after")
     def _one_source(self) -> ScenarioIn:
         if (self.pieces is None) == (self.scatter is None):
-            raise ValueError("give the pieces either as 'pieces' (where each lies) or as 'scatter', not both")
+            raise InvalidValueError("give the pieces either as 'pieces' (where each lies) or as 'scatter', not both")
         return self
 
 

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from supportive.errors import MissingExtraError
+from supportive.errors import MissingExtraError, WorldError
 from supportive.worlds.household.grid_map import Cell, GridMap, Terrain, load_map
 from supportive.worlds.household.world import Collision, HouseholdWorld
 
@@ -171,13 +171,13 @@ def caregiver_start(grid: GridMap, novice: Cell, rng: np.random.Generator) -> Ce
     the novice's drawn uniformly from ``rng``.
 
     Raises:
-        ValueError: when the play area has no cell besides the novice's.
+        WorldError: when the play area has no cell besides the novice's.
     """
     if grid.caregiver_start is not None and grid.caregiver_start != novice:
         return grid.caregiver_start
     cells = [cell for cell in grid.play_area if cell != novice]
     if not cells:
-        raise ValueError(f"map {grid.name!r}: the play area has no room for the caregiver beside the novice")
+        raise WorldError(f"map {grid.name!r}: the play area has no room for the caregiver beside the novice")
     return cells[int(rng.integers(len(cells)))]
 
 
@@ -186,7 +186,7 @@ def _option_cell(options: Mapping[str, Any], key: str) -> Cell | None:
     if value is None:
         return None
     if not isinstance(value, Sequence) or len(value) != 2:
-        raise ValueError(f"options[{key!r}] must be a (row, column) pair, got {value!r}")
+        raise WorldError(f"options[{key!r}] must be a (row, column) pair, got {value!r}")
     return int(value[0]), int(value[1])
 
 
@@ -195,13 +195,13 @@ def novice_cell(grid: GridMap, options: Mapping[str, Any] | None, rng: np.random
     play-area cell drawn from ``rng`` (other option keys are ignored).
 
     Raises:
-        ValueError: for an ``options["novice"]`` that is not a play-area cell.
+        WorldError: for an ``options["novice"]`` that is not a play-area cell.
     """
     novice = _option_cell(options or {}, "novice")
     if novice is None:
         return novice_start(grid, rng)
     if novice not in grid.play_area:
-        raise ValueError(f"options['novice'] = {novice} is not on the play area")
+        raise WorldError(f"options['novice'] = {novice} is not on the play area")
     return novice
 
 
@@ -212,18 +212,18 @@ def caregiver_cell(
     :func:`caregiver_start` says; None when there is no caregiver (``rng`` None).
 
     Raises:
-        ValueError: for an ``options["caregiver"]`` that is not open floor or a stairwell, or is the novice's
+        WorldError: for an ``options["caregiver"]`` that is not open floor or a stairwell, or is the novice's
             cell, or that is given when there is no caregiver.
     """
     carer = _option_cell(options or {}, "caregiver")
     if rng is None:
         if carer is not None:
-            raise ValueError("options['caregiver'] given, but this environment has no caregiver")
+            raise WorldError("options['caregiver'] given, but this environment has no caregiver")
         return None
     if carer is None:
         return caregiver_start(grid, novice, rng)
     if grid.at(carer) not in (Terrain.FLOOR, Terrain.STAIRS) or carer == novice:
-        raise ValueError(f"options['caregiver'] = {carer} is not free floor or a stairwell")
+        raise WorldError(f"options['caregiver'] = {carer} is not free floor or a stairwell")
     return carer
 
 
@@ -231,7 +231,7 @@ def action_name(action: Any, names: Sequence[str], who: str) -> str:
     """The name of an action given as an index (an ``int`` or a numpy integer) into ``names``.
 
     Raises:
-        ValueError: for something that is not an integer in ``range(len(names))``.
+        WorldError: for something that is not an integer in ``range(len(names))``.
 
     >>> action_name(np.int64(2), ("north", "east", "south", "west"), "novice")
     'south'
@@ -239,9 +239,9 @@ def action_name(action: Any, names: Sequence[str], who: str) -> str:
     try:
         index = int(action)
     except (TypeError, ValueError):
-        raise ValueError(f"{who} action must be an integer index, got {action!r}") from None
+        raise WorldError(f"{who} action must be an integer index, got {action!r}") from None
     if index != action or not 0 <= index < len(names):
-        raise ValueError(f"{who} action must be an integer in [0, {len(names)}), got {action!r}")
+        raise WorldError(f"{who} action must be an integer in [0, {len(names)}), got {action!r}")
     return names[index]
 
 
@@ -254,7 +254,7 @@ class EpisodeLimits:
         threshold: Total damage at which it terminates (§3.5.7: 15, three stairwell falls).
 
     Raises:
-        ValueError: when either is below 1.
+        WorldError: when either is below 1.
     """
 
     max_steps: int = 200
@@ -262,7 +262,7 @@ class EpisodeLimits:
 
     def __post_init__(self) -> None:
         if self.max_steps < 1 or self.threshold < 1:
-            raise ValueError(
+            raise WorldError(
                 f"max_steps and threshold must be >= 1, got {self.max_steps} and {self.threshold}"
             )
 

@@ -34,7 +34,7 @@ from supportive.envs.household.encoding import (
     observation_space,
     resolve_grid,
 )
-from supportive.errors import MissingExtraError
+from supportive.errors import MissingExtraError, ResetNeededError, WorldError
 from supportive.safety.caregiver import Caregiver
 from supportive.safety.episode import map_model
 from supportive.worlds.household.grid_map import GridMap
@@ -71,7 +71,7 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
     ``caregiver`` cells, and with a caregiver ``p_safe`` (its P(safe | τ)) and ``caregiver_actions``.
 
     Raises:
-        ValueError: for a ``render_mode`` other than None or ``"ansi"``, or limits below 1.
+        WorldError: for a ``render_mode`` other than None or ``"ansi"``, or limits below 1.
         MapFileError: for an unknown map name or a bad map file.
 
     >>> env = NoviceEnv("playroom", render_mode="ansi")
@@ -94,7 +94,7 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
         render_mode: str | None = None,
     ) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be None or 'ansi', got {render_mode!r}")
+            raise WorldError(f"render_mode must be None or 'ansi', got {render_mode!r}")
         self.grid = resolve_grid(grid)
         self.limits = EpisodeLimits(max_steps, threshold)
         self.render_mode = render_mode
@@ -113,10 +113,10 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
         """The current episode's state.
 
         Raises:
-            RuntimeError: before the first :meth:`reset`.
+            ResetNeededError: before the first :meth:`reset`.
         """
         if self._episode is None:
-            raise RuntimeError("call reset() before step() or render()")
+            raise ResetNeededError("call reset() before step() or render()")
         return self._episode
 
     def _info(self) -> dict[str, Any]:
@@ -140,7 +140,7 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
             The first observation and the info.
 
         Raises:
-            ValueError: for a bad start cell in ``options``.
+            WorldError: for a bad start cell in ``options``.
         """
         super().reset(seed=seed)
         novice = novice_cell(self.grid, options, self.np_random)
@@ -170,8 +170,8 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
             (``max_steps`` reached), info.
 
         Raises:
-            ValueError: for an action outside ``range(4)``.
-            RuntimeError: before the first :meth:`reset`.
+            WorldError: for an action outside ``range(4)``.
+            ResetNeededError: before the first :meth:`reset`.
         """
         move = action_name(action, NOVICE_ACTIONS, "novice")
         episode = self.episode
@@ -190,7 +190,7 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
         """The ``ansi`` text of the current state (None, with a warning, when ``render_mode`` is None).
 
         Raises:
-            RuntimeError: before the first :meth:`reset`.
+            ResetNeededError: before the first :meth:`reset`.
         """
         if self.render_mode is None:
             gymnasium.logger.warn(

@@ -32,7 +32,7 @@ from supportive.envs.household.encoding import (
     observation_space,
     resolve_grid,
 )
-from supportive.errors import MissingExtraError
+from supportive.errors import MissingExtraError, ResetNeededError, WorldError
 from supportive.worlds.household.grid_map import GridMap
 from supportive.worlds.household.world import CAREGIVER_ACTIONS, NOVICE_ACTIONS, HouseholdWorld
 
@@ -74,7 +74,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
     changed anything (a blocked move, ``wait``, or ``get`` with no candle beside it do not).
 
     Raises:
-        ValueError: for a ``render_mode`` other than None or ``"ansi"``, or limits below 1.
+        WorldError: for a ``render_mode`` other than None or ``"ansi"``, or limits below 1.
         MapFileError: for an unknown map name or a bad map file.
     """
 
@@ -93,7 +93,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         render_mode: str | None = None,
     ) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be None or 'ansi', got {render_mode!r}")
+            raise WorldError(f"render_mode must be None or 'ansi', got {render_mode!r}")
         self.grid = resolve_grid(grid)
         self.limits = EpisodeLimits(max_steps, threshold)
         self.render_mode = render_mode
@@ -124,10 +124,10 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         """The current episode's state.
 
         Raises:
-            RuntimeError: before the first :meth:`reset`.
+            ResetNeededError: before the first :meth:`reset`.
         """
         if self._episode is None:
-            raise RuntimeError("call reset() before step() or render()")
+            raise ResetNeededError("call reset() before step() or render()")
         return self._episode
 
     def _infos(self) -> dict[str, dict[str, Any]]:
@@ -150,7 +150,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
             Observations and infos, by agent.
 
         Raises:
-            ValueError: for a bad start cell in ``options``.
+            WorldError: for a bad start cell in ``options``.
         """
         if seed is not None:
             self.np_random, self.np_random_seed = seeding.np_random(seed)
@@ -181,18 +181,18 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
             threshold), truncations (``max_steps`` reached) and infos, by agent.
 
         Raises:
-            RuntimeError: when no episode is running (before :meth:`reset` or after it ended).
-            ValueError: for a missing or malformed action.
+            ResetNeededError: when no episode is running (before :meth:`reset` or after it ended).
+            WorldError: for a missing or malformed action.
         """
         if not self.agents:
-            raise RuntimeError("no episode is running: call reset()")
+            raise ResetNeededError("no episode is running: call reset()")
         missing = [agent for agent in self.agents if agent not in actions]
         if missing:
-            raise ValueError(f"no action for {', '.join(missing)}")
+            raise WorldError(f"no action for {', '.join(missing)}")
         move = action_name(actions["novice"], NOVICE_ACTIONS, "novice")
         turn = np.asarray(actions["caregiver"]).reshape(-1)
         if turn.shape != (CAREGIVER_TURN,):
-            raise ValueError(
+            raise WorldError(
                 f"the caregiver takes {CAREGIVER_TURN} actions per step, got {actions['caregiver']!r}"
             )
         names = [action_name(index, CAREGIVER_ACTIONS, "caregiver") for index in turn]
@@ -215,7 +215,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         """The ``ansi`` text of the current state (None, with a warning, when ``render_mode`` is None).
 
         Raises:
-            RuntimeError: before the first :meth:`reset`.
+            ResetNeededError: before the first :meth:`reset`.
         """
         if self.render_mode is None:
             gymnasium.logger.warn(

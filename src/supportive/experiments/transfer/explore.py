@@ -36,6 +36,7 @@ import random
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
+from supportive.errors import ExperimentError
 from supportive.tasks.htn import Node, allowed_next, count_orderings, leaf_actions, to_leaves
 from supportive.tasks.task_graph import TaskGraph
 
@@ -109,7 +110,7 @@ class TaskModel:
         """
         actions = leaf_actions(structure)
         if len(set(actions)) != len(actions):
-            raise ValueError(f"task {name}: an action occurs more than once")
+            raise ExperimentError(f"task {name}: an action occurs more than once")
         bit = {a: 1 << i for i, a in enumerate(actions)}
         allowed: dict[int, dict[str, int]] = {}
         frontier = [0]

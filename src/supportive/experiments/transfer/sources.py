@@ -31,6 +31,7 @@ import math
 from collections.abc import Sequence
 from functools import cache
 
+from supportive.errors import ExperimentError
 from supportive.examples.food import load_transfer, transfer_names
 from supportive.experiments.transfer.explore import (
     FAIL,
@@ -66,7 +67,7 @@ def task_model(name: str) -> TaskModel:
     """The state space of the transfer task ``name`` (cached per process)."""
     spec = load_transfer(name)
     if spec.structure is None:
-        raise ValueError(f"transfer task {name} has no structure")
+        raise ExperimentError(f"transfer task {name} has no structure")
     return TaskModel.from_structure(name, spec.structure)
 
 
@@ -166,7 +167,7 @@ def aggregate(
     sources' (state, last action) pairs with that feature, aggregated by ``how``: ``"max"`` (the best the
     option did after that action in any other task) or ``"mean"`` (per source, then over the sources)."""
     if how not in ("max", "mean"):
-        raise ValueError(f"aggregate: how must be 'max' or 'mean', not {how!r}")
+        raise ExperimentError(f"aggregate: how must be 'max' or 'mean', not {how!r}")
     width = len(options)
     best: dict[str, list[float]] = {}
     totals: dict[str, list[float]] = {}
@@ -224,10 +225,10 @@ def macro_option(macro: MacroAction, order: str) -> Option:
     in any order, one drawn each time it is used); ``"fixed"``, always the one order ``macro.actions``.
 
     Raises:
-        ValueError: for another ``order``.
+        ExperimentError: for another ``order``.
     """
     if order == "fixed":
         return (macro.actions,)
     if order == "any":
         return tuple(macro.sequences())
-    raise ValueError(f"macro order must be 'any' or 'fixed', not {order!r}")
+    raise ExperimentError(f"macro order must be 'any' or 'fixed', not {order!r}")

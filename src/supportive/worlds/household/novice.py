@@ -12,6 +12,7 @@ share, which is what we implement.
 
 from __future__ import annotations
 
+from supportive.errors import WorldError
 from supportive.seeding import Seed, rng_from
 from supportive.worlds.household.distances import MapDistances
 from supportive.worlds.household.grid_map import MOVES, Cell
@@ -48,7 +49,7 @@ class EpsilonGreedyNovice:
 
     def __init__(self, distances: MapDistances, epsilon: float, seed: Seed = None) -> None:
         if not 0.0 <= epsilon <= 1.0:
-            raise ValueError(f"epsilon must be in [0, 1], got {epsilon}")
+            raise WorldError(f"epsilon must be in [0, 1], got {epsilon}")
         self.distances = distances
         self.epsilon = epsilon
         self.rng = rng_from(seed)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from supportive.errors import WorldError
 from supportive.worlds.household.grid_map import MOVES, Cell, GridMap, Terrain
 
 __all__ = [
@@ -92,10 +93,10 @@ class HouseholdWorld:
         """Apply a novice move; return the collision it caused (the novice then stays), or None.
 
         Raises:
-            ValueError: for an action that is not a move.
+            WorldError: for an action that is not a move.
         """
         if action not in MOVES:
-            raise ValueError(f"unknown novice action {action!r} (expected one of {', '.join(MOVES)})")
+            raise WorldError(f"unknown novice action {action!r} (expected one of {', '.join(MOVES)})")
         dr, dc = MOVES[action]
         target = (self.novice[0] + dr, self.novice[1] + dc)
         collision = self.collision_at(target)
@@ -125,12 +126,12 @@ class HouseholdWorld:
         candle beside it does nothing).
 
         Raises:
-            ValueError: for an unknown action or when there is no caregiver.
+            WorldError: for an unknown action or when there is no caregiver.
         """
         if self.caregiver is None:
-            raise ValueError("this world has no caregiver")
+            raise WorldError("this world has no caregiver")
         if action not in CAREGIVER_ACTIONS:
-            raise ValueError(
+            raise WorldError(
                 f"unknown caregiver action {action!r} (expected one of {', '.join(CAREGIVER_ACTIONS)})"
             )
         if action in MOVES:
