@@ -77,11 +77,11 @@ def beam_agreement(seed: int, size: int = 30, steps: int = 2000) -> dict[str, ob
     model = synthetic_model([a.id for a in spec.actions], overlap=0.5, spurious=1.0, seed=seed)
     stream = synthetic_stream(spec.structure, model, executions=steps // (5 * size) + 1, seed=seed)
     observations = list(stream.observations[:steps])
-    exact = ProgressHMM(htn, model, restart=True)
+    exact = ProgressHMM(htn, model, restart=True).fit()
     reference = [b.subgoals.copy() for b in map(exact.filter().update, observations)]
     widths: dict[str, object] = {"states": len(exact.states_ or ()), "steps": len(observations)}
     for beam in (8, 32, 128):
-        approximate = ProgressHMM(htn, model, restart=True, max_states=1, beam=beam).filter()
+        approximate = ProgressHMM(htn, model, restart=True, max_states=1, beam=beam).fit().filter()
         distances = [
             0.5 * float(np.abs(approximate.update(o).subgoals - r).sum()) for o, r in zip(observations, reference, strict=True)
         ]
@@ -104,8 +104,8 @@ def main() -> None:
         executions = max(1, STEPS // (5 * size) + 1)
         stream = synthetic_stream(spec.structure, model, executions=executions, seed=args.seed)
         observations = list(stream.observations[:STEPS])
-        flat, hierarchical = FlatHMM(htn, model), HierarchicalHMM(htn, model)
-        progress = ProgressHMM(htn, model, restart=True)  # the stream chains executions
+        flat, hierarchical = FlatHMM(htn, model).fit(), HierarchicalHMM(htn, model).fit()
+        progress = ProgressHMM(htn, model, restart=True).fit()  # the stream chains executions
         ours = {
             "flat": per_update(flat, observations),
             "hierarchical": per_update(hierarchical, observations),

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import random
 from typing import TypeAlias
 
 import numpy as np
 
-__all__ = ["Seed", "rng_from"]
+__all__ = ["Seed", "rng_from", "stdlib_random"]
 
 Seed: TypeAlias = int | np.random.Generator | None
 
@@ -20,3 +21,16 @@ def rng_from(seed: Seed) -> np.random.Generator:
     if isinstance(seed, np.random.Generator):
         return seed
     return np.random.default_rng(seed)
+
+
+def stdlib_random(seed: Seed) -> random.Random:
+    """A :class:`random.Random` for ``seed``, for code whose published numbers come from the standard library's
+    generator (the transfer experiment's Q-learning): an int gives ``random.Random(seed)`` (the same numbers as
+    ever), a Generator seeds one from its next draw, None a fresh one.
+
+    >>> stdlib_random(3).random() == random.Random(3).random()
+    True
+    """
+    if isinstance(seed, np.random.Generator):
+        return random.Random(int(seed.integers(2**63)))
+    return random.Random(seed)

@@ -2,7 +2,6 @@ from __future__ import annotations
 
 import importlib
 import json
-import random
 
 import pytest
 
@@ -82,13 +81,13 @@ def test_macro_expands_and_stops_at_first_disallowed_action() -> None:
 def test_explorer_comprehends_a_tiny_task() -> None:
     model = TaskModel.from_structure("tiny", TINY)
     options = tuple(((x,),) for x in "abcdxyz")
-    result = explore(model, options, random.Random(0), max_episodes=200, step_cap=50)
+    result = explore(model, options, 0, max_episodes=200, step_cap=50)
     assert result.episodes is not None and result.paths_known == 2 == result.paths_found
     # with the macro (a, b) the agent still has to find a → c → b → d with primitives
-    result = explore(model, (*options, (("a", "b"),)), random.Random(0), max_episodes=200, step_cap=50)
+    result = explore(model, (*options, (("a", "b"),)), 0, max_episodes=200, step_cap=50)
     assert result.episodes is not None and result.paths_known == 2
     # a cap too small to ever finish: censored
-    result = explore(model, options, random.Random(0), max_episodes=5, step_cap=2)
+    result = explore(model, options, 0, max_episodes=5, step_cap=2)
     assert result.episodes is None and result.episodes_run == 5 and result.completed == 0
 
 
@@ -160,7 +159,7 @@ def test_any_order_macros_perform_every_admissible_order(monkeypatch) -> None:  
     module = importlib.import_module("supportive.experiments.transfer.explore")
     monkeypatch.setattr(module, "execute", spy)
     options = (*tuple(((a,),) for a in dictionary()), anything)
-    explore(model, options, random.Random(1), max_episodes=60, step_cap=100, epsilon=0.5)
+    explore(model, options, 1, max_episodes=60, step_cap=100, epsilon=0.5)
     assert len(performed) > 1 and performed <= set(anything)
 
 

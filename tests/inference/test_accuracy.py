@@ -53,7 +53,7 @@ def test_a_moment_without_events_scores_all_actions_alike() -> None:
     htn = HTN("t", (spec.structure,))
     model = synthetic_model([a.id for a in spec.actions], overlap=0.0, spurious=0.1, strength=0.9, seed=2)
     for kind in (FlatHMM, HierarchicalHMM):
-        hmm = kind(htn, model)
+        hmm = kind(htn, model).fit()
         # no event at the first moment: the two subgoals that may start are exactly as likely, so whichever
         # is the truth gets half the credit (argmax would give all or nothing, by floating-point accident)
         first = hmm.filter().update(frozenset()).subgoals
@@ -77,4 +77,4 @@ def test_timed_accuracy_keeps_one_time_per_update() -> None:
         assert all(s >= 0 for s in timed[name].seconds) and plain[name].seconds == ()
         assert (timed[name].subgoal, timed[name].subtask) == (plain[name].subgoal, plain[name].subtask)
     with pytest.raises(ValueError, match="non-empty"):
-        filter_accuracy(FlatHMM(htn, model), [], [])
+        filter_accuracy(FlatHMM(htn, model).fit(), [], [])

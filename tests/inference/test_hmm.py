@@ -31,10 +31,10 @@ def _arrivals(model: FlatHMM | HierarchicalHMM, leaf: int) -> np.ndarray:
 def test_hierarchical_moves_follow_the_tree() -> None:
     # chain[clique{a, b}, c]: after a, the clique goes on with b (1/2) or ends (1/2) and c starts
     htn = HTN("t", (ChainNode((CliqueNode((A, B)), C)),))
-    hier = HierarchicalHMM(htn, _model("abc"))
+    hier = HierarchicalHMM(htn, _model("abc")).fit()
     assert _arrivals(hier, 0) == pytest.approx([0.0, 0.5, 0.5])
     assert _arrivals(hier, 2) == pytest.approx([0.5, 0.5, 0.0])  # the task ends and starts again
-    flat = FlatHMM(htn, _model("abc"))
+    flat = FlatHMM(htn, _model("abc")).fit()
     assert _arrivals(flat, 0) == pytest.approx([0.0, 0.5, 0.5])  # valid successors of a: b, c
 
 
@@ -42,8 +42,8 @@ def test_flat_and_hierarchical_differ_where_structure_matters() -> None:
     # chain[clique{a, b}, clique{c, d, e}]: flat spreads a's exit evenly over b, c, d, e
     e = ActionNode("e")
     htn = HTN("t", (ChainNode((CliqueNode((A, B)), CliqueNode((C, D, e)))),))
-    assert _arrivals(FlatHMM(htn, _model("abcde")), 0) == pytest.approx([0, 0.25, 0.25, 0.25, 0.25])
-    assert _arrivals(HierarchicalHMM(htn, _model("abcde")), 0) == pytest.approx([0, 0.5, 1 / 6, 1 / 6, 1 / 6])
+    assert _arrivals(FlatHMM(htn, _model("abcde")).fit(), 0) == pytest.approx([0, 0.25, 0.25, 0.25, 0.25])
+    assert _arrivals(HierarchicalHMM(htn, _model("abcde")).fit(), 0) == pytest.approx([0, 0.5, 1 / 6, 1 / 6, 1 / 6])
 
 
 @given(st.integers(5, 60), st.integers(0, 1000), st.sampled_from(["ikea", "uniform"]))
@@ -76,9 +76,9 @@ def test_representations_agree() -> None:
 def test_partial_hierarchy_uses_its_top_level() -> None:
     htn = HTNLearner().fit([list("abcd"), list("bdac")]).htn_
     assert not htn.complete
-    model = HierarchicalHMM(htn, _model("abcd"))
+    model = HierarchicalHMM(htn, _model("abcd")).fit()
     assert model.transitions_.start.sum() == pytest.approx(1.0)
-    flat = FlatHMM(htn, _model("abcd"))
+    flat = FlatHMM(htn, _model("abcd")).fit()
     running = flat.filter()
     for step in "aaabbbcccddd":
         belief = running.update({f"see-{step}"})
@@ -93,7 +93,7 @@ def test_filter_is_stable_over_ten_thousand_steps() -> None:
     stream = synthetic_stream(structure, model, executions=60, seed=3)
     assert len(stream.observations) > 10_000
     for cls in (FlatHMM, HierarchicalHMM):
-        running = cls(htn, model).filter()
+        running = cls(htn, model).fit().filter()
         for observation in stream.observations:
             belief = running.update(observation)
         assert np.isfinite(running.log_likelihood) and running.log_likelihood < 0
@@ -126,16 +126,16 @@ def test_estimator_api() -> None:
 def test_missing_observation_model_is_an_error() -> None:
     htn = HTN("t", (ChainNode((A, B)),))
     with pytest.raises(LearningError, match="no observation model"):
-        HierarchicalHMM(htn).filter()
+        HierarchicalHMM(htn).fit().filter()
     with pytest.raises(LearningError, match="no row for action"):
-        HierarchicalHMM(htn, _model("a")).filter()
+        HierarchicalHMM(htn, _model("a")).fit().filter()
     with pytest.raises(LearningError, match="mean_duration"):
         FlatHMM(htn, _model("ab"), mean_duration=0.5)
 
 
 def test_next_subgoals_predict_the_chain() -> None:
     htn = HTN("t", (ChainNode((A, B, C)),))
-    running = HierarchicalHMM(htn, _model("abc")).filter()
+    running = HierarchicalHMM(htn, _model("abc")).fit().filter()
     belief = running.update({"see-a"})
     assert running.top(belief.next_subgoals, running.subgoal_labels, 1)[0][0] == "b"
     assert list(itertools.islice(running.subtask_labels, 1)) == ["a → b → c"]

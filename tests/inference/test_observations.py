@@ -22,7 +22,7 @@ def test_fit_recovers_frequencies() -> None:
     truth = ObservationModel({"a": {"x": 0.8, "y": 0.2}, "b": {"y": 0.7}}, noise=0.05)
     labels = [["a"] * 500 + ["b"] * 500]
     sequences = [[truth.sample(a, rng) for a in labels[0]]]
-    fitted = ObservationModel.fit(sequences, labels, noise=0.05)
+    fitted = ObservationModel.from_labelled(sequences, labels, noise=0.05)
     assert fitted.table[fitted.action_index["a"], fitted.event_index["x"]] == pytest.approx(0.8, abs=0.05)
     assert fitted.table[fitted.action_index["b"], fitted.event_index["y"]] == pytest.approx(0.7, abs=0.05)
     assert fitted.table[fitted.action_index["b"], fitted.event_index["x"]] == pytest.approx(0.05, abs=0.02)
@@ -41,7 +41,7 @@ def test_bad_parameters() -> None:
     with pytest.raises(LearningError, match="probability"):
         ObservationModel({"a": {"x": 1.0}})
     with pytest.raises(LearningError, match="labels"):
-        ObservationModel.fit([[{"x"}]], [["a", "b"]])
+        ObservationModel.from_labelled([[{"x"}]], [["a", "b"]])
 
 
 def test_sampling_is_seeded() -> None:

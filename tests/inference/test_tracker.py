@@ -20,7 +20,7 @@ A, B, C = (ActionNode(x) for x in "abc")
 
 
 def _next(htn: HTN, prefix: list[str], **settings: object) -> dict[str, float]:
-    tracker = ProgressHMM(htn, **settings).filter()  # type: ignore[arg-type]
+    tracker = ProgressHMM(htn, **settings).fit().filter()  # type: ignore[arg-type]
     for action in prefix:
         tracker.observe(action)
     return tracker.last.next_actions
@@ -102,7 +102,7 @@ def test_forward_pass_agrees_with_brute_force_over_executions(shape: object, see
     rng = np.random.default_rng(seed)
     truth = executions[int(rng.integers(len(executions)))]
     slip = 1e-9
-    tracker = ProgressHMM(htn, slip=slip).filter()
+    tracker = ProgressHMM(htn, slip=slip).fit().filter()
     for k in range(len(truth) + 1):
         prefix = truth[:k]
         consistent = {s: m for s, m in masses.items() if s[:k] == prefix}
@@ -120,7 +120,7 @@ def test_forward_pass_agrees_with_brute_force_over_executions(shape: object, see
 
 def test_a_slip_does_not_zero_the_belief_and_is_flagged() -> None:
     htn = HTN("t", (ChainNode((A, B, C)),))
-    tracker = ProgressHMM(htn, slip=0.01).filter()
+    tracker = ProgressHMM(htn, slip=0.01).fit().filter()
     tracker.observe("a")
     belief = tracker.observe("c")  # b skipped: off-script
     assert belief.off_script > 0.99 and belief.surprise > 5
@@ -134,7 +134,7 @@ def test_a_slip_does_not_zero_the_belief_and_is_flagged() -> None:
 def test_contact_events_drive_the_same_tracker() -> None:
     htn = HTN("t", (ChainNode((A, B)),))
     events = ObservationModel({"a": {"hand-a": 0.9}, "b": {"hand-b": 0.9}})
-    tracker = ProgressHMM(htn, events, mean_duration=2.0).filter()
+    tracker = ProgressHMM(htn, events, mean_duration=2.0).fit().filter()
     for moment in [{"hand-a"}, {"hand-a"}, {"hand-b"}]:
         belief = tracker.update(moment)
     assert belief.subgoals.argmax() == 1 and belief.done[0] > 0.99
@@ -145,8 +145,8 @@ def test_contact_events_drive_the_same_tracker() -> None:
 
 def test_beam_agrees_with_exact_when_wide_enough() -> None:
     structure = CliqueNode(tuple(ActionNode(x) for x in "abcdef"))
-    exact = ProgressHMM(HTN("t", (structure,))).filter()
-    beam = ProgressHMM(HTN("t", (structure,)), max_states=5, beam=10_000).filter()
+    exact = ProgressHMM(HTN("t", (structure,))).fit().filter()
+    beam = ProgressHMM(HTN("t", (structure,)), max_states=5, beam=10_000).fit().filter()
     assert beam.hmm.states_ is None and exact.hmm.states_ is not None
     for action in "cabz":
         a, b = exact.observe(action), beam.observe(action)

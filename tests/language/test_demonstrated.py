@@ -77,44 +77,37 @@ def test_a_recorded_behavior_gets_the_regions_it_was_shown() -> None:
     key = next(b for b in chair.spec.behaviors if b.name == "hand-hex-key")
     hazard = chair.state_after([*FRAME, "insert_bolt_rl"])
     recorder = BehaviorRecorder(chair, key, level=0.1, bandwidths=(1.0,), hazardous=[hazard])
-    for bolt in ("insert_bolt_fl", "insert_bolt_fr", "insert_bolt_rr"):
-        recorder.start([*FRAME, bolt])
-    recorder.stop([*FRAME, "insert_bolt_fl", "tighten_nut_fl"])
-    learned = recorder.fit().behavior_
+    starts = [[*FRAME, bolt] for bolt in ("insert_bolt_fl", "insert_bolt_fr", "insert_bolt_rr")]
+    learned = recorder.fit(starts, stops=[[*FRAME, "insert_bolt_fl", "tighten_nut_fl"]]).behavior_
     within = scope(chair, key)
-    assert set(recorder.starts) <= initiation_states(chair, learned)
+    assert set(recorder.starts_) <= initiation_states(chair, learned)
     assert initiation_states(chair, learned) == recorder.initiation_.states & within
-    assert len(initiation_states(chair, learned)) > len(recorder.starts)  # it generalised
+    assert len(initiation_states(chair, learned)) > len(recorder.starts_)  # it generalised
     assert hazard not in initiation_states(chair, learned) and hazard in chair.region(learned.termination)
     assert recorder.termination_ is not None
     assert chair.region(learned.termination) & within == (recorder.termination_.states | {hazard}) & within
     assert learned.subtasks == key.subtasks and learned.name == key.name
     unsafe = BehaviorRecorder(chair, key, level=0.1, bandwidths=(1.0,))
-    unsafe.starts = recorder.starts
-    assert hazard in initiation_states(chair, unsafe.fit().behavior_)  # the hazard is what kept it out
-    untouched = BehaviorRecorder(chair, key)
-    untouched.start([*FRAME, "insert_bolt_fl"])
-    assert untouched.fit().behavior_.termination == key.termination and untouched.termination_ is None
+    assert hazard in initiation_states(chair, unsafe.fit(recorder.starts_).behavior_)  # the hazard kept it out
+    untouched = BehaviorRecorder(chair, key).fit([[*FRAME, "insert_bolt_fl"]])
+    assert untouched.behavior_.termination == key.termination and untouched.termination_ is None
 
 
 def test_recording_refuses_what_it_cannot_learn() -> None:
     chair = TaskStates.of(parse_task_file(CHAIR))
     key = chair.spec.behaviors[0]
     with pytest.raises(LearningError, match="record at least one state"):
-        BehaviorRecorder(chair, key).fit()
+        BehaviorRecorder(chair, key).fit([])
     with pytest.raises(ValueError, match="not a way the task can begin"):
-        BehaviorRecorder(chair, key).start(["get_seat"])
+        BehaviorRecorder(chair, key).fit([["get_seat"]])
     start = chair.state_after(FRAME)
     with pytest.raises(LearningError, match="hazardous"):
-        recorder = BehaviorRecorder(chair, key, hazardous=[start])
-        recorder.start(start)
-        recorder.fit()
+        BehaviorRecorder(chair, key, hazardous=[start]).fit([start])
     # two states no predicate tells apart: one shown, the other hazardous
     twins = TaskStates.of(parse_task_string(
         "name: t\nstructure: {chain: [{clique: [a, b], name: Pick one}, c], name: All}\n"
         "behaviors: [{name: beep, text: beep, category: enhancing awareness, subtasks: [All]}]\n", "yaml"
     ))
     twin = BehaviorRecorder(twins, twins.spec.behaviors[0], hazardous=[twins.state_after(["b"])])
-    twin.start(["a"])
     with pytest.raises(LearningError, match="cannot tell"):
-        twin.fit()
+        twin.fit([["a"]])

@@ -8,7 +8,7 @@ from typing import Any
 import dask.distributed as distributed
 import pytest
 
-from supportive.errors import PlanningError
+from supportive.errors import NotFittedError, PlanningError
 from supportive.planning.hypothetical import hypothetical_environments
 from supportive.planning.problem import SupportProblem
 from supportive.planning.prototypes import Prototype
@@ -73,7 +73,7 @@ def test_favoured_plans_and_saving(line_world_type: Any) -> None:
 
 def test_the_planner_must_be_fitted_on_the_same_problem(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    with pytest.raises(PlanningError, match="not fitted"):
+    with pytest.raises(NotFittedError, match="not fitted"):
         SupportPlanner().decide(problem)
     other = line_world_type(["a"], [3.0])
     planner = SupportPlanner(environments=5).fit(SupportProblem.of(other, other.plans()))

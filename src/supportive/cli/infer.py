@@ -91,11 +91,11 @@ def infer(
         learner = learn_htn(spec)
         if model is InferenceModel.progress:
             events = ObservationModel.from_spec(spec) if actions is None else None
-            running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).filter()
+            running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).fit().filter()
         else:
             kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
             model_events = ObservationModel.from_spec(spec)
-            running = kind(learner.htn_, model_events, mean_duration=mean_duration).filter()
+            running = kind(learner.htn_, model_events, mean_duration=mean_duration).fit().filter()
 
     def emit(record: dict[str, object]) -> None:
         sys.stdout.write(json.dumps(record) + "\n")

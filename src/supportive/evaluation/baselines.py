@@ -15,6 +15,7 @@ from collections import Counter, defaultdict
 from collections.abc import Iterable, Sequence
 from typing import Self
 
+from supportive.estimator import Estimator
 from supportive.tasks.spec import Demonstration, TaskSpec
 
 __all__ = ["BASELINES", "Bigram", "MaskedBigram", "MostFrequentNotDone"]
@@ -28,11 +29,19 @@ def _sequences(demonstrations: TaskSpec | Iterable[Demonstration | Sequence[str]
     return [d.actions if isinstance(d, Demonstration) else tuple(d) for d in source]
 
 
-class _Counted:
-    """Transition and action counts of the training demonstrations."""
+class _Counted(Estimator):
+    """Transition and action counts of the training demonstrations.
+
+    Attributes (after ``fit``):
+        transitions_: Counts of each action (or ``<start>``) followed by each action (or ``<end>``).
+        actions_: How often each action is performed.
+        most_: The most times one demonstration performs each action.
+        ends_: How many demonstrations there were.
+    """
 
     def fit(self, demonstrations: TaskSpec | Iterable[Demonstration | Sequence[str]]) -> Self:
         """Count the demonstrations' transitions, actions and how often each is done at most."""
+        self._forget()
         self.transitions_: dict[str, Counter[str]] = defaultdict(Counter)
         self.actions_: Counter[str] = Counter()
         self.most_: Counter[str] = Counter()

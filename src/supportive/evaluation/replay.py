@@ -37,7 +37,7 @@ def watch(spec: TaskSpec, held_out: int = -1, seed: Seed = 7, mean_duration: flo
     watched = demos.pop(held_out)
     htn = HTNLearner(names=known_names(spec.structure)).fit(demos, spec.name).htn_
     model = ObservationModel.from_spec(spec)
-    running = ProgressHMM(htn, model, mean_duration=mean_duration).filter()
+    running = ProgressHMM(htn, model, mean_duration=mean_duration).fit().filter()
     rng = rng_from(seed)
     steps = []
     for action in watched.actions:

@@ -113,9 +113,9 @@ def inference_accuracy(
     """
     return {
         "flat": filter_accuracy(
-            FlatHMM(htn, model, mean_duration=mean_duration), observations, truth, timed=timed
+            FlatHMM(htn, model, mean_duration=mean_duration).fit(), observations, truth, timed=timed
         ),
         "hierarchical": filter_accuracy(
-            HierarchicalHMM(htn, model, mean_duration=mean_duration), observations, truth, timed=timed
+            HierarchicalHMM(htn, model, mean_duration=mean_duration).fit(), observations, truth, timed=timed
         ),
     }

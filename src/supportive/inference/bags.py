@@ -26,7 +26,7 @@ def belief_record(running: GoalFilter, belief: Belief, top: int, time: float | N
     >>> from supportive.learning import HTNLearner
     >>> from supportive.inference import HierarchicalHMM, ObservationModel
     >>> htn = HTNLearner().fit([["a", "b"]]).htn_
-    >>> running = HierarchicalHMM(htn, ObservationModel({"a": {"x": .9}, "b": {"y": .9}})).filter()
+    >>> running = HierarchicalHMM(htn, ObservationModel({"a": {"x": .9}, "b": {"y": .9}})).fit().filter()
     >>> record = belief_record(running, running.update({"x"}), 1, 12.5)
     >>> record["subgoals"], record["time"], "surprise" in record
     ([['a', 1.0]], 12.5, False)

@@ -23,12 +23,13 @@ from typing import Self
 import numpy as np
 
 from supportive.errors import LearningError
+from supportive.estimator import Estimator
 from supportive.inference.observations import ObservationModel
 from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions, TaskLayout
 from supportive.tasks.htn import HTN, ActionNode, Leaf
 from supportive.tasks.naming import named
 
-__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM"]
+__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
 
 
 class Belief:
@@ -70,8 +71,45 @@ class Belief:
         return self._arriving / total if total > 0 else self._arriving
 
 
-class _SubgoalHMM(ABC):
-    """What the flat and the hierarchical HMM share; they differ only in their transitions."""
+def fitted_events(
+    observations: ObservationModel | None,
+    mean_duration: float,
+    sequences: Sequence[Sequence[Iterable[str]]] | None,
+    labels: Sequence[Sequence[str]] | None,
+) -> tuple[ObservationModel | None, float]:
+    """What a goal model's ``fit`` learns about contact events: from labelled demonstrations, the observation
+    model (:meth:`ObservationModel.from_labelled`) and the mean number of moments a subgoal lasts; without
+    them, the ``observations`` and ``mean_duration`` it was given.
+
+    Raises:
+        LearningError: when only one of ``sequences`` and ``labels`` is given, or they do not line up.
+    """
+    if sequences is None and labels is None:
+        return observations, mean_duration
+    if sequences is None or labels is None:
+        raise LearningError("give both the observation sequences and their labels, or neither")
+    model = ObservationModel.from_labelled(sequences, labels)
+    runs = [1 + sum(1 for a, b in itertools.pairwise(tags) if a != b) for tags in labels if tags]
+    steps = sum(len(tags) for tags in labels)
+    return model, max(1.0, steps / max(1, sum(runs)))
+
+
+class _SubgoalHMM(Estimator, ABC):
+    """What the flat and the hierarchical HMM share; they differ only in their transitions.
+
+    Args:
+        htn: The task's hierarchy; its subgoals are the hidden states.
+        observations: The contact-event model to use when ``fit`` is given no labelled demonstrations.
+        mean_duration: Mean moments a subgoal lasts, likewise.
+
+    Attributes (after ``fit``):
+        htn_: The hierarchy with every subtask named.
+        layout_: Its subgoals and subtasks, indexed.
+        transitions_: How mass moves between subgoals.
+        observations_: The observation model in use (None: none given, none learned; :meth:`filter` needs one).
+        mean_duration_: The mean moments a subgoal lasts.
+        stay_: The probability of going on with the current subgoal, ``1 - 1 / mean_duration_``.
+    """
 
     def __init__(
         self,
@@ -82,36 +120,46 @@ class _SubgoalHMM(ABC):
     ) -> None:
         if mean_duration < 1.0:
             raise LearningError(f"mean_duration is in steps and must be at least 1, got {mean_duration}")
-        self.htn = HTN(htn.task, tuple(named(r) for r in htn.roots), htn.top_level, htn.alternatives)
+        self.htn = htn
         self.observations = observations
         self.mean_duration = mean_duration
-        self.layout_ = TaskLayout.of(self.htn)
-        self.transitions_ = self._transitions(self.htn, self.layout_)
-        self.observations_ = observations
-        self.mean_duration_ = mean_duration
-        self.stay_ = 1.0 - 1.0 / mean_duration
 
     @abstractmethod
     def _transitions(self, htn: HTN, layout: TaskLayout) -> FlatTransitions | HierarchicalTransitions:
         """How mass moves between subgoals in this model."""
 
     # ------------------------------------------------------------------ estimator API
-    def fit(self, sequences: Sequence[Sequence[Iterable[str]]], labels: Sequence[Sequence[str]]) -> Self:
-        """Learn the observation model and how long subgoals last from labelled demonstrations.
+    def fit(
+        self,
+        sequences: Sequence[Sequence[Iterable[str]]] | None = None,
+        labels: Sequence[Sequence[str]] | None = None,
+    ) -> Self:
+        """Build the model over the hierarchy; learn the observation model and how long subgoals last from
+        labelled demonstrations when given, else use the ones given at construction.
 
         Args:
             sequences: Observation sequences (each observation: the contact events that hold).
             labels: For each sequence, the action being performed at each step.
+
+        Raises:
+            LearningError: for sequences and labels that do not line up.
         """
-        self.observations_ = ObservationModel.fit(sequences, labels)
-        runs = [1 + sum(1 for a, b in itertools.pairwise(tags) if a != b) for tags in labels if tags]
-        steps = sum(len(tags) for tags in labels)
-        self.mean_duration_ = max(1.0, steps / max(1, sum(runs)))
-        self.stay_ = 1.0 - 1.0 / self.mean_duration_
+        self._forget()
+        observations, mean_duration = fitted_events(self.observations, self.mean_duration, sequences, labels)
+        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
+        self.layout_ = TaskLayout.of(self.htn_)
+        self.transitions_ = self._transitions(self.htn_, self.layout_)
+        self.observations_ = observations
+        self.mean_duration_ = mean_duration
+        self.stay_ = 1.0 - 1.0 / mean_duration
         return self
 
     def filter(self) -> GoalFilter:
-        """A fresh online filter."""
+        """A fresh online filter.
+
+        Raises:
+            LearningError: without an observation model.
+        """
         if self.observations_ is None:
             raise LearningError("no observation model: pass one, or call fit() on labelled demonstrations")
         return GoalFilter(self.layout_, self.transitions_, self.observations_, self.stay_)
@@ -140,7 +188,7 @@ class FlatHMM(_SubgoalHMM):
     >>> from supportive.learning import HTNLearner
     >>> htn = HTNLearner(mode="strict").fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]]).htn_
     >>> model = ObservationModel({"knife": {"hand-knife": .9}, "carrots": {"knife-carrot": .9}, "celery": {"knife-celery": .9}})
-    >>> [a for a, _ in FlatHMM(htn, model).predict([{"hand-knife"}, {"knife-celery"}])]
+    >>> [a for a, _ in FlatHMM(htn, model).fit().predict([{"hand-knife"}, {"knife-celery"}])]
     ['knife', 'celery']
     """
 

@@ -74,7 +74,7 @@ class ObservationModel:
         return cls({a.id: dict(a.observations) for a in spec.actions}, noise)
 
     @classmethod
-    def fit(
+    def from_labelled(
         cls,
         sequences: Sequence[Sequence[Iterable[str]]],
         labels: Sequence[Sequence[str]],
@@ -82,7 +82,8 @@ class ObservationModel:
         smoothing: float = 1.0,
         noise: float = 0.02,
     ) -> ObservationModel:
-        """Estimate the probabilities from labelled demonstrations (each step's observation and true action).
+        """The model estimated from labelled demonstrations (each step's observation and true action); the goal
+        models' ``fit`` calls it (this class is a model, like an HTN, not an estimator).
 
         Frequencies are Laplace-smoothed; an event's probability is at least ``noise``.
 

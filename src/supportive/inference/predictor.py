@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from typing import Any, Self
 
-from supportive.errors import NotFittedError
+from supportive.estimator import Estimator
 from supportive.inference.tracker import END_LABEL, ProgressFilter, ProgressHMM
 from supportive.learning.learner import DemonstrationLike, HTNLearner
 from supportive.tasks.spec import TaskSpec
@@ -27,7 +27,7 @@ _LEARNER = ("mode", "deviations", "evidence", "order_support", "subtask_demonstr
 _TRACKER = ("smoothing", "slip", "restart", "max_states", "beam")
 
 
-class StepPredictor:
+class StepPredictor(Estimator):
     """Next-step prediction (see the module docstring).
 
     Args:
@@ -51,14 +51,17 @@ class StepPredictor:
         sequences of action ids)."""
         learner_settings = {k: v for k, v in self.settings.items() if k in _LEARNER}
         tracker_settings = {k: v for k, v in self.settings.items() if k in _TRACKER}
+        self._forget()
         self.learner_ = HTNLearner(alternatives=0, **learner_settings).fit(demonstrations)
-        self.model_ = ProgressHMM(self.learner_.htn_, **tracker_settings)
+        self.model_ = ProgressHMM(self.learner_.htn_, **tracker_settings).fit()
         return self
 
     def tracker(self) -> ProgressFilter:
-        """A fresh tracker over the fitted model (for predictions step by step)."""
-        if not hasattr(self, "model_"):
-            raise NotFittedError("StepPredictor is not fitted: call fit(demonstrations) first")
+        """A fresh tracker over the fitted model (for predictions step by step).
+
+        Raises:
+            NotFittedError: before ``fit``.
+        """
         return self.model_.filter()
 
     def next_step(self, prefix: Sequence[str]) -> dict[str, float]:

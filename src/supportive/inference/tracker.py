@@ -24,14 +24,16 @@ from __future__ import annotations
 
 import math
 from collections import Counter, defaultdict
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Self
 
 import numpy as np
 
 from supportive.errors import LearningError
-from supportive.inference.hmm import Belief
+from supportive.estimator import Estimator
+from supportive.inference.hmm import Belief, fitted_events
 from supportive.inference.observations import ObservationModel
 from supportive.inference.progress import END, ProgressModel
 from supportive.inference.progress_matrices import ProgressMatrices
@@ -113,18 +115,28 @@ class ProgressBelief(Belief):
         return arriving / total if total > 0 else arriving
 
 
-class ProgressHMM:
-    """The progress-aware model of a task as an estimator: ``filter()`` gives online trackers.
+class ProgressHMM(Estimator):
+    """The progress-aware model of a task as an estimator: ``fit()`` builds it, ``filter()`` gives online
+    trackers.
 
     Args:
         htn: The task's hierarchy (its learned ``counts`` weight the choices).
-        observations: The contact-event model (needed only for :meth:`ProgressFilter.update`).
-        mean_duration: Mean time steps a subgoal lasts (contact-event filtering).
+        observations: The contact-event model (needed only for :meth:`ProgressFilter.update`) to use when
+            ``fit`` is given no labelled demonstrations.
+        mean_duration: Mean time steps a subgoal lasts (contact-event filtering), likewise.
         smoothing: Pseudo-counts per option of every choice (see :class:`ProgressModel`).
         slip: Probability that a step is off-script.
         restart: After the task is finished, it may start again (otherwise finished is final).
         max_states: Enumerate the states (exact) up to this many; beyond, keep a beam.
         beam: States kept by the approximate filter.
+
+    Attributes (after ``fit``):
+        htn_: The hierarchy with every subtask named.
+        model_: The progress model over it.
+        layout_: Its subgoals and subtasks, indexed.
+        states_: The enumerated states, or None beyond ``max_states`` (beam mode).
+        observations_: The observation model in use (None: known actions only).
+        mean_duration_: The mean moments a subgoal lasts.
     """
 
     def __init__(
@@ -145,7 +157,7 @@ class ProgressHMM:
             raise LearningError(f"slip must be a probability in (0, 1), got {slip}")
         if beam < 1 or max_states < 1:
             raise LearningError("beam and max_states must be at least 1")
-        self.htn = HTN(htn.task, tuple(named(r) for r in htn.roots), htn.top_level, htn.alternatives)
+        self.htn = htn
         self.observations = observations
         self.mean_duration = mean_duration
         self.smoothing = smoothing
@@ -153,9 +165,28 @@ class ProgressHMM:
         self.restart = restart
         self.max_states = max_states
         self.beam = beam
-        self.model_ = ProgressModel(self.htn, smoothing=smoothing)
-        self.layout_ = TaskLayout.of(self.htn)
-        self.states_ = self.model_.states(max_states)
+
+    def fit(
+        self,
+        sequences: Sequence[Sequence[Iterable[str]]] | None = None,
+        labels: Sequence[Sequence[str]] | None = None,
+    ) -> Self:
+        """Build the progress model over the hierarchy (and enumerate its states, up to ``max_states``); learn
+        the observation model and how long subgoals last from labelled demonstrations when given (see
+        :func:`~supportive.inference.hmm.fitted_events`), else use the ones given at construction.
+
+        Raises:
+            LearningError: for sequences and labels that do not line up.
+        """
+        self._forget()
+        self.observations_, self.mean_duration_ = fitted_events(
+            self.observations, self.mean_duration, sequences, labels
+        )
+        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
+        self.model_ = ProgressModel(self.htn_, smoothing=self.smoothing)
+        self.layout_ = TaskLayout.of(self.htn_)
+        self.states_ = self.model_.states(self.max_states)
+        return self
 
     @property
     def exact(self) -> bool:
@@ -189,14 +220,14 @@ class ProgressFilter:
             for state in hmm.states_:
                 if state.last >= 0:
                     self._done_at[state.last].append(state)
-        self.stay = 1.0 - 1.0 / hmm.mean_duration
+        self.stay = 1.0 - 1.0 / hmm.mean_duration_
         self._matrices: ProgressMatrices | None = None  # built when contact events first arrive
         self._vector: np.ndarray | None = None
-        if hmm.observations is not None:
-            missing = sorted(set(self.actions) - set(hmm.observations.actions))
+        if hmm.observations_ is not None:
+            missing = sorted(set(self.actions) - set(hmm.observations_.actions))
             if missing:
                 raise LearningError(f"the observation model has no row for action(s) {', '.join(missing)}")
-            self._event_action = np.array([hmm.observations.action_index[a] for a, _ in self.leaves])
+            self._event_action = np.array([hmm.observations_.action_index[a] for a, _ in self.leaves])
         self.reset()
 
     def reset(self) -> None:
@@ -285,9 +316,9 @@ class ProgressFilter:
     # ------------------------------------------------------------------ evidence: contact events
     def update(self, events: Iterable[str]) -> ProgressBelief:
         """Take one moment's contact events into account."""
-        observations = self.hmm.observations
+        observations = self.hmm.observations_
         if observations is None:
-            raise LearningError("no observation model: pass one to ProgressHMM to filter contact events")
+            raise LearningError("no observation model: pass one to ProgressHMM, or fit it on labelled demonstrations")
         scores = observations.log_likelihood(events)[self._event_action]
         peak = float(scores.max())
         likelihood = np.exp(scores - peak)

@@ -21,12 +21,14 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from typing import Self
 
 import numpy as np
 from scipy.spatial.distance import cdist
 from scipy.special import logsumexp
 
 from supportive.errors import LanguageError, LearningError
+from supportive.estimator import Estimator
 from supportive.language.cover import exact_formula
 from supportive.language.dnf import TruthTable
 from supportive.language.explain import scope
@@ -142,11 +144,10 @@ def learn_region(
     return DemonstratedRegion(states, bandwidth, threshold, chosen, kept_out)
 
 
-class BehaviorRecorder:
-    """Records where a person starts and stops a behavior, and learns its regions from that (§3.3.4.2).
-
-    Call :meth:`start` or :meth:`stop` with the task's state (or the actions done so far) whenever the person
-    triggers or stops the behavior, then :meth:`fit`.
+class BehaviorRecorder(Estimator):
+    """Learns a behavior's regions from where a person started and stopped it (§3.3.4.2): the caller records
+    the states (or the actions done so far) whenever the person triggers or stops the behavior, then
+    :meth:`fit` learns from them.
 
     Args:
         states: The task's states.
@@ -156,25 +157,22 @@ class BehaviorRecorder:
         level: Of :func:`learn_region` (smaller generalises further).
         bandwidths: Of :func:`learn_region`.
 
-    Attributes:
-        starts: The states where the person started it, in order.
-        stops: The states where they stopped it.
-        initiation_: The learned initiation region (after :meth:`fit`).
+    Attributes (after ``fit``):
+        starts_: The states where the person started it, in order.
+        stops_: The states where they stopped it.
+        initiation_: The learned initiation region.
         termination_: The learned termination region (None when no stop was shown).
         behavior_: The behavior with the learned regions as formulas; without stops, its termination is kept.
 
     >>> from supportive.examples import load
     >>> chair = TaskStates.of(load("ikea-chair"))
     >>> screws = next(b for b in chair.spec.behaviors if b.name == "give-screws")
-    >>> recorder = BehaviorRecorder(chair, screws)
     >>> done = ["get_left_frame", "place_left_frame", "peg_left_front", "peg_left_rear", "get_right_frame",
     ...         "place_right_frame", "peg_right_front", "peg_right_rear", "get_front_support",
     ...         "attach_front_support", "get_back_support", "attach_back_support", "insert_bolt_fl",
     ...         "tighten_nut_fl", "insert_bolt_fr", "tighten_nut_fr", "insert_bolt_rl", "tighten_nut_rl",
     ...         "insert_bolt_rr", "tighten_nut_rr", "get_seat", "place_seat"]
-    >>> recorder.start(done)
-    >>> recorder.stop([*done, "screw_seat_left"])
-    >>> learned = recorder.fit().behavior_
+    >>> learned = BehaviorRecorder(chair, screws).fit([done], stops=[[*done, "screw_seat_left"]]).behavior_
     >>> learned.initiation, learned.termination
     ('not active(Screw seat)', 'attached(seat, left_frame)')
     """
@@ -193,48 +191,37 @@ class BehaviorRecorder:
         self.hazardous = frozenset(hazardous)
         self.level = level
         self.bandwidths = tuple(bandwidths)
-        self.starts: list[State] = []
-        self.stops: list[State] = []
 
     def _state(self, at: State | Sequence[str]) -> State:
         return at if isinstance(at, frozenset) else self.states.state_after(at)
 
-    def start(self, at: State | Sequence[str]) -> None:
-        """The person started the behavior in this state (or after these actions).
+    def fit(
+        self, starts: Iterable[State | Sequence[str]], stops: Iterable[State | Sequence[str]] = ()
+    ) -> Self:
+        """Learn the regions from where the person started (``starts``) and stopped (``stops``) the behavior:
+        task states, or the actions done so far.
 
         Raises:
             LanguageError: for actions that are no valid beginning of the task.
-        """
-        self.starts.append(self._state(at))
-
-    def stop(self, at: State | Sequence[str]) -> None:
-        """The person stopped the behavior in this state (or after these actions).
-
-        Raises:
-            LanguageError: for actions that are no valid beginning of the task.
-        """
-        self.stops.append(self._state(at))
-
-    def fit(self) -> BehaviorRecorder:
-        """Learn the regions from what was recorded.
-
-        Raises:
-            LearningError: with no start recorded, a start in a hazardous state, or a learned region the task's
+            LearningError: with no start, a start in a hazardous state, or a learned region the task's
                 predicates cannot say exactly (a state in it looks, by its atoms, like one outside it).
         """
-        if not self.starts:
+        self._forget()
+        self.starts_ = [self._state(at) for at in starts]
+        self.stops_ = [self._state(at) for at in stops]
+        if not self.starts_:
             raise LearningError(f"{self.behavior.name}: record at least one state where it starts")
-        if set(self.starts) & self.hazardous:
+        if set(self.starts_) & self.hazardous:
             raise LearningError(f"{self.behavior.name}: it was started in a state marked hazardous")
         table = self.states.table
         self.initiation_ = learn_region(
-            table, self.starts, hazardous=self.hazardous, bandwidths=self.bandwidths, level=self.level
+            table, self.starts_, hazardous=self.hazardous, bandwidths=self.bandwidths, level=self.level
         )
         self.termination_: DemonstratedRegion | None = None
         termination = self.behavior.termination
         within = scope(self.states, self.behavior)
-        if self.stops:
-            self.termination_ = learn_region(table, self.stops, bandwidths=self.bandwidths, level=self.level)
+        if self.stops_:
+            self.termination_ = learn_region(table, self.stops_, bandwidths=self.bandwidths, level=self.level)
             termination = self._said(self.termination_.states | self.hazardous, within, "stops")
         initiation = self._said(self.initiation_.states, within, "starts")
         self.behavior_ = replace(self.behavior, initiation=initiation, termination=termination)

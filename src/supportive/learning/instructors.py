@@ -467,4 +467,4 @@ def pooled_learner(learners: Sequence[HTNLearner], **options: Any) -> HTNLearner
     if not demos:
         raise LearningError("no demonstrations to pool: give at least one fitted learner")
     options.setdefault("mode", learners[0].mode)
-    return HTNLearner(**options).fit(demos, learners[0].task)
+    return HTNLearner(**options).fit(demos, learners[0].task_)

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any, Literal, Self
 
 from supportive.errors import LearningError
+from supportive.estimator import Estimator
 from supportive.learning.ambiguity import resolve_ambiguity
 from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
@@ -55,7 +56,7 @@ class LearningStats:
         }
 
 
-class HTNLearner:
+class HTNLearner(Estimator):
     """Clique/Chain HTN learner (§2.1).
 
     Args:
@@ -77,6 +78,8 @@ class HTNLearner:
             the names of a task spec's ``structure``.
 
     Attributes (after ``fit``):
+        task_: The task's name (the spec's, or ``fit``'s ``task``).
+        names_: The subtask names used: ``names``, or the spec's structure's.
         task_graph_: The environment-space task graph.
         ctg_: Its Conjugate Task Graph (redundant edges removed).
         htn_: The learned hierarchy with its alternatives.
@@ -126,7 +129,6 @@ class HTNLearner:
         self.alternatives = alternatives
         self.max_alternative_roots = max_alternative_roots
         self.names = names
-        self.task = ""
 
     def fit(self, demonstrations: TaskSpec | Iterable[DemonstrationLike], task: str = "") -> Self:
         """Learn from scratch.
@@ -141,9 +143,10 @@ class HTNLearner:
             TaskGraphError: when the demonstrations cannot form a task graph.
         """
         started = time.perf_counter()
+        self._forget()
         demos = self._demonstrations(demonstrations, task)
         if not demos:
-            raise LearningError(f"task {self.task or '?'}: no demonstrations to learn from")
+            raise LearningError(f"task {self.task_ or '?'}: no demonstrations to learn from")
         self._demos = list(demos)
         self.task_graph_ = TaskGraph()
         for i, demo in enumerate(demos):
@@ -162,8 +165,8 @@ class HTNLearner:
         Only the compaction levels the new execution changes are recomputed (see
         :meth:`Compaction.update`); the result equals ``fit`` on all demonstrations so far.
         """
-        if not hasattr(self, "task_graph_"):
-            return self.fit([demonstration], self.task)
+        if not self.fitted:
+            return self.fit([demonstration])
         started = time.perf_counter()
         graph = self.task_graph_
         if not isinstance(demonstration, str):
@@ -185,11 +188,11 @@ class HTNLearner:
         self, source: TaskSpec | Iterable[DemonstrationLike], task: str
     ) -> list[Demonstration | Sequence[str]]:
         if isinstance(source, TaskSpec):
-            self.task = source.name
+            self.task_ = source.name
             self.names_ = self.names if self.names is not None else known_names(source.structure)
             return list(source.demonstrations)
         self.names_ = self.names or {}
-        self.task = task
+        self.task_ = task
         demos = list(source)
         for index, demo in enumerate(demos):
             if isinstance(demo, str):
@@ -233,8 +236,8 @@ class HTNLearner:
             found = resolve_ambiguity(
                 self._compacted(), limit=self.alternatives, max_roots=self.max_alternative_roots
             )
-            alternatives = tuple(HTN(self.task, (named(root, names),)) for root, _ in found)
-        self.htn_ = HTN(self.task, roots, top, alternatives)
+            alternatives = tuple(HTN(self.task_, (named(root, names),)) for root, _ in found)
+        self.htn_ = HTN(self.task_, roots, top, alternatives)
         self.seconds_ = time.perf_counter() - started
         graph, htn = self.task_graph_, self.htn_
         self.stats_ = LearningStats(

@@ -23,7 +23,8 @@ from typing import Any, Generic, Self, TypeVar
 
 import numpy as np
 
-from supportive.errors import PlanningError
+from supportive.errors import NotFittedError, PlanningError
+from supportive.estimator import Estimator
 from supportive.planning.duration import Decay, estimate_duration, no_decay
 from supportive.planning.evaluation import Scorer, ScoringContext, open_scorer
 from supportive.planning.hypothetical import Hypothetical, HypotheticalSet, hypothetical_environments
@@ -93,7 +94,7 @@ class SupportDecision(Generic[StateT, OperatorT, MoveT]):
         return order[:count]
 
 
-class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
+class SupportPlanner(Estimator, Generic[StateT, OperatorT, MoveT]):
     """Chooses supportive actions for an SB-TAMP problem (§3.2.5–3.2.7).
 
     Args:
@@ -165,6 +166,7 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         Raises:
             PlanningError: when a known plan cannot be executed in s_0.
         """
+        self._forget()
         world = problem.world
         start = Hypothetical[StateT, OperatorT, MoveT].idle(world.initial_state)
         baseline = [
@@ -190,7 +192,8 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         """The best supportive action at ``problem.state`` (s_c).
 
         Raises:
-            PlanningError: when the planner was not fitted, or was fitted on other plans.
+            NotFittedError: when the planner was not fitted.
+            PlanningError: when it was fitted on other plans.
         """
         context = self._fitted(problem)
         candidates = hypothetical_environments(problem, self.environments, seed)
@@ -269,7 +272,7 @@ class SupportPlanner(Generic[StateT, OperatorT, MoveT]):
         self, problem: SupportProblem[StateT, OperatorT, MoveT]
     ) -> ScoringContext[StateT, OperatorT, MoveT]:
         if self._context is None:
-            raise PlanningError("the support planner is not fitted: call fit(problem) first")
+            raise NotFittedError("the support planner is not fitted: call fit(problem) first")
         if self._context.plans != problem.plans or self._context.world is not problem.world:
             raise PlanningError("the support planner was fitted on another world or plan set: fit it again")
         return self._context

@@ -5,7 +5,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from supportive.safety.episode import Frame, run_episode
+from supportive.seeding import Seed
 from supportive.worlds.household import Collision, load_map
 
 __all__ = ["CaregiverContrast", "caregiver_contrast"]
@@ -37,10 +40,13 @@ class CaregiverContrast:
 
 
 def caregiver_contrast(
-    map_name: str = "playroom", epsilon: float = 0.75, steps: int = 40, seed: int = 8
+    map_name: str = "playroom", epsilon: float = 0.75, steps: int = 40, seed: Seed = 8
 ) -> CaregiverContrast:
     """Play a novice on ``map_name`` with and without the caregiver (common random numbers: the same seed gives
-    the same start and first goal), and pick the frames where the caregiver first made a difference."""
+    the same start and first goal; a generator gives one seed for both), and pick the frames where the
+    caregiver first made a difference."""
+    if isinstance(seed, np.random.Generator):
+        seed = int(seed.integers(2**63))
     grid = load_map(map_name)
     helped = run_episode(grid, epsilon, caregiver=True, steps=steps, seed=seed, record=True)
     alone = run_episode(grid, epsilon, caregiver=False, steps=steps, seed=seed, record=True)

@@ -48,7 +48,7 @@ class Insight:
         spec = self.spec
         if spec is None or not spec.demonstrations or not all(a.observations for a in spec.actions):
             return None
-        return ProgressHMM(learn(spec).htn_, ObservationModel.from_spec(spec))
+        return ProgressHMM(learn(spec).htn_, ObservationModel.from_spec(spec)).fit()
 
     @property
     def inference(self) -> bool:

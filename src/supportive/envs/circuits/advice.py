@@ -21,6 +21,7 @@ from supportive.envs.tabletop.operators import Install
 from supportive.envs.tabletop.team import TeamResult, run_team
 from supportive.planning.problem import SupportProblem
 from supportive.planning.selection import SupportDecision
+from supportive.seeding import Seed
 
 __all__ = ["FavouredPlan", "SupportAdvice", "SupportSimulation", "advise", "describe_plan", "simulate"]
 
@@ -101,7 +102,7 @@ def advise(
     scenario: CircuitScenario,
     plans: Sequence[CircuitPlan],
     *,
-    seed: int = 0,
+    seed: Seed = 0,
     workers: int = 1,
     favoured: int = 3,
 ) -> tuple[SupportAdvice, SupportDecision[Any, Any, Any]]:
@@ -178,7 +179,7 @@ def simulate(
     plans: Sequence[CircuitPlan],
     lead: LeadKind = "plans",
     *,
-    seed: int = 0,
+    seed: Seed = 0,
     workers: int = 1,
 ) -> SupportSimulation:
     """The lead alone, then with the support agent: the thesis's makespan comparison on one table.

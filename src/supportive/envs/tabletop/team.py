@@ -33,6 +33,7 @@ from supportive.errors import PlanningError
 from supportive.planning.problem import SupportProblem
 from supportive.planning.selection import SupportPlanner
 from supportive.planning.world import LEAD, SUPPORT
+from supportive.seeding import Seed
 
 __all__ = ["Event", "LeadPolicy", "LeadStep", "TeamResult", "run_team"]
 
@@ -149,7 +150,7 @@ class _Run(Generic[GoalT, TargetT]):
         lead: LeadPolicy[GoalT, TargetT],
         planner: SupportPlanner[Any, Any, Any] | None,
         plans: tuple[tuple[TabletopOperator[TargetT], ...], ...],
-        seed: int,
+        seed: Seed,
         record: bool,
     ) -> None:
         self.world = world
@@ -332,7 +333,7 @@ class _Run(Generic[GoalT, TargetT]):
         """Decide and act once; False when doing nothing was best (the agent then waits at home)."""
         world = self.world
         began = time.perf_counter()
-        seed = self.seed + self.result.support_decisions
+        seed = self.seed + self.result.support_decisions if isinstance(self.seed, int) else self.seed
         decision = self.planner_decide(seed)
         self.result.support_planning_seconds += time.perf_counter() - began
         self.result.support_decisions += 1
@@ -374,7 +375,7 @@ class _Run(Generic[GoalT, TargetT]):
         self.result.support_actions += 1
         return True
 
-    def planner_decide(self, seed: int) -> Any:
+    def planner_decide(self, seed: Seed) -> Any:
         if self.planner is None or self.problem is None:
             raise PlanningError("no support planner")
         state, busy = self.planning_view()
@@ -447,7 +448,7 @@ def run_team(
     planner: SupportPlanner[Any, Any, Any] | None = None,
     plans: tuple[tuple[TabletopOperator[TargetT], ...], ...] = (),
     *,
-    seed: int = 0,
+    seed: Seed = 0,
     dt: float = 0.05,
     limit: float = 1800.0,
     buffer: float = 6.0,
@@ -460,7 +461,8 @@ def run_team(
         lead: The lead's policy.
         planner: The support agent's planner, fitted on ``plans``; None for a lead working alone.
         plans: Π_T, as the planner was fitted.
-        seed: Seeds the support agent's sampling (decision k uses ``seed + k``).
+        seed: Seeds the support agent's sampling (an int: decision k uses ``seed + k``; a generator: every
+            decision draws from it).
         dt: The clock's tick, seconds.
         limit: Give up after this many seconds.
         buffer: Least distance between the two arms, cm.

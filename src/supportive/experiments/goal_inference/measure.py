@@ -111,14 +111,14 @@ def measure_setting(
     timing: dict[str, Any] = {}
     for name, kind in (("flat", FlatHMM), ("hierarchical", HierarchicalHMM)):
         started = time.perf_counter()
-        hmm = kind(htn, model, mean_duration=MEAN_DURATION)
+        hmm = kind(htn, model, mean_duration=MEAN_DURATION).fit()
         built = time.perf_counter() - started
         scored = filter_accuracy(hmm, stream.observations, stream.truth, timed=clock)
         accuracy[name] = {"subgoal": round(scored.subgoal, 6), "subtask": round(scored.subtask, 6)}
         if clock:
             timing[name] = {**describe_times(scored.seconds), "build_ms": round(built * 1e3, 3)}
     # the progress-aware tracker (issue 14); the streams chain several executions, so it may start again
-    progress = ProgressHMM(htn, model, mean_duration=MEAN_DURATION, restart=True)
+    progress = ProgressHMM(htn, model, mean_duration=MEAN_DURATION, restart=True).fit()
     scored = filter_accuracy(progress, stream.observations, stream.truth)
     accuracy["progress"] = {"subgoal": round(scored.subgoal, 6), "subtask": round(scored.subtask, 6)}
     return accuracy, timing
@@ -146,8 +146,8 @@ def measure_task(spec: TaskSpec, steps: int, seeds: list[tuple[int, int]]) -> di
     if spec.structure is None:
         raise ExperimentError(f"task {spec.name}: goal inference needs a ground-truth structure")
     htn = HTN(spec.name, (spec.structure,))
-    flat = FlatHMM(htn, mean_duration=MEAN_DURATION).transitions_
-    hierarchical = HierarchicalHMM(htn, mean_duration=MEAN_DURATION).transitions_
+    flat = FlatHMM(htn, mean_duration=MEAN_DURATION).fit().transitions_
+    hierarchical = HierarchicalHMM(htn, mean_duration=MEAN_DURATION).fit().transitions_
     accuracy: dict[str, Any] = {}
     lengths: dict[str, int] = {}
     timing: dict[str, Any] = {}

@@ -32,11 +32,11 @@ task's state space then lies on an observed complete execution. The measure is t
 
 from __future__ import annotations
 
-import random
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from supportive.errors import ExperimentError
+from supportive.seeding import Seed, stdlib_random
 from supportive.tasks.htn import Node, allowed_next, count_orderings, leaf_actions, to_leaves
 from supportive.tasks.task_graph import TaskGraph
 
@@ -212,7 +212,7 @@ class ExplorationResult:
 def explore(
     model: TaskModel,
     options: Sequence[Option],
-    rng: random.Random,
+    seed: Seed,
     *,
     initial: Mapping[str, Sequence[float]] | None = None,
     max_episodes: int = 5000,
@@ -224,13 +224,14 @@ def explore(
     Args:
         model: The task.
         options: The agent's dictionary (primitives and macros, each as the sequences it may perform).
-        rng: The run's random numbers.
+        seed: The run's random numbers (see :func:`~supportive.seeding.stdlib_random`).
         initial: Feature (last action, or :data:`START`) -> initial Q values, one per option; missing
             features start at 0 (no transfer: ``None``).
         max_episodes: Episodes before giving up (censored).
         step_cap: Primitive attempts per episode.
         epsilon: Probability of a random option.
     """
+    rng = stdlib_random(seed)
     n = len(options)
     zeros = [0.0] * n
     initial = initial or {}

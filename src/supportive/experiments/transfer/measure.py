@@ -18,7 +18,6 @@ depend on which other readings run.
 
 from __future__ import annotations
 
-import random
 from collections.abc import Sequence
 from typing import Any
 
@@ -113,7 +112,7 @@ def run_condition(
     if transfer:
         options, initial = transfer_initial(task, macros, "max", scale, ORDERS[reading])
     result = explore(
-        model, options, random.Random(seed), initial=initial, max_episodes=max_episodes, step_cap=step_cap
+        model, options, seed, initial=initial, max_episodes=max_episodes, step_cap=step_cap
     )
     return {
         "episodes": result.episodes,
