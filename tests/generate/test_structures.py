@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-import time
 
 import numpy as np
 import pytest
@@ -133,14 +132,10 @@ def test_generator_seed_is_used_and_advanced() -> None:
 
 
 @pytest.mark.parametrize("profile", PROFILES)
-def test_five_thousand_actions_well_under_a_second(profile: Profile) -> None:
-    random_structure(200, 0, profile=profile)  # warm up
-    started = time.perf_counter()
-    node = random_structure(5000, 0, profile=profile)
-    elapsed = time.perf_counter() - started
+def test_five_thousand_actions_are_distinct_and_normalised(profile: Profile) -> None:
+    node = random_structure(5000, 0, profile=profile)  # its speed: benchmarks/bench_generate.py
     assert len(set(leaf_actions(node))) == 5000
     assert is_normalised(node)
-    assert elapsed < 1.0
 
 
 def test_ikea_large_tasks_stay_thesis_deep() -> None:

@@ -37,9 +37,9 @@ def verbalize(formula: DNF, states: TaskStates) -> str:
     """A formula in words: literals joined by "and", clauses by "or"; ``true`` is "at any point", ``false``
     "never".
 
-    >>> from supportive.io import parse_task_file
+    >>> from supportive.examples import load
     >>> from supportive.tasks.formula import parse_formula
-    >>> chair = TaskStates.of(parse_task_file("examples/ikea-chair.yaml"))
+    >>> chair = TaskStates.of(load("ikea-chair"))
     >>> verbalize(parse_formula("placed(seat) and not attached(seat, left_frame)"), chair)
     'the seat is in place and the seat is not attached to the left frame'
     """
@@ -178,8 +178,8 @@ def explain_subtask(states: TaskStates, subtask: str, *, max_literals: int = 3) 
     Raises:
         UnknownNameError: for an unknown subtask.
 
-    >>> from supportive.io import parse_task_file
-    >>> chair = TaskStates.of(parse_task_file("examples/ikea-chair.yaml"))
+    >>> from supportive.examples import load
+    >>> chair = TaskStates.of(load("ikea-chair"))
     >>> print(explain_subtask(chair, "Fasten nuts and bolts").text)  # doctest: +NORMALIZE_WHITESPACE
     When you are fastening nuts and bolts, I can hand you the hex key at any point, until you have finished
     fastening nuts and bolts; and I can point out the next bolt to fasten when you are fastening nuts and bolts,

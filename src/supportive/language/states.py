@@ -66,8 +66,8 @@ class TaskStates:
         Raises:
             LearningError: when there is no structure, or more than :data:`MAX_STATES` states.
 
-        >>> from supportive.io import parse_task_file
-        >>> states = TaskStates.of(parse_task_file("examples/knife-carrots-celery.yaml"))
+        >>> from supportive.examples import load
+        >>> states = TaskStates.of(load("knife-carrots-celery"))
         >>> len(states.states), states.table.atoms[:2]
         (5, ('done(Prepare salad vegetables)', 'active(Prepare salad vegetables)'))
         """

@@ -100,8 +100,8 @@ class ConditionReader:
         states: The task's states (its truth table names every atom it can speak of).
         cutoff: Least word overlap (Jaccard, 0–1) a phrase needs with a literal's words to be read as it.
 
-    >>> from supportive.io import parse_task_file
-    >>> reader = ConditionReader(TaskStates.of(parse_task_file("examples/ikea-chair.yaml")))
+    >>> from supportive.examples import load
+    >>> reader = ConditionReader(TaskStates.of(load("ikea-chair")))
     >>> str(reader.read("the seat is in place and the seat is not attached to the left frame"))
     'not attached(seat, left_frame) and placed(seat)'
     """
