@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from supportive.errors import ExperimentError
+from supportive.experiments.tables import markdown_table
 
 __all__ = ["Finding", "Reading", "findings_table", "reading_names", "readings_table", "select_readings"]
 
@@ -134,18 +135,12 @@ def readings_table(
     '| `a` (default) | asks early | the text |'
     """
     titles = ["reading", *([extra[0]] if extra else []), column, "the thesis's text"]
-    lines = ["| " + " | ".join(_escape(t) for t in titles) + " |", "|" + "---|" * len(titles)]
+    rows = []
     for name in run:
         reading = next(r for r in known if r.name == name)
         default = " (default)" if name == known[0].name else ""
-        cells = [f"`{name}`{default}", *([extra[1][name]] if extra else []), reading.summary, reading.why]
-        lines.append("| " + " | ".join(_escape(c) for c in cells) + " |")
-    return lines
-
-
-def _escape(text: str) -> str:
-    """``text`` for a markdown table cell: a bare ``|`` escaped (``P(safe | τ)`` -> ``P(safe \\| τ)``)."""
-    return re.sub(r"(?<!\\)\|", r"\\|", text)
+        rows.append([f"`{name}`{default}", *([extra[1][name]] if extra else []), reading.summary, reading.why])
+    return markdown_table(titles, rows, align="l" * len(titles))
 
 
 def _cell(finding: Finding) -> str:
@@ -159,16 +154,13 @@ def _cell(finding: Finding) -> str:
 def findings_table(rows: Iterable[tuple[str, str, Sequence[Finding | Mapping[str, Any]]]]) -> str:
     """The summary table (markdown) of ``(experiment, thesis figure, findings)`` rows; the default reading's
     number is bold when there are several. Findings may be given as :class:`Finding` or as its JSON."""
-    lines = [
-        "| experiment | thesis | quantity | thesis's number | ours, by reading (default first, bold) | verdict |",
-        "|---|---|---|---|---|---|",
-    ]
+    header = ["experiment", "thesis", "quantity", "thesis's number", "ours, by reading (default first, bold)", "verdict"]
+    cells = []
     for experiment, figure, findings in rows:
         for item in findings:
             finding = item if isinstance(item, Finding) else _from_json(item)
-            cells = (experiment, figure, finding.quantity, finding.thesis, _cell(finding), finding.verdict)
-            lines.append("| " + " | ".join(_escape(c) for c in cells) + " |")
-    return "\n".join(lines)
+            cells.append([experiment, figure, finding.quantity, finding.thesis, _cell(finding), finding.verdict])
+    return "\n".join(markdown_table(header, cells, align="l" * len(header)))
 
 
 def _from_json(data: Mapping[str, Any]) -> Finding:

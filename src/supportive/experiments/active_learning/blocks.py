@@ -27,6 +27,7 @@ from supportive.experiments.active_learning.common import (
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
+from supportive.experiments.tables import markdown_table
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import count_orderings
@@ -249,31 +250,34 @@ def report(metrics: Mapping[str, Any]) -> str:
             "",
             f"## Task {number}: {name} ({orderings} valid orderings)",
             "",
-            "| data set | passive | random | distance | connectivity | complete (passive/random/distance/connectivity) |",
-            "|---|---:|---:|---:|---:|---|",
         ]
+        paths = []
         for group, g in ((k, task["groups"][k]) for k in GROUPS):
             c = g["conditions"]
             complete = " / ".join(f"{100 * c[k]['complete']:.0f} %" for k in CONDITIONS)
-            lines.append(
-                f"| {group} | "
-                + " | ".join(format_ci(c[k]["paths"], 1) for k in CONDITIONS)
-                + f" | {complete} |"
-            )
-        lines += [
-            "",
-            "| data set | distance − random | thesis | connectivity − random | thesis | ANOVA: panels p < 0.05, median F | thesis |",
-            "|---|---:|---:|---:|---:|---|---|",
-        ]
+            paths.append([group, *(format_ci(c[k]["paths"], 1) for k in CONDITIONS), complete])
+        header = ["data set", "passive", "random", "distance", "connectivity", "complete (passive/random/distance/connectivity)"]
+        lines += [*markdown_table(header, paths, align="lrrrrl"), ""]
+        gains_rows = []
         for group, g in ((k, task["groups"][k]) for k in GROUPS):
             gains, test = g["gain_over_random"], g["anova"]
             median = "–" if test["median_F"] is None else f"{test['median_F']:.1f}"
-            lines.append(
-                f"| {group} | {format_ci(gains['distance']['paths'], 1)} | {_thesis_gain(thesis, group, number, 'distance')} "
-                f"| {format_ci(gains['connectivity']['paths'], 1)} | {_thesis_gain(thesis, group, number, 'connectivity')} "
-                f"| {test['panels_significant']} of {panels}, F({test['df'][0]},{test['df'][1]}) = {median} "
-                f"| {_thesis_anova(thesis, group, number)} |"
+            gains_rows.append(
+                [
+                    group,
+                    format_ci(gains["distance"]["paths"], 1),
+                    _thesis_gain(thesis, group, number, "distance"),
+                    format_ci(gains["connectivity"]["paths"], 1),
+                    _thesis_gain(thesis, group, number, "connectivity"),
+                    f"{test['panels_significant']} of {panels}, F({test['df'][0]},{test['df'][1]}) = {median}",
+                    _thesis_anova(thesis, group, number),
+                ]
             )
+        header = [
+            "data set", "distance − random", "thesis", "connectivity − random", "thesis",
+            "ANOVA: panels p < 0.05, median F", "thesis",
+        ]
+        lines += markdown_table(header, gains_rows, align="lrrrrll")
     lines += ["", "## Verdict", "", *verdict(metrics), ""]
     return "\n".join(lines)
 

@@ -28,6 +28,7 @@ from supportive.experiments.active_learning.common import STRATEGIES, known_path
 from supportive.experiments.readings import Finding, Reading, reading_names, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
+from supportive.experiments.tables import markdown_table
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import count_orderings
@@ -335,13 +336,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         *readings_table(READINGS, readings, "schedule"),
     ]
     for condition in CONDITIONS:
-        lines += [
-            "",
-            f"## {LABELS[condition]}",
-            "",
-            "| strategy | reading | " + " | ".join(f"iteration {n}" for n in its) + " | thesis |",
-            "|---|---|" + "---:|" * len(its) + "---:|",
-        ]
+        rows = []
         for row in (*STRATEGIES, "ceiling"):
             for name in readings:
                 ours = metrics["by_reading"][name]["comprehension"][condition][row]
@@ -350,16 +345,10 @@ def report(metrics: Mapping[str, Any]) -> str:
                     if row in thesis[condition]
                     else "–"
                 )
-                cells = " | ".join(format_ci(ours[i], 1) for i in range(len(its)))
-                lines.append(f"| {row} | `{name}` | {cells} | {theirs} |")
-    lines += [
-        "",
-        "## Pooled instructors vs a solo instructor with the same number of demonstrations",
-        "",
-        "| strategy | reading | iteration | multi − solo (percentage points) | trials multi better / worse | "
-        "thesis multi − solo |",
-        "|---|---|---:|---:|---:|---:|",
-    ]
+                rows.append([row, f"`{name}`", *(format_ci(ours[i], 1) for i in range(len(its))), theirs])
+        header = ["strategy", "reading", *(f"iteration {n}" for n in its), "thesis"]
+        lines += ["", f"## {LABELS[condition]}", "", *markdown_table(header, rows, align="ll" + "r" * (len(its) + 1))]
+    pooled = []
     for strategy in STRATEGIES:
         for name in readings:
             for i, n in enumerate(its):
@@ -367,26 +356,49 @@ def report(metrics: Mapping[str, Any]) -> str:
                     continue
                 gain = metrics["by_reading"][name]["pooled_minus_solo"][strategy][str(n)]
                 theirs = thesis["multi"][strategy][i] - thesis["solo"][strategy][i]
-                lines.append(
-                    f"| {strategy} | `{name}` | {n} | {format_ci(gain['percent'], 1)} | "
-                    f"{gain['trials_better']} / {gain['trials_worse']} | {theirs:+.1f} |"
+                pooled.append(
+                    [
+                        strategy,
+                        f"`{name}`",
+                        str(n),
+                        format_ci(gain["percent"], 1),
+                        f"{gain['trials_better']} / {gain['trials_worse']}",
+                        f"{theirs:+.1f}",
+                    ]
                 )
+    header = [
+        "strategy", "reading", "iteration", "multi − solo (percentage points)", "trials multi better / worse",
+        "thesis multi − solo",
+    ]
+    lines += [
+        "",
+        "## Pooled instructors vs a solo instructor with the same number of demonstrations",
+        "",
+        *markdown_table(header, pooled, align="llrrrr"),
+    ]
     for name in readings:
+        per_task = [
+            [
+                task_name,
+                str(task["orderings"]),
+                *(
+                    "/".join(f"{v:.0f}" for v in task[condition][row])
+                    for condition in CONDITIONS
+                    for row in (*STRATEGIES, "ceiling")
+                ),
+            ]
+            for task_name, task in metrics["by_reading"][name]["tasks"].items()
+        ]
+        header = [
+            "task", "orderings", "solo random", "solo distance", "solo connectivity", "solo ceiling",
+            "multi random", "multi distance", "multi connectivity", "multi ceiling",
+        ]
         lines += [
             "",
             f"## Per task, `{name}` (mean % over trials at iterations " + ", ".join(map(str, its)) + ")",
             "",
-            "| task | orderings | solo random | solo distance | solo connectivity | solo ceiling | multi random "
-            "| multi distance | multi connectivity | multi ceiling |",
-            "|---|---:|---|---|---|---|---|---|---|---|",
+            *markdown_table(header, per_task, align="lr" + "l" * 8),
         ]
-        for task_name, task in metrics["by_reading"][name]["tasks"].items():
-            cells = " | ".join(
-                "/".join(f"{v:.0f}" for v in task[condition][row])
-                for condition in CONDITIONS
-                for row in (*STRATEGIES, "ceiling")
-            )
-            lines.append(f"| {task_name} | {task['orderings']} | {cells} |")
     lines += ["", "## Verdict", "", *verdict(metrics), ""]
     return "\n".join(lines)
 

@@ -11,6 +11,7 @@ from supportive.experiments.plotting import new_figure, save_png
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, error_bar, format_ci
+from supportive.experiments.tables import markdown_table
 
 __all__ = ["CURVES_PLOT", "THESIS", "findings", "headline", "plots", "report"]
 
@@ -77,54 +78,66 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "## F1 per demonstration (mean over recipes with ≥ k recordings, 95% CI over trials)",
         "",
-        "| k | recipes | " + " | ".join(CONDITIONS) + " |",
-        "|---:|---:|" + "---:|" * len(CONDITIONS),
-    ]
-    for key, row in sorted(curves.items(), key=lambda item: int(item[0])):
-        cells = " | ".join(format_ci(row[c]["f1"]) for c in CONDITIONS)
-        lines.append(f"| {key} | {row['recipes']} | {cells} |")
-    lines += [
+        *markdown_table(
+            ["k", "recipes", *CONDITIONS],
+            [
+                [key, str(row["recipes"]), *(format_ci(row[c]["f1"]) for c in CONDITIONS)]
+                for key, row in sorted(curves.items(), key=lambda item: int(item[0]))
+            ],
+            align="r" * (2 + len(CONDITIONS)),
+        ),
         "",
         "## Δ F1, strategy − passive (paired by trial; bold: the CI excludes 0)",
         "",
-        "| k | " + " | ".join(CONDITIONS[1:]) + " |",
-        "|---:|" + "---:|" * (len(CONDITIONS) - 1),
+        *markdown_table(
+            ["k", *CONDITIONS[1:]],
+            [
+                *(
+                    [key, *(_signed(row[s]) for s in CONDITIONS[1:])]
+                    for key, row in sorted(metrics["delta_f1"].items(), key=lambda item: int(item[0]))
+                ),
+                ["own K", *(_signed(metrics["delta_f1_at_own_k"][s]) for s in CONDITIONS[1:])],
+            ],
+            align="r" * len(CONDITIONS),
+        ),
     ]
-    for key, row in sorted(metrics["delta_f1"].items(), key=lambda item: int(item[0])):
-        lines.append(f"| {key} | " + " | ".join(_signed(row[s]) for s in CONDITIONS[1:]) + " |")
-    lines.append(
-        "| own K | " + " | ".join(_signed(metrics["delta_f1_at_own_k"][s]) for s in CONDITIONS[1:]) + " |"
-    )
     for metric in ("precision", "recall"):
         lines += [
             "",
             f"## {metric.capitalize()} per demonstration (means)",
             "",
-            "| k | " + " | ".join(CONDITIONS) + " |",
-            "|---:|" + "---:|" * len(CONDITIONS),
+            *markdown_table(
+                ["k", *CONDITIONS],
+                [
+                    [key, *(f"{row[c][metric]['mean']:.3f}" for c in CONDITIONS)]
+                    for key, row in sorted(curves.items(), key=lambda item: int(item[0]))
+                ],
+                align="r" * (1 + len(CONDITIONS)),
+            ),
         ]
-        for key, row in sorted(curves.items(), key=lambda item: int(item[0])):
-            lines.append(
-                f"| {key} | " + " | ".join(f"{row[c][metric]['mean']:.3f}" for c in CONDITIONS) + " |"
-            )
     last = metrics["at_own_k"]
     lines += [
         "",
         "## After each recipe's K demonstrations (mean over all recipes)",
         "",
-        "| condition | precision | recall | F1 |",
-        "|---|---:|---:|---:|",
-        *[f"| {c} | " + " | ".join(format_ci(last[c][m]) for m in METRICS) + " |" for c in CONDITIONS],
+        *markdown_table(
+            ["condition", "precision", "recall", "F1"], [[c, *(format_ci(last[c][m]) for m in METRICS)] for c in CONDITIONS]
+        ),
         "",
         "Queries (all trials and recipes):",
         "",
-        "| strategy | asked | heeded | distinct demonstrations |",
-        "|---|---:|---:|---:|",
-        *[
-            f"| {s} | {q['asked']} | {q['honoured']} | {q['distinct_demonstrations']} of "
-            f"{demos['total'] * (metrics.get('trials') or 1)} |"
-            for s, q in metrics["queries"].items()
-        ],
+        *markdown_table(
+            ["strategy", "asked", "heeded", "distinct demonstrations"],
+            [
+                [
+                    s,
+                    str(q["asked"]),
+                    str(q["honoured"]),
+                    f"{q['distinct_demonstrations']} of {demos['total'] * (metrics.get('trials') or 1)}",
+                ]
+                for s, q in metrics["queries"].items()
+            ],
+        ),
         "",
         "Every active demonstration respected the published order: "
         + ("yes." if metrics["active_demonstrations_valid"] else "**no**."),

@@ -9,6 +9,7 @@ from supportive.experiments.caregiver.measure import MEMORIES, READINGS
 from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, format_sd, mean_sd, ratio_ci
+from supportive.experiments.tables import markdown_table
 from supportive.worlds.household.novice import NOVICE_TYPES
 
 __all__ = ["MEASURES", "THESIS", "findings", "headline", "report", "summarize", "thesis_reduction", "verdict"]
@@ -204,35 +205,32 @@ def report(metrics: Mapping[str, Any]) -> str:
     ]
     for key, title in MEASURES.items():
         digits = _DIGITS[key]
-        lines += [
-            "",
-            f"## {title}",
-            "",
-            "| novice | no caregiver | thesis | "
-            + " | ".join(f"with, `{name}`" for name in readings)
-            + " | thesis, with |",
-            "|---|---:|---:|" + "---:|" * len(readings) + "---:|",
-        ]
+        rows = []
         for label in NOVICE_TYPES:
             ours = metrics["measures"][key][label]
             theirs = THESIS[key][label]
-            cells = " | ".join(format_sd(ours["with"][name], digits) for name in readings)
-            lines.append(f"| {label} | {format_sd(ours['without'], digits)} | {theirs[0]} | {cells} | {theirs[1]} |")
-    lines += [
-        "",
-        "## Damage reduction (95% CI) and completed episodes",
-        "",
-        "| novice | " + " | ".join(f"reduction, `{name}`" for name in readings) + " | thesis | "
-        "episodes not reaching the threshold: none / " + " / ".join(readings) + " |",
-        "|---|" + "---:|" * len(readings) + "---:|---:|",
-    ]
+            with_cells = [format_sd(ours["with"][name], digits) for name in readings]
+            rows.append([label, format_sd(ours["without"], digits), f"{theirs[0]}", *with_cells, f"{theirs[1]}"])
+        header = ["novice", "no caregiver", "thesis", *(f"with, `{name}`" for name in readings), "thesis, with"]
+        lines += ["", f"## {title}", "", *markdown_table(header, rows)]
+    rows = []
     for label in NOVICE_TYPES:
         done = metrics["episodes_completed"][label]
-        cells = " | ".join(_reduction_text(metrics["damage_reduction_percent"][label][name]) for name in readings)
-        lines.append(
-            f"| {label} | {cells} | {thesis_reduction(label):.0f} % | "
-            f"{done['without']} / " + " / ".join(str(done["with"][name]) for name in readings) + " |"
+        rows.append(
+            [
+                label,
+                *(_reduction_text(metrics["damage_reduction_percent"][label][name]) for name in readings),
+                f"{thesis_reduction(label):.0f} %",
+                f"{done['without']} / " + " / ".join(str(done["with"][name]) for name in readings),
+            ]
         )
+    header = [
+        "novice",
+        *(f"reduction, `{name}`" for name in readings),
+        "thesis",
+        "episodes not reaching the threshold: none / " + " / ".join(readings),
+    ]
+    lines += ["", "## Damage reduction (95% CI) and completed episodes", "", *markdown_table(header, rows)]
     lines += ["", "## Verdict", "", *verdict(metrics), ""]
     return "\n".join(lines)
 

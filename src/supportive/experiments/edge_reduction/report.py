@@ -8,6 +8,7 @@ from typing import Any
 from supportive.experiments.edge_reduction.summary import MODELS
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.tables import markdown_table
 
 __all__ = ["LABELS", "THESIS", "findings", "headline", "report", "verdict"]
 
@@ -147,28 +148,31 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "## Mean depth of a primitive",
         "",
-        "| model | tasks | mean | min | max |",
-        "|---|---:|---:|---:|---:|",
-        f"| **thesis**: the CC-HTNs of its {thesis['tasks']} tasks | {thesis['tasks']} | {depth['mean']:.2f} | "
-        f"{depth['min']:.2f} | {depth['max']:.2f} |",
+        *markdown_table(
+            ["model", "tasks", "mean", "min", "max"],
+            [
+                [
+                    f"**thesis**: the CC-HTNs of its {thesis['tasks']} tasks",
+                    str(thesis["tasks"]),
+                    f"{depth['mean']:.2f}",
+                    f"{depth['min']:.2f}",
+                    f"{depth['max']:.2f}",
+                ],
+                *(
+                    [
+                        LABELS[model],
+                        str(s["tasks"]),
+                        f"{s['depth']['mean']:.2f}",
+                        f"{s['depth']['min']:.2f}",
+                        f"{s['depth']['max']:.2f}",
+                    ]
+                    for model in MODELS
+                    if (s := models[model]) is not None
+                ),
+            ],
+        ),
     ]
-    for model in MODELS:
-        summary = models[model]
-        if summary is not None:
-            d = summary["depth"]
-            lines.append(
-                f"| {LABELS[model]} | {summary['tasks']} | {d['mean']:.2f} | {d['min']:.2f} | {d['max']:.2f} |"
-            )
-    lines += [
-        "",
-        "## Edges per task, by task size",
-        "",
-        "Means over the tasks of each bin; ÷ is total flat edges over total CC-HTN edges.",
-        "",
-        "| subgoals | tasks | (a) flat | (a) CC-HTN | (a) ÷ | (b) flat | (b) CC-HTN | (b) ÷ | (c) tasks | "
-        "(c) flat | (c) CC-HTN | (c) ÷ |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
-    ]
+    rows = []
     for b in metrics["bins"]:
         a, g, c = b["learned"], b["ground_truth"], b["all_orderings"]
         cells = [b["label"], str(g["tasks"])]
@@ -177,24 +181,39 @@ def report(metrics: Mapping[str, Any]) -> str:
         cells.append(str(0 if c is None else c["tasks"]))
         cells += [_f(None if c is None else c[k]) for k in ("flat_edges", "htn_edges")]
         cells.append(_f(None if c is None else c["flat_per_htn"], 2))
-        lines.append("| " + " | ".join(cells) + " |")
-    lines += [
-        "",
-        "## All tasks",
-        "",
-        "| model | tasks | complete | flat edges | CC-HTN edges | flat ÷ CC-HTN | tasks with fewer CC-HTN "
-        "edges | with more |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|",
+        rows.append(cells)
+    header = [
+        "subgoals", "tasks", "(a) flat", "(a) CC-HTN", "(a) ÷", "(b) flat", "(b) CC-HTN", "(b) ÷", "(c) tasks",
+        "(c) flat", "(c) CC-HTN", "(c) ÷",
     ]
-    for model in MODELS:
-        s = models[model]
-        if s is not None:
-            lines.append(
-                f"| {LABELS[model]} | {s['tasks']} | {s['complete']} | {s['flat_edges']:.1f} | "
-                f"{s['htn_edges']:.1f} | {_f(s['flat_per_htn'], 2)} | {s['fewer_edges']} | {s['more_edges']} |"
-            )
     lines += [
         "",
+        "## Edges per task, by task size",
+        "",
+        "Means over the tasks of each bin; ÷ is total flat edges over total CC-HTN edges.",
+        "",
+        *markdown_table(header, rows),
+    ]
+    header = [
+        "model", "tasks", "complete", "flat edges", "CC-HTN edges", "flat ÷ CC-HTN", "tasks with fewer CC-HTN edges",
+        "with more",
+    ]
+    rows = [
+        [
+            LABELS[model],
+            str(s["tasks"]),
+            str(s["complete"]),
+            f"{s['flat_edges']:.1f}",
+            f"{s['htn_edges']:.1f}",
+            _f(s["flat_per_htn"], 2),
+            str(s["fewer_edges"]),
+            str(s["more_edges"]),
+        ]
+        for model in MODELS
+        if (s := models[model]) is not None
+    ]
+    lines += ["", "## All tasks", "", *markdown_table(header, rows), ""]
+    lines += [
         "## Beside Figure 2.5",
         "",
         f"The thesis's caption: “{thesis['figure_2_5']}” Its text gives no values for the figure; it argues "

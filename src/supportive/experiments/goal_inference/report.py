@@ -9,7 +9,7 @@ written by :func:`~.plots.timing_report`).
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from supportive.experiments.goal_inference.design import MEAN_DURATION, steps_for
@@ -19,6 +19,7 @@ from supportive.experiments.goal_inference.timing import TIMING_PLOT, TIMING_REP
 from supportive.experiments.output import TIMING_FILE
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci
+from supportive.experiments.tables import markdown_table
 
 __all__ = ["LABELS", "accuracy_verdict", "headline", "report", "setting_label", "timing_markdown"]
 
@@ -84,11 +85,7 @@ def _sizes_line(metrics: Mapping[str, Any]) -> str:
 
 
 def _accuracy_table(metrics: Mapping[str, Any]) -> list[str]:
-    lines = [
-        "| setting | flat: subgoal | hierarchical: subgoal | Δ subgoal | flat: subtask | hierarchical: subtask "
-        "| Δ subtask | trials hierarchical ahead / flat ahead (subgoal) |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|",
-    ]
+    rows = []
     for setting in metrics["settings"]:
         a = metrics["accuracy"][setting["key"]]
         cells = [setting_label(setting)]
@@ -99,53 +96,63 @@ def _accuracy_table(metrics: Mapping[str, Any]) -> list[str]:
                 format_ci(a["difference"][level], signed=True),
             ]
         cells.append(f"{a['hierarchical_ahead']['subgoal']} / {a['flat_ahead']['subgoal']}")
-        lines.append("| " + " | ".join(cells) + " |")
-    return lines
+        rows.append(cells)
+    header = [
+        "setting", "flat: subgoal", "hierarchical: subgoal", "Δ subgoal", "flat: subtask", "hierarchical: subtask",
+        "Δ subtask", "trials hierarchical ahead / flat ahead (subgoal)",
+    ]
+    return markdown_table(header, rows)
+
+
+def _per_size(metrics: Mapping[str, Any], cell: Callable[[Mapping[str, Any], str], str]) -> list[str]:
+    """A table of one row per task size and one column per setting, each cell ``cell(size row, setting)``."""
+    settings = metrics["settings"]
+    rows = [
+        [str(row["subgoals"]), str(row["trials"]), *(cell(row, s["key"]) for s in settings)] for row in metrics["sizes"]
+    ]
+    return markdown_table(["subgoals", "trials", *(setting_label(s) for s in settings)], rows)
 
 
 def _size_table(metrics: Mapping[str, Any]) -> list[str]:
-    settings = metrics["settings"]
-    header = "| subgoals | trials | " + " | ".join(setting_label(s) for s in settings) + " |"
-    lines = [header, "|---|---:|" + "---:|" * len(settings)]
-    for row in metrics["sizes"]:
-        cells = [str(row["subgoals"]), str(row["trials"])]
-        for s in settings:
-            a = row["accuracy"][s["key"]]
-            cells.append(f"{a['flat']['subgoal']:.3f} / {a['hierarchical']['subgoal']:.3f}")
-        lines.append("| " + " | ".join(cells) + " |")
-    return lines
+    def cell(row: Mapping[str, Any], key: str) -> str:
+        a = row["accuracy"][key]
+        return f"{a['flat']['subgoal']:.3f} / {a['hierarchical']['subgoal']:.3f}"
+
+    return _per_size(metrics, cell)
 
 
 def _progress_table(metrics: Mapping[str, Any]) -> list[str]:
     """Subgoal accuracy of the progress-aware tracker beside the hierarchical HMM, per size and setting."""
-    settings = metrics["settings"]
-    header = "| subgoals | trials | " + " | ".join(setting_label(s) for s in settings) + " |"
-    lines = [header, "|---|---:|" + "---:|" * len(settings)]
-    for row in metrics["sizes"]:
-        cells = [str(row["subgoals"]), str(row["trials"])]
-        for s in settings:
-            a = row["accuracy"][s["key"]]
-            delta = format_ci(row["progress_difference"][s["key"]], signed=True)
-            cells.append(f"{a['hierarchical']['subgoal']:.3f} → {a['progress']['subgoal']:.3f} ({delta})")
-        lines.append("| " + " | ".join(cells) + " |")
-    return lines
+
+    def cell(row: Mapping[str, Any], key: str) -> str:
+        a = row["accuracy"][key]
+        delta = format_ci(row["progress_difference"][key], signed=True)
+        return f"{a['hierarchical']['subgoal']:.3f} → {a['progress']['subgoal']:.3f} ({delta})"
+
+    return _per_size(metrics, cell)
 
 
 def _work_table(metrics: Mapping[str, Any]) -> list[str]:
-    lines = [
-        "| subgoals | trials | subtasks | depth | steps per stream | non-zero transitions flat / hierarchical | "
-        "entries per update flat / hierarchical | flat ÷ hierarchical |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|",
-    ]
+    rows = []
     for row in metrics["sizes"]:
         nz, entries = row["transition_nonzeros"], row["operator_entries"]
-        lines.append(
-            f"| {row['subgoals']} | {row['trials']} | {row['subtasks']:.1f} | {row['depth']:.2f} | "
-            f"{row['steps']:.0f} | {nz['flat']:.0f} / {nz['hierarchical']:.0f} | "
-            f"{entries['flat']:.0f} / {entries['hierarchical']:.0f} | "
-            f"{entries['flat'] / entries['hierarchical']:.1f} |"
+        rows.append(
+            [
+                str(row["subgoals"]),
+                str(row["trials"]),
+                f"{row['subtasks']:.1f}",
+                f"{row['depth']:.2f}",
+                f"{row['steps']:.0f}",
+                f"{nz['flat']:.0f} / {nz['hierarchical']:.0f}",
+                f"{entries['flat']:.0f} / {entries['hierarchical']:.0f}",
+                f"{entries['flat'] / entries['hierarchical']:.1f}",
+            ]
         )
-    return lines
+    header = [
+        "subgoals", "trials", "subtasks", "depth", "steps per stream", "non-zero transitions flat / hierarchical",
+        "entries per update flat / hierarchical", "flat ÷ hierarchical",
+    ]
+    return markdown_table(header, rows)
 
 
 def report(metrics: Mapping[str, Any]) -> str:
@@ -275,18 +282,30 @@ def timing_markdown(document: Mapping[str, Any]) -> str:
         "below, the median over trials of those medians (least–greatest) and the mean of the means (Figure 2.4 "
         "plots means).",
         "",
-        "| subgoals | trials | steps | flat: median µs (range) | hierarchical: median µs (range) | flat ÷ "
-        "hierarchical | flat: mean µs | hierarchical: mean µs | hierarchical updates per second |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
+    rows = []
     for row in sizes:
         f, h = row["flat"], row["hierarchical"]
         steps = sum(t["steps"] for t in by_size[row["subgoals"]]) / row["trials"]
         ratio = "–" if row["ratio"] is None else f"{row['ratio']:.2f}"
-        lines.append(
-            f"| {row['subgoals']} | {row['trials']} | {steps:.0f} | {_range(f)} | {_range(h)} | {ratio} | "
-            f"{f['mean_us']:.1f} | {h['mean_us']:.1f} | {1e6 / h['median_us']:,.0f} |"
+        rows.append(
+            [
+                str(row["subgoals"]),
+                str(row["trials"]),
+                f"{steps:.0f}",
+                _range(f),
+                _range(h),
+                ratio,
+                f"{f['mean_us']:.1f}",
+                f"{h['mean_us']:.1f}",
+                f"{1e6 / h['median_us']:,.0f}",
+            ]
         )
+    header = [
+        "subgoals", "trials", "steps", "flat: median µs (range)", "hierarchical: median µs (range)",
+        "flat ÷ hierarchical", "flat: mean µs", "hierarchical: mean µs", "hierarchical updates per second",
+    ]
+    lines += markdown_table(header, rows)
     slowest = max(t["hierarchical"]["max_us"] for t in document["trials"])
     slowest_flat = max(t["flat"]["max_us"] for t in document["trials"])
     worst = max(sizes, key=lambda row: row["hierarchical"]["median_us"])

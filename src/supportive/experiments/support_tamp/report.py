@@ -18,6 +18,7 @@ from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, mean_ci
 from supportive.experiments.support_tamp.measure import PAIRINGS, READINGS, SCENARIOS, SEARCH_WEIGHT
+from supportive.experiments.tables import markdown_table
 
 __all__ = ["CONDITIONS", "GAINS", "THESIS", "findings", "headline", "report", "summarize", "timing_summary"]
 
@@ -189,27 +190,33 @@ def report(metrics: Mapping[str, Any]) -> str:
             if scenario == "unpredictable"
             else "greedy heuristic lead, aggressive weights"
         )
-        lines += [
-            "",
-            f"## Scenario `{scenario}`: {title}",
-            "",
-            "| pairing | reading | makespan alone (s) | supported (s) | reduction | speed-up | thesis | ceiling: "
-            "reduction / speed-up | faster / slower tables | lead search nodes alone → supported, mean (median) |",
-            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
-        ]
+        rows = []
         for pairing in PAIRINGS:
             entry = metrics["scenarios"][scenario][pairing]
             for reading in readings:
                 helped = entry["supported"][reading]
                 gain = helped["gain"]
-                lines.append(
-                    f"| {pairing} | `{reading}` | {format_ci(entry['alone']['makespan'], 1)} | "
-                    f"{format_ci(helped['makespan'], 1)} | {gain['reduction']:.1f} % | {gain['speed-up']:.1f} % | "
-                    f"{THESIS['makespan_gain_percent'][pairing]:.1f} % | {entry['ceiling']['reduction']:.1f} % / "
-                    f"{entry['ceiling']['speed-up']:.1f} % | {helped['tables_faster']} / {helped['tables_slower']} | "
-                    f"{entry['alone']['lead_nodes']['mean']:.0f} ({entry['alone']['lead_nodes_median']:.0f}) → "
-                    f"{helped['lead_nodes']['mean']:.0f} ({helped['lead_nodes_median']:.0f}) |"
+                rows.append(
+                    [
+                        pairing,
+                        f"`{reading}`",
+                        format_ci(entry["alone"]["makespan"], 1),
+                        format_ci(helped["makespan"], 1),
+                        f"{gain['reduction']:.1f} %",
+                        f"{gain['speed-up']:.1f} %",
+                        f"{THESIS['makespan_gain_percent'][pairing]:.1f} %",
+                        f"{entry['ceiling']['reduction']:.1f} % / {entry['ceiling']['speed-up']:.1f} %",
+                        f"{helped['tables_faster']} / {helped['tables_slower']}",
+                        f"{entry['alone']['lead_nodes']['mean']:.0f} ({entry['alone']['lead_nodes_median']:.0f}) → "
+                        f"{helped['lead_nodes']['mean']:.0f} ({helped['lead_nodes_median']:.0f})",
+                    ]
                 )
+        header = [
+            "pairing", "reading", "makespan alone (s)", "supported (s)", "reduction", "speed-up", "thesis",
+            "ceiling: reduction / speed-up", "faster / slower tables",
+            "lead search nodes alone → supported, mean (median)",
+        ]
+        lines += ["", f"## Scenario `{scenario}`: {title}", "", *markdown_table(header, rows, align="ll" + "r" * 8)]
         if scenario == "unpredictable":
             lines += [
                 "",
@@ -225,21 +232,21 @@ def report(metrics: Mapping[str, Any]) -> str:
                 f"{gap['gap_closed_percent']}% of the gap closed (thesis: \"competitively with a single fast lead\")."
             )
     lines += ["", "## Figure 3.6: the greedy lead's search, alone and with each objective", ""]
-    lines += [
-        "| pairing | alone, median (mean) | " + " | ".join(f"`{r}`, median (mean)" for r in readings) + " |",
-        "|---|---:|" + "---:|" * len(readings),
-    ]
     heuristic = metrics["scenarios"]["heuristic"]
-    for pairing in PAIRINGS:
-        entry = heuristic[pairing]
-        cells = " | ".join(
-            f"{entry['supported'][r]['lead_nodes_median']:.0f} ({entry['supported'][r]['lead_nodes']['mean']:.0f})"
-            for r in readings
-        )
-        lines.append(
-            f"| {pairing} | {entry['alone']['lead_nodes_median']:.0f} ({entry['alone']['lead_nodes']['mean']:.0f}) "
-            f"| {cells} |"
-        )
+    rows = [
+        [
+            pairing,
+            f"{heuristic[pairing]['alone']['lead_nodes_median']:.0f} ({heuristic[pairing]['alone']['lead_nodes']['mean']:.0f})",
+            *(
+                f"{heuristic[pairing]['supported'][r]['lead_nodes_median']:.0f} "
+                f"({heuristic[pairing]['supported'][r]['lead_nodes']['mean']:.0f})"
+                for r in readings
+            ),
+        ]
+        for pairing in PAIRINGS
+    ]
+    header = ["pairing", "alone, median (mean)", *(f"`{r}`, median (mean)" for r in readings)]
+    lines += markdown_table(header, rows)
     lines += ["", "## Verdict", "", *verdict(metrics), ""]
     return "\n".join(lines)
 

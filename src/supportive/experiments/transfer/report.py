@@ -8,6 +8,7 @@ from typing import Any
 from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import below_zero, format_ci, mean_ci
+from supportive.experiments.tables import markdown_table
 from supportive.experiments.transfer.explore import (
     ALPHA,
     COMPLETION,
@@ -218,44 +219,53 @@ def report(metrics: Mapping[str, Any]) -> str:
         "",
         "## Episodes to full comprehension",
         "",
-        "| condition | episodes to comprehension, mean [95% CI] | censored | macros in dictionary | macro uses | "
-        "primitive attempts |",
-        "|---|---:|---:|---:|---:|---:|",
-    ]
-    for key in m["columns"]:
-        s = m["conditions"][key]
-        lines.append(
-            f"| {label(key)} | {format_ci(s['episodes'], 1)} | {s['censored']} | {s['macros']:g} | "
-            f"{s['macro_uses']:g} | {s['steps']:g} |"
-        )
-    lines += [
+        *markdown_table(
+            [
+                "condition", "episodes to comprehension, mean [95% CI]", "censored", "macros in dictionary",
+                "macro uses", "primitive attempts",
+            ],
+            [
+                [
+                    label(key),
+                    format_ci(s["episodes"], 1),
+                    str(s["censored"]),
+                    f"{s['macros']:g}",
+                    f"{s['macro_uses']:g}",
+                    f"{s['steps']:g}",
+                ]
+                for key in m["columns"]
+                for s in (m["conditions"][key],)
+            ],
+        ),
         "",
         "## Trial by trial: wins, ties and losses",
         "",
-        "| comparison | wins (fewer episodes) | ties | losses (more) | mean difference in episodes [95% CI] |",
-        "|---|---:|---:|---:|---:|",
-    ]
-    for p in m["pairs"]:
-        lines.append(
-            f"| {label(p['first'])} vs {label(p['second'])} | {p['wins']} of {p['trials']} | {p['ties']} | "
-            f"{p['losses']} | {format_ci(p['difference'], 1, signed=True)} |"
-        )
-    lines += ["", "| the thesis | this run |", "|---|---|"]
-    for reading in readings:
-        lines.append(f'| "{CLAIM}" | {verdict(m, reading)} |')
-    lines += [
+        *markdown_table(
+            ["comparison", "wins (fewer episodes)", "ties", "losses (more)", "mean difference in episodes [95% CI]"],
+            [
+                [
+                    f"{label(p['first'])} vs {label(p['second'])}",
+                    f"{p['wins']} of {p['trials']}",
+                    str(p["ties"]),
+                    str(p["losses"]),
+                    format_ci(p["difference"], 1, signed=True),
+                ]
+                for p in m["pairs"]
+            ],
+        ),
+        "",
+        *markdown_table(["the thesis", "this run"], [[f'"{CLAIM}"', verdict(m, reading)] for reading in readings], align="ll"),
         "",
         "Per task (mean episodes over its trials):",
         "",
-        "| task | actions | orderings | " + " | ".join(label(k) for k in m["columns"]) + " |",
-        "|---|---:|---:|" + "---:|" * len(m["columns"]),
+        *markdown_table(
+            ["task", "actions", "orderings", *(label(k) for k in m["columns"])],
+            [
+                [t["task"], str(t["actions"]), str(t["orderings"]), *(f"{t['episodes'][k]:g}" for k in m["columns"])]
+                for t in m["tasks"]
+            ],
+        ),
     ]
-    for t in m["tasks"]:
-        lines.append(
-            f"| {t['task']} | {t['actions']} | {t['orderings']} | "
-            + " | ".join(f"{t['episodes'][k]:g}" for k in m["columns"])
-            + " |"
-        )
     lines.append("")
     return "\n".join(lines)
 
