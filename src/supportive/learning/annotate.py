@@ -50,6 +50,7 @@ class Annotated:
         self._performed = self._performances(excused)
         self._orders = self._child_orders()
         self.nodes: dict[int, Node] = {}
+        self._shapes: dict[int, object] = {}
         for root in decomposition.roots:
             self._node(root, frozenset(range(demonstrations)))
 
@@ -106,6 +107,24 @@ class Annotated:
                 orders[node].append(seen)
         return orders
 
+    def _shape(self, node: int) -> object:
+        """A node's shape by its actions, occurrences and optional flags left out (cached by id)."""
+        cached = self._shapes.get(node)
+        if cached is None:
+            group = self.decomposition.groups.get(node)
+            if group is None:
+                cached = ("action", self.decomposition.leaves[node][0])
+            else:
+                parts = [self._shape(c) for c in group.children]
+                cached = ("chain", tuple(parts)) if group.chain else ("clique", tuple(sorted(parts, key=repr)))
+            self._shapes[node] = cached
+        return cached
+
+    def _classes(self, children: Sequence[int]) -> list[int]:
+        """For each child, the index of the first child of its shape (instances of one subtask share it)."""
+        first: dict[object, int] = {}
+        return [first.setdefault(self._shape(child), i) for i, child in enumerate(children)]
+
     def _node(self, node: int, parent_performed: frozenset[int]) -> Node:
         performed = self._performed[node]
         optional = not parent_performed <= performed
@@ -121,9 +140,11 @@ class Annotated:
                 support=Support(len(performed), 1, 1, True),
             )
         else:
-            children = _instances_alike(tuple(self._node(child, performed) for child in group.children))
+            kinds = self._classes(group.children)  # interchangeable instances make one order
+            children = tuple(self._node(child, performed) for child in group.children)
+            if len(set(kinds)) < len(kinds):
+                children = _instances_alike(children)
             orders = self._orders.get(node, [])
-            kinds = _instance_classes(children)  # interchangeable instances make one order
             seen = len({tuple(kinds[i] for i in o) for o in orders})
             if group.chain:
                 counts = Counts(performed=len(performed), skipped=skipped)
@@ -146,12 +167,6 @@ def annotate(
 ) -> Annotated:
     """Build the HTN nodes of ``decomposition`` (see :class:`Annotated`)."""
     return Annotated(decomposition, excused, demonstrations)
-
-
-def _instance_classes(children: Sequence[Node]) -> list[int]:
-    """For each child, the index of the first child of its shape (instances of one subtask share it)."""
-    first: dict[object, int] = {}
-    return [first.setdefault(shape(child, optional=False), i) for i, child in enumerate(children)]
 
 
 def _instances_alike(children: tuple[Node, ...]) -> tuple[Node, ...]:

@@ -106,11 +106,12 @@ def decompose(
             presence[node].add(d)
     next_id = len(order)
     chance: dict[int, float] = {}
+    closures: dict[frozenset[int], frozenset[int] | None] = {}  # pair -> closure, kept while no member merges
     while modules:
         level = {node for sequence in sequences for node in sequence}
         if len(level) <= 1:
             break
-        chosen = _choose(sequences, level, rank, order_support, max_module)
+        chosen = _choose(sequences, level, rank, order_support, max_module, closures)
         if not chosen:
             break
         replace: dict[int, int] = {}
@@ -130,6 +131,11 @@ def decompose(
             for member in group.children:
                 replace[member] = node
         sequences = [_rewrite(sequence, replace) for sequence in sequences]
+        closures = {  # one that outgrew the limit may fit once nodes in its span merge: try it again
+            pair: found
+            for pair, found in closures.items()
+            if found is not None and not (found & replace.keys())
+        }
     result.sequences = sequences
     result.roots = sorted({n for s in sequences for n in s}, key=lambda n: rank[n])
     result.presence = {node: frozenset(ds) for node, ds in presence.items()}
@@ -137,10 +143,18 @@ def decompose(
 
 
 def _choose(
-    sequences: Sequence[Sequence[int]], level: set[int], rank: dict[int, int], order_support: int, max_module: int
+    sequences: Sequence[Sequence[int]],
+    level: set[int],
+    rank: dict[int, int],
+    order_support: int,
+    max_module: int,
+    closures: dict[frozenset[int], frozenset[int] | None],
 ) -> list[Group]:
+    """This level's accepted candidates (see the module docstring); ``closures`` caches the closures of
+    pairs from level to level (a closure none of whose members merged is the same at the next level: no node
+    outside it was inside its span)."""
     where = [{x: i for i, x in enumerate(sequence)} for sequence in sequences]
-    pairs = {(s[i], s[i + 1]) for s in sequences for i in range(len(s) - 1)}
+    pairs = _candidate_pairs(sequences)
     followers: dict[int, set[int | None]] = {}
     leaders: dict[int, set[int | None]] = {}
     for s in sequences:
@@ -148,12 +162,20 @@ def _choose(
             followers.setdefault(x, set()).add(s[i + 1] if i + 1 < len(s) else None)
             leaders.setdefault(x, set()).add(s[i - 1] if i else None)
     candidates: dict[frozenset[int], None] = {}
+    tried: set[frozenset[int]] = set()
     for pair in sorted(pairs, key=lambda p: (rank[p[0]], rank[p[1]])):
         x, y = pair
         if followers[x] == {y} and leaders[y] == {x}:  # always one right after the other: a link
             candidates[frozenset(pair)] = None
             continue
-        found = _closure(pair, where, sequences, max_module)
+        key = frozenset(pair)
+        if key in tried:  # the same pair in the other order: the same closure
+            continue
+        tried.add(key)
+        if key in closures:
+            found = closures[key]
+        else:
+            found = closures[key] = _closure(pair, where, sequences, max_module)
         if found is not None:
             candidates[found] = None
     whole = frozenset(level)
@@ -183,6 +205,22 @@ def _member_orders(members: frozenset[int], where: Sequence[dict[int, int]]) -> 
         present.sort()
         out.append([m for _, m in present])
     return out
+
+
+def _candidate_pairs(sequences: Sequence[Sequence[int]]) -> set[tuple[int, int]]:
+    """Pairs whose closures hold every minimal candidate: those adjacent in the first sequence, and those
+    adjacent elsewhere that involve a node the first sequence lacks (a set contiguous everywhere with two
+    members in the first sequence holds a pair adjacent there; otherwise it holds such a node next to
+    another member)."""
+    first = sequences[0]
+    pairs = {(first[i], first[i + 1]) for i in range(len(first) - 1)}
+    seen = set(first)
+    for sequence in sequences[1:]:
+        for i in range(len(sequence) - 1):
+            x, y = sequence[i], sequence[i + 1]
+            if x not in seen or y not in seen:
+                pairs.add((x, y))
+    return pairs
 
 
 def _closure(

@@ -16,10 +16,21 @@ from supportive.experiments.captaincook_prediction.measure import (
     run_trial,
     summarize,
 )
-from supportive.experiments.captaincook_prediction.report import headline, plots, report
+from supportive.experiments.captaincook_prediction.report import findings, headline, plots, report
 from supportive.experiments.registry import Experiment, register
 
-__all__ = ["CAPTAINCOOK_PREDICTION", "MODELS", "RECIPES", "headline", "make_trials", "plots", "report", "run_trial", "summarize"]
+__all__ = [
+    "CAPTAINCOOK_PREDICTION",
+    "MODELS",
+    "RECIPES",
+    "findings",
+    "headline",
+    "make_trials",
+    "plots",
+    "report",
+    "run_trial",
+    "summarize",
+]
 
 CAPTAINCOOK_PREDICTION = register(
     Experiment(
@@ -34,6 +45,7 @@ CAPTAINCOOK_PREDICTION = register(
         report=report,
         plots=plots,
         headline=headline,
+        findings=findings,
     )
 )
 """The registered experiment."""

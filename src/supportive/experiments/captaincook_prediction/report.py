@@ -7,10 +7,11 @@ from pathlib import Path
 from typing import Any
 
 from supportive.experiments.captaincook_prediction.measure import MODELS
+from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
 
-__all__ = ["headline", "plots", "report"]
+__all__ = ["findings", "headline", "plots", "report"]
 
 
 def report(metrics: Mapping[str, Any]) -> str:
@@ -70,3 +71,17 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     ]
     rows.append(("held-out recordings admitted", f"{metrics['admission']['share']:.3f}", "–"))
     return rows
+
+
+def findings(metrics: Mapping[str, Any]) -> list[Finding]:
+    """Next-step top-1, progress-aware vs the strongest baseline; the share of steps given probability 0."""
+    models = metrics["models"]
+    ours, masked = models[MODELS[0]], models["masked bigram"]
+    return [
+        Finding(
+            "next-step top-1, progress-aware / masked bigram (P = 0)",
+            "– (not in the thesis)",
+            (("", f"{ours['top1']:.3f} ({ours['zero']:.1%}) / {masked['top1']:.3f} ({masked['zero']:.1%})"),),
+            "progress-aware ahead" if ours["top1"] > masked["top1"] else "not ahead of the masked bigram",
+        )
+    ]

@@ -13,10 +13,20 @@
 """
 
 from supportive.experiments.generalisation.measure import SYNTHETIC, make_trials, run_trial, summarize
-from supportive.experiments.generalisation.report import headline, plots, report
+from supportive.experiments.generalisation.report import findings, headline, plots, report
 from supportive.experiments.registry import Experiment, register
 
-__all__ = ["GENERALISATION", "SYNTHETIC", "headline", "make_trials", "plots", "report", "run_trial", "summarize"]
+__all__ = [
+    "GENERALISATION",
+    "SYNTHETIC",
+    "findings",
+    "headline",
+    "make_trials",
+    "plots",
+    "report",
+    "run_trial",
+    "summarize",
+]
 
 GENERALISATION = register(
     Experiment(
@@ -31,6 +41,7 @@ GENERALISATION = register(
         report=report,
         plots=plots,
         headline=headline,
+        findings=findings,
     )
 )
 """The registered experiment."""
