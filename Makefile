@@ -33,7 +33,11 @@ system:
 demo: $(VENV)/.demo
 	$(BIN)/supportive demo
 
+# Lint, types (src and tests) and the import-layer contract first, then the suite.
 test: $(VENV)/.dev system
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/mypy
+	$(BIN)/lint-imports
 	$(BIN)/pytest -q
 
 serve: $(VENV)/.server
@@ -42,6 +46,7 @@ serve: $(VENV)/.server
 lint: $(VENV)/.dev
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 
 bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_learn.py

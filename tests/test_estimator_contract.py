@@ -28,7 +28,9 @@ from supportive.inference.synthetic import synthetic_stream
 from supportive.language.demonstrated import BehaviorRecorder
 from supportive.language.states import TaskStates
 from supportive.learning import HTNLearner
+from supportive.learning.learner import Mode
 from supportive.planning import SupportPlanner, SupportProblem
+from supportive.tasks.behaviors import SupportiveBehavior
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode
 
 A_DEMOS = [["knife", "carrots", "celery"], ["knife", "celery", "carrots"]] * 2
@@ -50,7 +52,7 @@ def _labelled(htn: HTN, seed: int) -> tuple[list[list[frozenset[str]]], list[lis
 
 
 @cache
-def _chair() -> tuple[TaskStates, Any, list[list[str]]]:
+def _chair() -> tuple[TaskStates, SupportiveBehavior, list[str]]:
     chair = TaskStates.of(load("ikea-chair"))
     screws = next(b for b in chair.spec.behaviors if b.name == "give-screws")
     done = list(chair.spec.demonstrations[0].actions[:22])
@@ -77,10 +79,10 @@ class Case:
     learned: Callable[[Any], Any]
 
 
-def _htn_learner(mode: str) -> Case:
+def _htn_learner(mode: Mode) -> Case:
     return Case(
         f"HTNLearner-{mode}",
-        lambda: HTNLearner(mode=mode),  # type: ignore[arg-type]
+        lambda: HTNLearner(mode=mode),
         lambda e: e.fit(A_DEMOS, "a"),
         lambda e: e.fit(load("blocks-v")),
         lambda e: e.htn_,
@@ -245,7 +247,8 @@ def test_every_estimator_is_checked() -> None:
                 importlib.import_module(info.name)
 
     def public(cls: type) -> set[str]:
-        found = set()
+        found: set[str] = set()
+        sub: type
         for sub in cls.__subclasses__():
             found |= public(sub) | ({sub.__name__} if not sub.__name__.startswith("_") else set())
         return found

@@ -4,6 +4,7 @@ import json
 import shutil
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -11,15 +12,17 @@ import pytest
 from supportive import examples
 from supportive.io.htn_json import htn_from_dict
 
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
-def test_learn_prints_a_tree(cli) -> None:  # type: ignore[no-untyped-def]
+
+def test_learn_prints_a_tree(cli: CliRunner) -> None:
     code, out, _ = cli(["learn", str(examples.path("blocks-v"))])
     assert code == 0
     assert "blocks-v (partial" in out or "blocks-v" in out
     assert "red — place the red block" in out
 
 
-def test_learn_json_to_stdout_and_file(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_learn_json_to_stdout_and_file(tmp_path: Path, cli: CliRunner) -> None:
     code, out, _ = cli(["learn", str(examples.path("knife-carrots-celery")), "--format", "json", "--mode", "strict"])
     assert code == 0
     data = json.loads(out)
@@ -30,7 +33,7 @@ def test_learn_json_to_stdout_and_file(tmp_path: Path, cli) -> None:  # type: ig
     assert len(htn_from_dict(json.loads(target.read_text())).alternatives) == 2
 
 
-def test_learn_dot_and_hddl(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_learn_dot_and_hddl(tmp_path: Path, cli: CliRunner) -> None:
     code, out, _ = cli(["learn", str(examples.path("blocks-towers")), "--format", "dot"])
     assert code == 0 and out.startswith("digraph htn {")
     code, _, err = cli(
@@ -41,7 +44,7 @@ def test_learn_dot_and_hddl(tmp_path: Path, cli) -> None:  # type: ignore[no-unt
     assert "(:htn" in (tmp_path / "h" / "problem.hddl").read_text()
 
 
-def test_learn_reads_csv(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_learn_reads_csv(tmp_path: Path, cli: CliRunner) -> None:
     path = tmp_path / "demos.csv"
     path.write_text(
         "demonstration,step,action\nd1,1,knife\nd1,2,a\nd1,3,b\nd2,1,knife\nd2,2,b\nd2,3,a\n"
@@ -65,7 +68,7 @@ BAD = {
 
 
 @pytest.mark.parametrize("name", sorted(BAD))
-def test_bad_input_exits_2_with_one_line_and_writes_nothing(name: str, tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_bad_input_exits_2_with_one_line_and_writes_nothing(name: str, tmp_path: Path, cli: CliRunner) -> None:
     path = tmp_path / name
     path.write_text(BAD[name])
     target = tmp_path / "out.json"
@@ -78,19 +81,19 @@ def test_bad_input_exits_2_with_one_line_and_writes_nothing(name: str, tmp_path:
     assert not target.exists()
 
 
-def test_usage_errors_exit_2(cli) -> None:  # type: ignore[no-untyped-def]
+def test_usage_errors_exit_2(cli: CliRunner) -> None:
     code, _, _ = cli(["learn"])
     assert code == 2
     code, _, _ = cli(["learn", str(examples.path("blocks-v")), "--format", "pdf"])
     assert code == 2
 
 
-def test_hddl_needs_an_output_directory(cli) -> None:  # type: ignore[no-untyped-def]
+def test_hddl_needs_an_output_directory(cli: CliRunner) -> None:
     code, _, err = cli(["learn", str(examples.path("blocks-v")), "-f", "hddl"])
     assert code == 2 and "--output DIR" in err
 
 
-def test_demo_says_what_was_and_was_not_learned(cli) -> None:  # type: ignore[no-untyped-def]
+def test_demo_says_what_was_and_was_not_learned(cli: CliRunner) -> None:
     code, out, _ = cli(["demo"])
     assert code == 0
     assert "Build frame" in out and "Attach seat" in out
@@ -101,7 +104,7 @@ def test_demo_says_what_was_and_was_not_learned(cli) -> None:  # type: ignore[no
     assert "Teaching with questions" in out and "“Can you place the" in out
 
 
-def test_captaincook_json(cli) -> None:  # type: ignore[no-untyped-def]
+def test_captaincook_json(cli: CliRunner) -> None:
     code, out, _ = cli(["captaincook", "--json"])
     assert code == 0
     rows = json.loads(out)
@@ -119,7 +122,7 @@ def test_console_script_has_no_traceback(tmp_path: Path) -> None:
     assert result.stderr.strip() == f"supportive: error: {path}:2: unknown key 'foo'"
 
 
-def test_generate_is_seeded_and_learnable(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_generate_is_seeded_and_learnable(tmp_path: Path, cli: CliRunner) -> None:
     code, first, _ = cli(["generate", "--actions", "30", "--seed", "5"])
     _, second, _ = cli(["generate", "--actions", "30", "--seed", "5"])
     _, other, _ = cli(["generate", "--actions", "30", "--seed", "6"])
@@ -131,7 +134,7 @@ def test_generate_is_seeded_and_learnable(tmp_path: Path, cli) -> None:  # type:
     assert code == 0 and json.loads(out)["stats"]["demonstrations"] == 3
 
 
-def test_infer_prints_one_json_line_per_observation(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_infer_prints_one_json_line_per_observation(tmp_path: Path, cli: CliRunner) -> None:
     stream = tmp_path / "stream.jsonl"
     stream.write_text(
         '["hand-left_frame"]\n["hand-left_frame", "left_frame-table"]\n{"events": ["hand-peg", "peg-left_frame"], "time": 3.5}\n'
@@ -149,7 +152,7 @@ def test_infer_prints_one_json_line_per_observation(tmp_path: Path, cli) -> None
     assert code == 0 and len(flat.splitlines()) == 3
 
 
-def test_infer_bad_inputs_exit_2(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_infer_bad_inputs_exit_2(tmp_path: Path, cli: CliRunner) -> None:
     bad = tmp_path / "bad.jsonl"
     bad.write_text('["a"]\n[1]\n')
     code, out, err = cli(["infer", str(examples.path("ikea-chair")), "-O", str(bad)])

@@ -3,11 +3,14 @@ traceback, nothing computed first."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
 from supportive.io.limits import MAX_MAP_CELLS
+
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
 
 def open_map(side: int) -> str:
@@ -28,14 +31,14 @@ def open_map(side: int) -> str:
         ),
     ],
 )
-def test_unusable_maps_are_refused_before_any_work(tmp_path: Path, cli, text: str, problem: str) -> None:  # type: ignore[no-untyped-def]
+def test_unusable_maps_are_refused_before_any_work(tmp_path: Path, cli: CliRunner, text: str, problem: str) -> None:
     path = tmp_path / "m.map"
     path.write_text(text)
     code, out, err = cli(["caregiver", "--map", str(path), "--steps", "2"])
     assert code == 2 and out == "" and err == f"supportive: error: {path}{'' if problem.startswith(':') else ': '}{problem}\n"
 
 
-def test_the_largest_play_area_runs(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_the_largest_play_area_runs(tmp_path: Path, cli: CliRunner) -> None:
     path = tmp_path / "big.map"
     path.write_text(open_map(51))
     assert MAX_MAP_CELLS >= (51 - 2) ** 2 - 1
@@ -58,14 +61,14 @@ def test_the_largest_play_area_runs(tmp_path: Path, cli) -> None:  # type: ignor
         ["serve", "--client-timeout", "nan"],
     ],
 )
-def test_numbers_out_of_range_are_usage_errors(cli, args: list[str]) -> None:  # type: ignore[no-untyped-def]
+def test_numbers_out_of_range_are_usage_errors(cli: CliRunner, args: list[str]) -> None:
     code, out, err = cli(args)
     assert code == 2 and out == "" and "Traceback" not in err
     assert "Invalid value for" in err
 
 
 @pytest.mark.parametrize(("value", "problem"), [(".inf", "finite number"), (".nan", "finite number"), ("1e300", "less than or equal to 10000")])
-def test_circuit_table_sizes_must_be_finite_and_sane(tmp_path: Path, cli, value: str, problem: str) -> None:  # type: ignore[no-untyped-def]
+def test_circuit_table_sizes_must_be_finite_and_sane(tmp_path: Path, cli: CliRunner, value: str, problem: str) -> None:
     path = tmp_path / "table.yaml"
     path.write_text(f"name: t\ntable: {{width: {value}, depth: 70}}\nscatter: {{seed: 1, pieces: {{battery: 2, led: 1}}}}\n")
     code, out, err = cli(["support", str(path)])
@@ -80,7 +83,7 @@ def test_circuit_table_sizes_must_be_finite_and_sane(tmp_path: Path, cli, value:
         ["support", "two-cells-led", "--render", "table.png"],
     ],
 )
-def test_a_missing_plot_extra_is_said_before_any_work(tmp_path: Path, cli, monkeypatch: pytest.MonkeyPatch, args: list[str]) -> None:  # type: ignore[no-untyped-def]
+def test_a_missing_plot_extra_is_said_before_any_work(tmp_path: Path, cli: CliRunner, monkeypatch: pytest.MonkeyPatch, args: list[str]) -> None:
     import sys
 
     monkeypatch.chdir(tmp_path)
@@ -105,7 +108,7 @@ def test_a_missing_plot_extra_is_said_before_any_work(tmp_path: Path, cli, monke
         (["serve", "--port", "1", "--lead-only", "zz", "--task"], "name: t\ndemonstrations:\n  - steps: [a, b]\n", "lead-only names that are no subtask's: zz"),
     ],
 )
-def test_errors_about_a_files_contents_name_the_file(tmp_path: Path, cli, command: list[str], text: str, problem: str) -> None:  # type: ignore[no-untyped-def]
+def test_errors_about_a_files_contents_name_the_file(tmp_path: Path, cli: CliRunner, command: list[str], text: str, problem: str) -> None:
     path = tmp_path / "t.yaml"
     path.write_text(text)
     code, out, err = cli([*command, str(path)])

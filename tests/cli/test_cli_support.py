@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -12,13 +13,15 @@ from supportive.errors import ScenarioFileError
 from supportive.examples import circuit_names, circuit_path
 from supportive.experiments.plotting import PNG_SIGNATURE
 
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
+
 
 @pytest.mark.parametrize("name", circuit_names())
-def test_every_shipped_scenario_reads_and_advises(name: str, cli: object) -> None:
+def test_every_shipped_scenario_reads_and_advises(name: str, cli: CliRunner) -> None:
     path = circuit_path(name)
     scenario = parse_scenario_file(path)
     assert scenario.world.items and scenario.plans()
-    code, out, err = cli(["support", str(path), "--environments", "40", "--json"])  # type: ignore[operator]
+    code, out, err = cli(["support", str(path), "--environments", "40", "--json"])
     assert code == 0, err
     report = json.loads(out)
     assert report["scenario"] == scenario.name and report["plans"] == len(scenario.plans())
@@ -27,9 +30,9 @@ def test_every_shipped_scenario_reads_and_advises(name: str, cli: object) -> Non
         assert report["actions"][0].startswith("pick up ") and report["actions"][1].startswith("put ")
 
 
-def test_words_render_and_simulation(cli: object, tmp_path: Path) -> None:
+def test_words_render_and_simulation(cli: CliRunner, tmp_path: Path) -> None:
     picture = tmp_path / "table.png"
-    code, out, err = cli(  # type: ignore[operator]
+    code, out, err = cli(
         ["support", "two-cells-led", "-e", "60", "--render", str(picture), "--simulate", "--lead", "greedy"]
     )
     assert code == 0, err
@@ -37,9 +40,9 @@ def test_words_render_and_simulation(cli: object, tmp_path: Path) -> None:
     assert picture.read_bytes().startswith(PNG_SIGNATURE)
 
 
-def test_same_seed_same_advice(cli: object) -> None:
+def test_same_seed_same_advice(cli: CliRunner) -> None:
     path = str(circuit_path("lamp-by-hand"))
-    runs = [cli(["support", path, "-e", "30", "--seed", "4", "--json"]) for _ in range(2)]  # type: ignore[operator]
+    runs = [cli(["support", path, "-e", "30", "--seed", "4", "--json"]) for _ in range(2)]
     assert runs[0] == runs[1] and runs[0][0] == 0
 
 
@@ -75,23 +78,23 @@ BASE = "name: t\nscatter: {seed: 1, pieces: {battery: 2, switch: 1, led: 1}}\n"
         ("", "file is empty"),
     ],
 )
-def test_invalid_scenarios_name_the_place(text: str, message: str, tmp_path: Path, cli: object) -> None:
+def test_invalid_scenarios_name_the_place(text: str, message: str, tmp_path: Path, cli: CliRunner) -> None:
     with pytest.raises(ScenarioFileError, match=None) as caught:
         parse_scenario_string(text, path="s.yaml")
     assert message in str(caught.value) and str(caught.value).startswith("s.yaml")
     path = tmp_path / "s.yaml"
     path.write_text(text, encoding="utf-8")
-    code, out, err = cli(["support", str(path)])  # type: ignore[operator]
+    code, out, err = cli(["support", str(path)])
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and err.startswith(f"supportive: error: {path}") and "Traceback" not in err
 
 
-def test_missing_file_and_wrong_type(tmp_path: Path, cli: object) -> None:
-    code, _, err = cli(["support", str(tmp_path / "none.yaml")])  # type: ignore[operator]
+def test_missing_file_and_wrong_type(tmp_path: Path, cli: CliRunner) -> None:
+    code, _, err = cli(["support", str(tmp_path / "none.yaml")])
     assert code == 2 and "no such file" in err
     other = tmp_path / "s.txt"
     other.write_text("name: t", encoding="utf-8")
-    code, _, err = cli(["support", str(other)])  # type: ignore[operator]
+    code, _, err = cli(["support", str(other)])
     assert code == 2 and "unsupported file type" in err
-    code, _, err = cli(["support", "lamp-by-hand", "--scheme", "bold"])  # type: ignore[operator]
+    code, _, err = cli(["support", "lamp-by-hand", "--scheme", "bold"])
     assert code == 2 and "unknown weighting scheme 'bold'" in err

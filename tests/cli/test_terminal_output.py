@@ -5,12 +5,16 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
 from supportive.render.terminal import printable
+
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
 MARKUP_TASK = """name: "x[/]y"
 actions:
@@ -23,7 +27,7 @@ demonstrations:
 """
 
 
-def test_markup_and_emoji_codes_in_ids_are_printed_as_written(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_markup_and_emoji_codes_in_ids_are_printed_as_written(tmp_path: Path, cli: CliRunner) -> None:
     path = tmp_path / "markup.yaml"
     path.write_text(MARKUP_TASK)
     code, out, err = cli(["learn", str(path)])
@@ -33,7 +37,7 @@ def test_markup_and_emoji_codes_in_ids_are_printed_as_written(tmp_path: Path, cl
     assert "💩" not in out and "[red]" in out
 
 
-def test_error_lines_show_control_characters_markup_and_emoji_codes_as_text(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_error_lines_show_control_characters_markup_and_emoji_codes_as_text(tmp_path: Path, cli: CliRunner) -> None:
     path = tmp_path / "bad\x1b[2J[bold]:poop:.yaml"
     path.write_text("name: t\ncolour: red\n")
     code, out, err = cli(["learn", str(path)])
@@ -55,7 +59,9 @@ def test_a_lone_surrogate_in_a_file_name_is_printed_under_a_strict_utf8_locale(t
     assert result.stderr.decode("utf-8") == f"supportive: error: {tmp_path}/caf\\xff.yaml: no such file\n"
 
 
-def test_teach_and_chat_echo_what_was_typed_as_text(tmp_path: Path, cli, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_teach_and_chat_echo_what_was_typed_as_text(
+    tmp_path: Path, cli: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
     path = tmp_path / "t.yaml"
     path.write_text("name: t\nactions: [a, b]\n")
     typed = iter(["[/]\x1b[2J:poop:", "quit"])

@@ -3,9 +3,13 @@ on one machine, and what the robot did in each."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import pytest
 
 from supportive.cli.workbench_sim import Line, run_workbench
+
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
 
 @pytest.fixture(scope="module")
@@ -67,9 +71,9 @@ def test_the_instructor_stages_the_skill_and_stops_when_the_student_starts(
     assert not [line for line in stages if "red block" in line.text and line.t > begun[0].t]
 
 
-def test_the_command_tells_the_story(cli: object) -> None:
-    code, out, err = cli(["workbench-sim", "--role", "peer", "--seconds", "12"])  # type: ignore[operator]
+def test_the_command_tells_the_story(cli: CliRunner) -> None:
+    code, out, err = cli(["workbench-sim", "--role", "peer", "--seconds", "12"])
     assert code == 0, err
     assert "the robot as peer" in out and "switching from 'pick_red'" in out
-    code, _, err = cli(["workbench-sim", "--role", "boss"])  # type: ignore[operator]
+    code, _, err = cli(["workbench-sim", "--role", "boss"])
     assert code == 2 and "unknown role 'boss'" in err

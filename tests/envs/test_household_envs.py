@@ -127,9 +127,9 @@ def test_make_by_id_and_register_twice() -> None:
         "cells_explored": 1,
     }
     obs, reward, *_, info = env.step(env.action_space.sample())
-    assert env.observation_space.contains(obs) and reward <= 0 and info["step"] == 1
+    assert env.observation_space.contains(obs) and float(reward) <= 0 and info["step"] == 1
     made = gymnasium.make(ENV_ID, grid="playroom", caregiver=True, max_steps=7)
-    assert made.unwrapped.caregiver is not None
+    assert isinstance(made.unwrapped, NoviceEnv) and made.unwrapped.caregiver is not None
     assert made.unwrapped.observation_space.shape == (load_map("playroom").rows, load_map("playroom").cols)
 
 

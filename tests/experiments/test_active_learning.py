@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from pathlib import Path
 
 import pytest
@@ -19,6 +20,7 @@ from supportive.experiments.active_learning.common import (
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.experiments.statistics import mean_ci
 from supportive.learning.active import QuerySchedule
+from supportive.learning.instructors import SimulatedInstructor
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode
 
 
@@ -169,7 +171,9 @@ def test_helpers() -> None:
     assert anova([[1, 2], [5, 6], [9, 9]])["p"] < 0.05
 
 
-def _every_query_sequence(instructor, schedule, demonstration, actions):  # type: ignore[no-untyped-def]
+def _every_query_sequence(
+    instructor: SimulatedInstructor, schedule: QuerySchedule, demonstration: int, actions: Sequence[str]
+) -> set[tuple[str, ...]]:
     """The oracle for the ceiling: replay the demonstration for every sequence of answers the learner could
     give at the scheduled steps (nothing, or any action), each from a fresh copy of the instructor."""
     import copy

@@ -1,34 +1,37 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
 from supportive.experiments.plotting import PNG_SIGNATURE
 
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
-def test_unknown_name(cli) -> None:
+
+def test_unknown_name(cli: CliRunner) -> None:
     code, out, err = cli(["reproduce", "nope"])
     assert code == 2 and out == ""
     assert err.count("\n") == 1
     assert "unknown experiment 'nope'" in err and "edge-reduction" in err and "all" in err
 
 
-def test_workers_and_scheduler_exclude_each_other(cli) -> None:
+def test_workers_and_scheduler_exclude_each_other(cli: CliRunner) -> None:
     args = ["reproduce", "edge-reduction", "--workers", "2", "--scheduler", "tcp://127.0.0.1:8786"]
     code, out, err = cli(args)
     assert code == 2 and out == "" and err.count("\n") == 1
     assert "--workers and --scheduler are mutually exclusive" in err
 
 
-def test_bad_scheduler_address(cli) -> None:
+def test_bad_scheduler_address(cli: CliRunner) -> None:
     code, _, err = cli(["reproduce", "edge-reduction", "--scheduler", "localhost"])
     assert code == 2 and err.count("\n") == 1 and "expected tcp://HOST:PORT" in err
 
 
 def test_small_run_writes_metrics_report_and_plots(
-    tmp_path: Path, cli, monkeypatch: pytest.MonkeyPatch
+    tmp_path: Path, cli: CliRunner, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.chdir(tmp_path)
     code, out, _ = cli(["reproduce", "edge-reduction", "--trials", "3", "--seed", "1"])
@@ -42,7 +45,7 @@ def test_small_run_writes_metrics_report_and_plots(
     assert (directory / "edges.png").read_bytes()[:8] == PNG_SIGNATURE
 
 
-def test_all_writes_one_directory_per_experiment_and_the_summary_table(tmp_path: Path, cli) -> None:
+def test_all_writes_one_directory_per_experiment_and_the_summary_table(tmp_path: Path, cli: CliRunner) -> None:
     code, out, _ = cli(["reproduce", "all", "--trials", "2", "-o", str(tmp_path)])
     assert code == 0 and "summary.md" in out
     assert (tmp_path / "edge-reduction" / "metrics.json").is_file()
@@ -56,7 +59,7 @@ def test_all_writes_one_directory_per_experiment_and_the_summary_table(tmp_path:
             assert [v["reading"] for v in finding["values"] if v["reading"]] in ([], entry["readings"], entry["readings"][:1])
 
 
-def test_a_reading_is_chosen_by_name(tmp_path: Path, cli) -> None:
+def test_a_reading_is_chosen_by_name(tmp_path: Path, cli: CliRunner) -> None:
     code, _, err = cli(["reproduce", "transfer", "--reading", "sideways", "-n", "1", "-o", str(tmp_path)])
     assert code == 2 and err.count("\n") == 1 and "unknown reading 'sideways'" in err and "any-order" in err
     code, _, err = cli(["reproduce", "all", "--reading", "any-order", "-o", str(tmp_path)])

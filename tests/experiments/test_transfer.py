@@ -2,6 +2,9 @@ from __future__ import annotations
 
 import importlib
 import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -9,7 +12,7 @@ from supportive.examples.food import transfer_names
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.experiments.transfer import CLAIM, TaskModel, execute, explore, run_condition, run_trial
-from supportive.experiments.transfer.explore import FAIL, NOVELTY, START, STEP
+from supportive.experiments.transfer.explore import FAIL, NOVELTY, START, STEP, Option
 from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS, make_trials
 from supportive.experiments.transfer.report import column
 from supportive.experiments.transfer.sources import (
@@ -23,7 +26,7 @@ from supportive.experiments.transfer.sources import (
     task_model,
     transfer_initial,
 )
-from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, admits, count_orderings, to_leaves
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, admits, count_orderings, to_leaves
 
 # a → {b, c} → d: 2 orderings.
 TINY = ChainNode(
@@ -51,10 +54,12 @@ def test_task_model_states() -> None:
         assert m.orderings == count_orderings(m_structure(name))
 
 
-def m_structure(name: str):  # type: ignore[no-untyped-def]
+def m_structure(name: str) -> Node:
     from supportive.examples.food import load_transfer
 
-    return load_transfer(name).structure
+    structure = load_transfer(name).structure
+    assert structure is not None
+    return structure
 
 
 def test_macro_expands_and_stops_at_first_disallowed_action() -> None:
@@ -108,7 +113,7 @@ def test_transfer_sources() -> None:
     assert START in prior and all(v <= 0 for row in prior.values() for v in row)
 
 
-def test_tiny_run_is_deterministic(tmp_path) -> None:  # type: ignore[no-untyped-def]
+def test_tiny_run_is_deterministic(tmp_path: Path) -> None:
     trials = make_trials(2, 5)
     small = [
         type(t)(t.index, t.seed, {**t.params, "max_episodes": 300, "step_cap": 200}) for t in trials
@@ -139,7 +144,7 @@ def test_tiny_run_is_deterministic(tmp_path) -> None:  # type: ignore[no-untyped
     assert CLAIM in report and "(c) Q-function + CC-HTN macros" in report
 
 
-def test_any_order_macros_perform_every_admissible_order(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_any_order_macros_perform_every_admissible_order(monkeypatch: pytest.MonkeyPatch) -> None:
     target = next(t for t in transfer_names() if any(m.count_sequences() > 2 for m in macros_for(t)))
     macro = next(m for m in macros_for(target) if m.count_sequences() > 2)
     fixed, anything = macro_option(macro, "fixed"), macro_option(macro, "any")
@@ -151,7 +156,7 @@ def test_any_order_macros_perform_every_admissible_order(monkeypatch) -> None:  
     performed: set[tuple[str, ...]] = set()
     real = execute
 
-    def spy(model_, state, sequence, *rest):  # type: ignore[no-untyped-def]
+    def spy(model_: TaskModel, state: int, sequence: tuple[str, ...], *rest: Any) -> Any:
         if len(sequence) > 1:
             performed.add(sequence)
         return real(model_, state, sequence, *rest)
@@ -163,7 +168,7 @@ def test_any_order_macros_perform_every_admissible_order(monkeypatch) -> None:  
     assert len(performed) > 1 and performed <= set(anything)
 
 
-def _value_iteration(name: str, options):  # type: ignore[no-untyped-def]
+def _value_iteration(name: str, options: Sequence[Option]) -> dict[int, float]:
     """The oracle: plain value iteration (sweeps until nothing moves) over the task's states, each option
     worth the mean over its sequences."""
     model = task_model(name)

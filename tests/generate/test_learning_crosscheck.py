@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 
 from supportive.generate import Profile, random_structure
 from supportive.learning import HTNLearner
+from supportive.learning.learner import Mode
 from supportive.tasks.htn import canonical, count_orderings, iter_orderings
 
 PROFILES: tuple[Profile, ...] = ("ikea", "uniform")
@@ -23,7 +24,7 @@ def test_learning_from_all_orderings_recovers_the_structure(n: int, seed: int, p
     assume(count_orderings(structure) <= 400)
     demonstrations = [[action for action, _ in ordering] for ordering in iter_orderings(structure)]
     # the general learner makes subtasks from four demonstrations on, or of a single one
-    mode = "general" if len(demonstrations) >= 4 or len(demonstrations) == 1 else "strict"
+    mode: Mode = "general" if len(demonstrations) >= 4 or len(demonstrations) == 1 else "strict"
     htn = HTNLearner(mode=mode).fit(demonstrations).htn_
     assert len(htn.roots) == 1, f"partial hierarchy for {structure!r}"
     assert canonical(htn.roots[0]) == canonical(structure), f"wrong hierarchy for {structure!r}"

@@ -3,7 +3,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from supportive.generate import generate_task
+from supportive.generate import Profile, generate_task
 from supportive.inference import FlatHMM, HierarchicalHMM
 from supportive.inference.accuracy import filter_accuracy, first_share, inference_accuracy
 from supportive.inference.synthetic import synthetic_model, synthetic_stream
@@ -11,7 +11,7 @@ from supportive.tasks.htn import HTN
 
 
 @pytest.mark.parametrize("profile", ["ikea", "uniform"])
-def test_hierarchical_is_at_least_as_accurate_as_flat(profile: str) -> None:
+def test_hierarchical_is_at_least_as_accurate_as_flat(profile: Profile) -> None:
     scores: dict[str, list[float]] = {"flat": [], "hierarchical": []}
     parents: dict[str, list[float]] = {"flat": [], "hierarchical": []}
     for seed in range(6):

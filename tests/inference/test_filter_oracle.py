@@ -20,7 +20,7 @@ from supportive.tasks.htn import HTN
 
 def _observation_probability(model: ObservationModel, action: str, observation: frozenset[str]) -> float:
     """P(observation | action): each known event holds independently with the action's probability."""
-    row = model.table[model.action_index[action]]
+    row = [float(p) for p in model.table[model.action_index[action]]]
     return math.prod(p if event in observation else 1.0 - p for event, p in zip(model.events, row, strict=True))
 
 
@@ -34,7 +34,9 @@ def _brute_force(
     switch = np.column_stack([hmm.transitions_(np.eye(n)[s]) for s in range(n)])  # switch[to, from]
     stay = hmm.stay_
     start = hmm.transitions_.start
-    emit = np.array([[_observation_probability(hmm.observations_, a, o) for a, _ in leaves] for o in observations])
+    events = hmm.observations_
+    assert events is not None
+    emit = np.array([[_observation_probability(events, a, o) for a, _ in leaves] for o in observations])
     last = np.zeros(n)
     for path in itertools.product(range(n), repeat=len(observations)):
         weight = start[path[0]] * emit[0, path[0]]

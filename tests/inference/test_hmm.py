@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from supportive.errors import LearningError
-from supportive.generate import random_structure
+from supportive.generate import Profile, random_structure
 from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel
 from supportive.inference.synthetic import synthetic_model, synthetic_stream
 from supportive.inference.transitions import DENSE_BELOW, FlatTransitions, HierarchicalTransitions, TaskLayout
@@ -47,7 +47,7 @@ def test_flat_and_hierarchical_differ_where_structure_matters() -> None:
 
 
 @given(st.integers(5, 60), st.integers(0, 1000), st.sampled_from(["ikea", "uniform"]))
-def test_transitions_conserve_mass_in_every_representation(n: int, seed: int, profile: str) -> None:
+def test_transitions_conserve_mass_in_every_representation(n: int, seed: int, profile: Profile) -> None:
     htn = HTN("t", (random_structure(n, seed, profile=profile),))
     layout = TaskLayout.of(htn)
     moves = HierarchicalTransitions(htn, layout)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -16,11 +17,13 @@ from supportive.inference import END_LABEL, ObservationModel, ProgressHMM, StepP
 from supportive.inference.progress import END, ProgressModel
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, iter_orderings
 
+Shape = str | tuple[str, list["Shape"]]
+
 A, B, C = (ActionNode(x) for x in "abc")
 
 
-def _next(htn: HTN, prefix: list[str], **settings: object) -> dict[str, float]:
-    tracker = ProgressHMM(htn, **settings).fit().filter()  # type: ignore[arg-type]
+def _next(htn: HTN, prefix: list[str], **settings: Any) -> dict[str, float]:
+    tracker = ProgressHMM(htn, **settings).fit().filter()
     for action in prefix:
         tracker.observe(action)
     return tracker.last.next_actions
@@ -71,16 +74,16 @@ shapes = st.recursive(
 )
 
 
-def _build(shape: object, names: itertools.count) -> Node:  # type: ignore[type-arg]
+def _build(shape: Shape, names: itertools.count[int]) -> Node:
     if isinstance(shape, str):
         return ActionNode(f"x{next(names)}", optional=shape == "optional")
-    kind, parts = shape  # type: ignore[misc]
+    kind, parts = shape
     children = tuple(_build(p, names) for p in parts)
     return (ChainNode if kind == "chain" else CliqueNode)(children)
 
 
 @given(shapes, st.integers(0, 2**16))
-def test_forward_pass_agrees_with_brute_force_over_executions(shape: object, seed: int) -> None:
+def test_forward_pass_agrees_with_brute_force_over_executions(shape: Shape, seed: int) -> None:
     structure = _build(shape, itertools.count())
     htn = HTN("t", (structure,))
     model = ProgressModel(htn, smoothing=1.0)

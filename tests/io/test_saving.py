@@ -9,6 +9,7 @@ import shutil
 import subprocess
 import sys
 import threading
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -16,11 +17,12 @@ import pytest
 from supportive import examples
 from supportive.cli.teach_console import TeachingConsole
 from supportive.errors import TaskFileError
-from supportive.io import atomic
 from supportive.io.atomic import atomic_write, exclusive
 from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
-from supportive.tasks.spec import Demonstration
+from supportive.tasks.spec import Demonstration, TaskSpec
+
+CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
 ORDER = ["red", "yellow", "green", "white", "orange", "purple", "black", "blue"]
 
@@ -31,8 +33,8 @@ def tower(tmp_path: Path) -> Path:
     return path
 
 
-def add_demo(steps: list[str]) -> object:
-    def change(spec):  # type: ignore[no-untyped-def]
+def add_demo(steps: list[str]) -> Callable[[TaskSpec], TaskSpec]:
+    def change(spec: TaskSpec) -> TaskSpec:
         return spec.with_demonstrations([*spec.demonstrations, Demonstration.of(steps, id=f"d{len(spec.demonstrations) + 1}")])
 
     return change
@@ -67,12 +69,12 @@ def test_chat_keeps_comments_and_changes_only_the_behavior(tmp_path: Path) -> No
     assert changed and all(block < i < block + 6 for i in changed)  # only the behavior that changed
 
 
-def test_mode_and_symlinks_are_kept(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_mode_and_symlinks_are_kept(tmp_path: Path, cli: CliRunner) -> None:
     real = tower(tmp_path)
     real.chmod(0o600)
     link = tmp_path / "link.yaml"
     link.symlink_to(real.name)
-    update_task_file(link, add_demo(ORDER))  # type: ignore[arg-type]
+    update_task_file(link, add_demo(ORDER))
     assert link.is_symlink() and os.readlink(link) == real.name
     assert oct(real.stat().st_mode & 0o777) == "0o600" and len(parse_task_file(real).demonstrations) == 5
     out = tmp_path / "htn.json"
@@ -92,9 +94,9 @@ def test_a_failed_write_changes_nothing_and_leaves_no_temporary(tmp_path: Path, 
     def disk_full(*args: object) -> None:
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(atomic.os, "replace", disk_full)
+    monkeypatch.setattr("supportive.io.atomic.os.replace", disk_full)
     with pytest.raises(TaskFileError, match=r"tower\.yaml: cannot write: No space left on device"):
-        update_task_file(path, add_demo(ORDER))  # type: ignore[arg-type]
+        update_task_file(path, add_demo(ORDER))
     assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["tower.yaml"]
 
 
@@ -149,7 +151,7 @@ def test_a_second_writer_waits_for_the_lock(tmp_path: Path) -> None:
     assert [d.id for d in parse_task_file(path).demonstrations] == ["d1", "mine", "late"]
 
 
-def test_hddl_to_an_existing_file_is_refused_and_writes_nothing(tmp_path: Path, cli) -> None:  # type: ignore[no-untyped-def]
+def test_hddl_to_an_existing_file_is_refused_and_writes_nothing(tmp_path: Path, cli: CliRunner) -> None:
     target = tmp_path / "chair.hddl"
     target.write_text("mine\n")
     code, out, err = cli(["learn", str(examples.path("blocks-v")), "-f", "hddl", "-o", str(target)])

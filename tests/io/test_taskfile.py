@@ -7,6 +7,7 @@ import pytest
 from supportive import examples
 from supportive.errors import TaskFileError
 from supportive.io.taskfile import dump_task, parse_task_file, parse_task_string, write_task_file
+from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node
 from supportive.tasks.spec import Demonstration, Step, TaskSpec
 
 
@@ -22,8 +23,8 @@ def test_examples_round_trip(name: str, fmt: str, tmp_path: Path) -> None:
     ]
 
 
-def _named(node):  # type: ignore[no-untyped-def]
-    if node is None or node.kind == "action":
+def _named(node: Node | None) -> list[ChainNode | CliqueNode]:
+    if node is None or isinstance(node, ActionNode):
         return []
     return [node, *(n for c in node.children for n in _named(c))]
 

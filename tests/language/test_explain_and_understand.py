@@ -15,7 +15,7 @@ from supportive.language.explain import (
     initiation_states,
     verbalize,
 )
-from supportive.language.grammar import parse_utterance
+from supportive.language.grammar import Preference, parse_utterance
 from supportive.language.states import TaskStates
 from supportive.language.understand import ConditionReader, Understanding, Understood, guess_category
 from supportive.language.wording import activity, gerund
@@ -35,6 +35,7 @@ def test_every_exact_explanation_reads_back_to_its_region(chair: TaskStates) -> 
     checked = 0
     for behavior in chair.spec.behaviors:
         for clause in explain_behavior(chair, behavior).clauses:
+            assert clause.subtask is not None
             during = chair.during(clause.subtask)
             for cover, words, region in (
                 (clause.start, clause.start_words, initiation_states(chair, behavior)),
@@ -81,17 +82,17 @@ def test_the_thesis_example_shape(chair: TaskStates) -> None:
 
 def test_preferences_update_or_create_behaviors(chair: TaskStates) -> None:
     understanding = Understanding(chair)
-    known = understanding.apply(parse_utterance(
+    known = understanding.apply(_preference(
         "When I am screwing the seat, I want you to give me screws until the seat is attached to the left frame"
     ))
     assert not known.created and known.behavior.name == "give-screws"
     assert known.behavior.termination == "attached(seat, left_frame)"
     assert known.confident and known.behavior.subtasks == ("Screw seat",)
-    new = understanding.apply(parse_utterance("While I tighten the bolts, please shine a light on the bolt"))
+    new = understanding.apply(_preference("While I tighten the bolts, please shine a light on the bolt"))
     assert new.created and new.behavior.category is BehaviorCategory.ENHANCING_AWARENESS
     assert new.behavior.text == "shine a light on the bolt" and new.behavior.subtasks[0].startswith("Fasten")
     with pytest.raises(UnderstandingError, match="condition in the task's words"):
-        understanding.apply(parse_utterance("When I am screwing the seat, give me screws until the moon is blue"))
+        understanding.apply(_preference("When I am screwing the seat, give me screws until the moon is blue"))
 
 
 def test_small_helpers() -> None:
@@ -180,7 +181,7 @@ def test_what_the_predicates_cannot_say_is_admitted_in_a_sentence() -> None:
 
 def test_a_behavior_tied_to_no_subtask_is_explained_over_the_whole_task(chair: TaskStates) -> None:
     understanding = Understanding(chair)
-    glue = understanding.apply(parse_utterance("when the seat is not placed, give me glue")).behavior
+    glue = understanding.apply(_preference("when the seat is not placed, give me glue")).behavior
     assert glue.subtasks == () and glue.initiation == "not placed(seat)"
     answer = explain_behavior(chair, glue)
     (clause,) = answer.clauses
@@ -193,7 +194,13 @@ def test_a_behavior_tied_to_no_subtask_is_explained_over_the_whole_task(chair: T
 
 
 def _said(chair: TaskStates, text: str, subtasks: tuple[str, ...] | None = None) -> Understood:
-    return Understanding(chair).apply(parse_utterance(text), subtasks=subtasks)
+    return Understanding(chair).apply(_preference(text), subtasks=subtasks)
+
+
+def _preference(text: str) -> Preference:
+    utterance = parse_utterance(text)
+    assert isinstance(utterance, Preference), utterance
+    return utterance
 
 
 def test_a_preference_without_a_condition_lets_the_behavior_start_throughout_the_subtask(chair: TaskStates) -> None:

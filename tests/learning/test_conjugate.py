@@ -3,11 +3,11 @@ from __future__ import annotations
 import itertools
 
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
-from supportive.tasks.conjugate import ORIGIN, TERMINAL
+from supportive.tasks.conjugate import ORIGIN, TERMINAL, ConjugateTaskGraph
 from supportive.tasks.task_graph import TaskGraph
 
 
-def _edges(ctg):  # type: ignore[no-untyped-def]
+def _edges(ctg: ConjugateTaskGraph) -> set[tuple[str, str, tuple[str, ...]]]:
     return {(ctg.label(e.source), ctg.label(e.target), tuple(sorted(e.prerequisites))) for e in ctg.edges()}
 
 
@@ -32,9 +32,11 @@ def test_redundant_edges_keep_minimal_prerequisites() -> None:
     graph.add(["x", "b", "a", "c"])  # x -> b with {x}: makes {a, x} redundant
     ctg = conjugate_task_graph(graph)
     x, b = graph.subgoal_index(("x", 1)), graph.subgoal_index(("b", 1))
+    assert x is not None and b is not None
     assert [ctg.prerequisites(s) for s in ctg.prerequisite_states(x, b)] == [frozenset({"x"})]
     assert ctg.successors(ORIGIN) == {graph.subgoal_index(("a", 1)), x}
-    assert TERMINAL in ctg.successors(graph.subgoal_index(("c", 1)))
+    c = graph.subgoal_index(("c", 1))
+    assert c is not None and TERMINAL in ctg.successors(c)
 
 
 def test_incremental_equals_batch() -> None:

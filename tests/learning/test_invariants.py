@@ -10,6 +10,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from supportive.learning import HTNLearner, invariant_violations
+from supportive.learning.learner import Mode
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
@@ -34,7 +35,7 @@ shapes: st.SearchStrategy[Shape] = st.recursive(
 
 def build(shape: Shape, names: Iterator[str]) -> Node:
     """A normalised structure: no chain directly in a chain."""
-    if shape == "leaf":
+    if isinstance(shape, str):
         return ActionNode(next(names))
     kind, parts = shape
     children: list[Node] = []
@@ -94,11 +95,11 @@ MODES = st.sampled_from(["general", "strict"])
 
 
 @given(structures(), MODES)
-def test_all_orderings_recover_the_structure(structure: Node, mode: str) -> None:
+def test_all_orderings_recover_the_structure(structure: Node, mode: Mode) -> None:
     demos = [actions(o) for o in iter_orderings(structure)]
     # the general learner makes subtasks from four demonstrations on (or of a single one)
     assume(mode == "strict" or len(demos) >= 4 or len(demos) == 1)
-    learner = HTNLearner(mode=mode).fit(demos)  # type: ignore[arg-type]
+    learner = HTNLearner(mode=mode).fit(demos)
     assert learner.task_graph_.path_count() == count_orderings(structure)
     assert learner.htn_.complete
     assert canonical(learner.htn_.roots[0]) == canonical(structure), "invariant 3"
@@ -108,10 +109,10 @@ def test_all_orderings_recover_the_structure(structure: Node, mode: str) -> None
 
 
 @given(structures(), st.integers(1, 5), st.integers(0, 2**32 - 1), MODES)
-def test_sampled_demonstrations_keep_invariants(structure: Node, k: int, seed: int, mode: str) -> None:
+def test_sampled_demonstrations_keep_invariants(structure: Node, k: int, seed: int, mode: Mode) -> None:
     rng = np.random.default_rng(seed)
     demos = [actions(sample_ordering(structure, rng)) for _ in range(k)]
-    learner = HTNLearner(mode=mode).fit(demos)  # type: ignore[arg-type]
+    learner = HTNLearner(mode=mode).fit(demos)
     assert_invariants_1_and_2(learner)
     for alternative in learner.htn_.alternatives:
         assert alternative.complete
@@ -119,18 +120,18 @@ def test_sampled_demonstrations_keep_invariants(structure: Node, k: int, seed: i
 
 
 @given(st.lists(st.permutations(["a", "b", "c", "d", "e"]), min_size=1, max_size=8), MODES)
-def test_arbitrary_permutations_keep_invariants(demos: list[list[str]], mode: str) -> None:
-    assert_invariants_1_and_2(HTNLearner(mode=mode, deviations=0).fit(demos))  # type: ignore[arg-type]
+def test_arbitrary_permutations_keep_invariants(demos: list[list[str]], mode: Mode) -> None:
+    assert_invariants_1_and_2(HTNLearner(mode=mode, deviations=0).fit(demos))
 
 
 @given(structures(max_orderings=300), st.integers(0, 2**32 - 1), st.integers(1, 6), MODES)
-def test_partial_fit_equals_fit(structure: Node, seed: int, k: int, mode: str) -> None:
+def test_partial_fit_equals_fit(structure: Node, seed: int, k: int, mode: Mode) -> None:
     rng = np.random.default_rng(seed)
     demos = [actions(sample_ordering(structure, rng)) for _ in range(k)]
-    incremental = HTNLearner(mode=mode)  # type: ignore[arg-type]
+    incremental = HTNLearner(mode=mode)
     for demo in demos:
         incremental.partial_fit(demo)
-        batch = HTNLearner(mode=mode).fit(demos[: len(incremental.task_graph_.demonstrations)])  # type: ignore[arg-type]
+        batch = HTNLearner(mode=mode).fit(demos[: len(incremental.task_graph_.demonstrations)])
         assert incremental.htn_.canonical() == batch.htn_.canonical()
         assert incremental.htn_.top_level == batch.htn_.top_level
         assert incremental.ctg_.n_edges == batch.ctg_.n_edges

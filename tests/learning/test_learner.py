@@ -5,6 +5,7 @@ import pytest
 from supportive import examples
 from supportive.errors import LearningError
 from supportive.learning import HTNLearner, learn
+from supportive.learning.learner import Mode
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, canonical, count_orderings, iter_orderings
 
 BLOCKS = {
@@ -110,7 +111,7 @@ def _names(node: object) -> set[str]:
 
 
 @pytest.mark.parametrize("mode", ["strict", "general"])
-def test_structure_names_label_learned_nodes(mode: str) -> None:
+def test_structure_names_label_learned_nodes(mode: Mode) -> None:
     htn = learn(examples.load("ikea-chair"), mode=mode).htn_
     names = set().union(*(_names(r) for r in htn.roots))
     assert {"Build frame", "Attach seat", "Fasten front left bolt"} <= names
@@ -120,13 +121,13 @@ def test_no_demonstrations_is_an_error() -> None:
     with pytest.raises(LearningError, match="no demonstrations"):
         HTNLearner().fit([])
     with pytest.raises(LearningError, match="string"):
-        HTNLearner().fit(["abc"])  # type: ignore[list-item]
+        HTNLearner().fit(["abc"])
 
 
 @pytest.mark.parametrize("mode", ["strict", "general"])
-def test_repeated_actions_learn_as_occurrences(mode: str) -> None:
+def test_repeated_actions_learn_as_occurrences(mode: Mode) -> None:
     orders = [["stir", "heat", "stir", "a", "b"], ["stir", "heat", "stir", "b", "a"]] * 2
-    root = HTNLearner(mode=mode).fit(orders).htn_.roots[0]  # type: ignore[arg-type]
+    root = HTNLearner(mode=mode).fit(orders).htn_.roots[0]
     assert canonical(root) == canonical(
         ChainNode(
             (

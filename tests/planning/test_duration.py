@@ -67,7 +67,7 @@ def test_a_failed_precondition_nullifies_the_plan(line_world_type: Any) -> None:
 def test_decay_weights_later_steps_less(line_world_type: Any) -> None:
     world = line_world_type(["a", "b"], [4.0, 6.0])
     fetch_a, fetch_b = (p[0] for p in world.plans())
-    idle = Hypothetical.idle(world.initial_state)
+    idle = Hypothetical[Any, Any, Any].idle(world.initial_state)
     assert (
         estimate_duration(world, (fetch_a, fetch_b), idle, PENALTY, GeometricDecay(0.5)) == 8.0 + 0.5 * 12.0
     )

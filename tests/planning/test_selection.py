@@ -24,14 +24,14 @@ def test_doing_nothing_wins_when_nothing_helps(line_world_type: Any) -> None:
     """Objects already at 1 cannot come nearer: no move shortens a plan, so the agent stays put."""
     world = line_world_type(["a", "b"], [1.0, 1.0], support_hand=1.0)
     problem = SupportProblem.of(world, world.plans())
-    decision = SupportPlanner("conservative", environments=100).fit(problem).decide(problem, seed=0)
+    decision = SupportPlanner[Any, Any, Any]("conservative", environments=100).fit(problem).decide(problem, seed=0)
     assert not decision.helps and decision.score == decision.idle_score and decision.expected_saving == 0.0
     assert len(decision.scores) == len(decision.candidates.environments) > 0
 
 
 def test_same_seed_same_decision(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    planner = SupportPlanner("conservative", environments=15).fit(problem)
+    planner = SupportPlanner[Any, Any, Any]("conservative", environments=15).fit(problem)
     first, again = planner.decide(problem, seed=4), planner.decide(problem, seed=4)
     assert first.scores == again.scores and first.chosen == again.chosen
     assert planner.decide(problem, seed=5).candidates.environments != first.candidates.environments
@@ -39,15 +39,15 @@ def test_same_seed_same_decision(line_world_type: Any) -> None:
 
 def test_local_processes_score_exactly_as_in_process(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    alone = SupportPlanner("aggressive", environments=40).fit(problem).decide(problem, seed=2)
-    with SupportPlanner("aggressive", environments=40, workers=2).fit(problem) as planner:
+    alone = SupportPlanner[Any, Any, Any]("aggressive", environments=40).fit(problem).decide(problem, seed=2)
+    with SupportPlanner[Any, Any, Any]("aggressive", environments=40, workers=2).fit(problem) as planner:
         shared = planner.decide(problem, seed=2)
     assert shared.scores == alone.scores and shared.chosen == alone.chosen
 
 
 def test_dask_scores_exactly_as_in_process(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    alone = SupportPlanner("conservative", environments=30).fit(problem).decide(problem, seed=3)
+    alone = SupportPlanner[Any, Any, Any]("conservative", environments=30).fit(problem).decide(problem, seed=3)
     cluster = distributed.LocalCluster(
         n_workers=1,
         threads_per_worker=2,
@@ -57,7 +57,7 @@ def test_dask_scores_exactly_as_in_process(line_world_type: Any) -> None:
         silence_logs=logging.ERROR,
     )
     with cluster, distributed.Client(cluster) as client:
-        planner = SupportPlanner("conservative", environments=30, client=client).fit(problem)
+        planner = SupportPlanner[Any, Any, Any]("conservative", environments=30, client=client).fit(problem)
         remote = planner.decide(problem, seed=3)
         planner.close()
     assert remote.scores == alone.scores and remote.chosen == alone.chosen
@@ -65,7 +65,7 @@ def test_dask_scores_exactly_as_in_process(line_world_type: Any) -> None:
 
 def test_favoured_plans_and_saving(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    decision = SupportPlanner("conservative", environments=500).fit(problem).decide(problem, seed=1)
+    decision = SupportPlanner[Any, Any, Any]("conservative", environments=500).fit(problem).decide(problem, seed=1)
     assert decision.favoured() == [1]  # b moved to 1: its plan 18 → 11 s
     weights = decision.weights
     assert decision.expected_saving == pytest.approx(weights[1] * 7 / sum(weights))
@@ -74,9 +74,9 @@ def test_favoured_plans_and_saving(line_world_type: Any) -> None:
 def test_the_planner_must_be_fitted_on_the_same_problem(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
     with pytest.raises(NotFittedError, match="not fitted"):
-        SupportPlanner().decide(problem)
+        SupportPlanner[Any, Any, Any]().decide(problem)
     other = line_world_type(["a"], [3.0])
-    planner = SupportPlanner(environments=5).fit(SupportProblem.of(other, other.plans()))
+    planner = SupportPlanner[Any, Any, Any](environments=5).fit(SupportProblem.of(other, other.plans()))
     with pytest.raises(PlanningError, match="fitted on another"):
         planner.decide(problem)
 
@@ -91,12 +91,12 @@ def test_the_planner_must_be_fitted_on_the_same_problem(line_world_type: Any) ->
 )
 def test_bad_planner_options(options: dict[str, Any], message: str) -> None:
     with pytest.raises(PlanningError, match=message):
-        SupportPlanner(**options)
+        SupportPlanner[Any, Any, Any](**options)
 
 
 def test_workers_and_a_client_are_exclusive(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    planner = SupportPlanner(environments=5, workers=2, client=object()).fit(problem)
+    planner = SupportPlanner[Any, Any, Any](environments=5, workers=2, client=object()).fit(problem)
     with pytest.raises(PlanningError, match="not both"):
         planner.decide(problem)
 
@@ -149,7 +149,7 @@ def _check_against_brute_force(line_world_type: Any, scheme: str, weight: float,
     """Checks one decision against the oracle; True when the search term changed the choice."""
     problem = problem_of(line_world_type)
     search = _Spread()
-    planner = SupportPlanner(scheme, environments=60, search=search, search_weight=weight).fit(problem)
+    planner = SupportPlanner[Any, Any, Any](scheme, environments=60, search=search, search_weight=weight).fit(problem)
     decision = planner.decide(problem, seed=seed)
     assert decision.idle_search == search(problem.state)
     assert decision.search_scale == pytest.approx(
@@ -165,7 +165,7 @@ def _check_against_brute_force(line_world_type: Any, scheme: str, weight: float,
             + decision.search_scale * decision.chosen_search
         )
     assert search.calls <= len(decision.candidates.environments) + 3  # never more than one search each
-    plain = SupportPlanner(scheme, environments=60).fit(problem).decide(problem, seed=seed)
+    plain = SupportPlanner[Any, Any, Any](scheme, environments=60).fit(problem).decide(problem, seed=seed)
     return plain.chosen != decision.chosen
 
 
@@ -176,7 +176,7 @@ def test_the_search_aware_choice_is_the_brute_force_argmin(line_world_type: Any)
 
 def test_without_a_search_model_nothing_changes(line_world_type: Any) -> None:
     problem = problem_of(line_world_type)
-    plain = SupportPlanner("conservative", environments=40).fit(problem).decide(problem, seed=6)
+    plain = SupportPlanner[Any, Any, Any]("conservative", environments=40).fit(problem).decide(problem, seed=6)
     assert plain.search_scale == 0.0 and plain.idle_search is None and plain.chosen_search is None
     with pytest.raises(PlanningError, match="search_weight"):
-        SupportPlanner(search=_Spread(), search_weight=-1.0)
+        SupportPlanner[Any, Any, Any](search=_Spread(), search_weight=-1.0)

@@ -66,7 +66,7 @@ def test_durations_must_be_positive() -> None:
 
 def choose(world: Any, scheme: str, **problem_options: Any) -> Any:
     problem = SupportProblem.of(world, world.plans(), **problem_options)
-    planner = SupportPlanner(scheme, environments=500).fit(problem)
+    planner = SupportPlanner[Any, Any, Any](scheme, environments=500).fit(problem)
     return planner.decide(problem, seed=1)
 
 

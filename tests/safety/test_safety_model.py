@@ -42,7 +42,7 @@ def test_action_priors_options() -> None:
     assert few.counts.sum() <= ActionPriors.from_experts(distances, seed=3).counts.sum()
     for bad in ({"hyperprior": 0.0}, {"delta": 1.0}, {"starts": 0}):
         with pytest.raises(ValueError):
-            ActionPriors.from_experts(distances, **bad)  # type: ignore[arg-type]
+            ActionPriors.from_experts(distances, **bad)
 
 
 def _direct(priors: ActionPriors, trajectory: list[tuple[tuple[int, int], str]], prior: float) -> float:

@@ -25,7 +25,7 @@ import httpx
 import pytest
 from fastapi.testclient import TestClient
 from PIL import Image
-from playwright.sync_api import Browser, Page, expect, sync_playwright
+from playwright.sync_api import Browser, Page, ViewportSize, expect, sync_playwright
 
 from supportive.examples import path as example_path
 from supportive.io.taskfile import parse_task_file
@@ -222,7 +222,7 @@ FLAGS = [
     "--force-color-profile=srgb",
 ]
 ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts"
-SCREEN = {"width": 1920, "height": 1080}
+SCREEN: ViewportSize = {"width": 1920, "height": 1080}
 """The workcell's monitor the page is designed for (the other size tested is a 1280 × 800 laptop)."""
 
 
@@ -248,7 +248,7 @@ def open_page(browser: Browser) -> Iterator[Callable[..., Page]]:
     ``serve`` prints it), once it is live; closed after the test."""
     pages: list[Page] = []
 
-    def make(url: str, token: str, viewport: dict[str, int] | None = None) -> Page:
+    def make(url: str, token: str, viewport: ViewportSize | None = None) -> Page:
         page = browser.new_page(viewport=viewport or SCREEN)
         pages.append(page)
         page.goto(f"{url}/#token={token}")

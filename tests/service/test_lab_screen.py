@@ -173,10 +173,10 @@ def test_the_screen_shows_the_board_as_it_is(
     )
     assert sizes[0] <= viewport["height"] and sizes[1] <= viewport["width"], sizes
     assert sizes[2] <= sizes[3] + 1 and sizes[4] <= sizes[5] + 1, sizes
-    for node in shown.values():
-        box = node["box"]
-        assert box["x"] >= 0 and box["y"] >= 0, node
-        assert box["x"] + box["w"] <= viewport["width"] and box["y"] + box["h"] <= viewport["height"], node
+    for drawn in shown.values():
+        box = drawn["box"]
+        assert box["x"] >= 0 and box["y"] >= 0, drawn
+        assert box["x"] + box["w"] <= viewport["width"] and box["y"] + box["h"] <= viewport["height"], drawn
 
     # one colour per agent that claims, in the legend; none for the observer
     assert set(colour) == set(CLAIMERS) and len(set(colour.values())) == len(CLAIMERS)
@@ -221,13 +221,14 @@ def test_the_screen_shows_the_board_as_it_is(
             assert "any order" in shown[node.id]["chips"], node
         if node.id in shown and node.lead_only:
             assert "lead only" in shown[node.id]["chips"], node
-    for ident, node in shown.items():
-        box = node["box"]
+    for ident, drawn in shown.items():
+        box = drawn["box"]
         edge = pixel(picture, box["x"] + 2, box["y"] + box["h"] / 2)
+        owner = byid[ident].owner
         if byid[ident].done:
             assert edge == DONE_GREY, (ident, edge)
-        elif byid[ident].owner:
-            assert edge == colour[byid[ident].owner], (ident, edge)
+        elif owner:
+            assert edge == colour[owner], (ident, edge)
 
     # goal inference: the belief the API has, in words, with bars
     goal = httpx.get(f"{url}/api/insight", headers=headers("screen")).json()["goal"]

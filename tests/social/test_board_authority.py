@@ -106,9 +106,9 @@ def hierarchies(draw: st.DrawFn, depth: int = 3) -> Node:
     def node(level: int) -> Node:
         if level == 0 or draw(st.booleans()):
             return ActionNode(f"a{next(counter)}")
-        kind = draw(st.sampled_from([ChainNode, CliqueNode]))
         children = tuple(node(level - 1) for _ in range(draw(st.integers(2, 3))))
-        return kind(children, name=f"s{next(counter)}")
+        name = f"s{next(counter)}"
+        return ChainNode(children, name=name) if draw(st.booleans()) else CliqueNode(children, name=name)
 
     return node(depth)
 

@@ -21,7 +21,9 @@ def record(force: SocialForce, path: list[tuple[float, float, float]]) -> Social
     return force
 
 
-def hand_path(start: tuple[float, float], velocity: tuple[float, float], seconds: float, hz: float = 30.0):  # type: ignore[no-untyped-def]
+def hand_path(
+    start: tuple[float, float], velocity: tuple[float, float], seconds: float, hz: float = 30.0
+) -> list[tuple[float, float, float]]:
     """A recorded hand path: positions at ``hz`` moving at constant ``velocity`` (m/s) from ``start``."""
     steps = round(seconds * hz)
     return [(i / hz, start[0] + velocity[0] * i / hz, start[1] + velocity[1] * i / hz) for i in range(steps + 1)]

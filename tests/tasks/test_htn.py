@@ -7,12 +7,13 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from supportive.generate import random_structure
+from supportive.generate import Profile, random_structure
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
     ChainNode,
     CliqueNode,
+    Leaf,
     TopLevel,
     admits,
     allowed_next,
@@ -99,7 +100,7 @@ def test_edges_of_chains_cliques_and_transitions_into_cliques() -> None:
 
 
 @given(st.integers(5, 60), st.integers(0, 10_000), st.sampled_from(["ikea", "uniform"]))
-def test_cc_htn_never_needs_more_edges_than_the_flat_model(n: int, seed: int, profile: str) -> None:
+def test_cc_htn_never_needs_more_edges_than_the_flat_model(n: int, seed: int, profile: Profile) -> None:
     # Flat pairs of different internal nodes differ (their least common ancestor differs), and each node of
     # k >= 2 children has at least k - 1 (chain) or k(k - 1) >= k (clique) of them: never fewer than its edges.
     structure = random_structure(n, seed, profile=profile)
@@ -121,7 +122,7 @@ def test_partial_htn_admits_through_its_top_level() -> None:
 
 def test_successor_pairs_match_enumeration() -> None:
     node = ChainNode((A, CliqueNode((ChainNode((B, C)), D)), ActionNode("e")))
-    seen = set()
+    seen: set[tuple[Leaf, Leaf]] = set()
     for order in iter_orderings(node):
         seen.update(itertools.pairwise(order))
     assert successor_pairs(node) == seen
@@ -131,7 +132,7 @@ def test_successor_pairs_match_enumeration() -> None:
 
 
 @given(st.integers(3, 9), st.integers(0, 10_000), st.sampled_from(["ikea", "uniform"]))
-def test_allowed_next_matches_enumeration(n: int, seed: int, profile: str) -> None:
+def test_allowed_next_matches_enumeration(n: int, seed: int, profile: Profile) -> None:
     from supportive.generate import random_structure
 
     structure = random_structure(n, seed, profile=profile)

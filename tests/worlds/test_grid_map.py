@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from supportive.errors import MapFileError
 from supportive.worlds.household import (
     DAMAGE,
+    Collision,
     EpsilonGreedyNovice,
     HouseholdWorld,
     MapDistances,
@@ -84,19 +85,24 @@ def test_shipped_maps_are_usable(name: str) -> None:
     assert grid.caregiver_start in grid.play_area
 
 
+def _hit(collision: Collision | None) -> Collision:
+    assert collision is not None
+    return collision
+
+
 def test_novice_collisions_and_damage() -> None:
     grid = parse_map(TINY)
     world = HouseholdWorld.start(grid, novice=(2, 4), caregiver=(2, 1))
     assert world.move_novice("east") == world.collision_at((2, 5))
-    assert world.collision_at((2, 5)).damage == DAMAGE["stairs"] == 5  # type: ignore[union-attr]
+    assert _hit(world.collision_at((2, 5))).damage == DAMAGE["stairs"] == 5
     assert world.novice == (2, 4)  # a collision leaves the novice in place
     world.novice = (1, 3)
-    assert world.move_novice("east").kind == "candle"  # type: ignore[union-attr]
+    assert _hit(world.move_novice("east")).kind == "candle"
     world.candles.clear()
-    assert world.move_novice("east").kind == "table"  # type: ignore[union-attr]
-    assert world.move_novice("north").kind == "wall"  # type: ignore[union-attr]
+    assert _hit(world.move_novice("east")).kind == "table"
+    assert _hit(world.move_novice("north")).kind == "wall"
     world.novice = (1, 2)
-    assert world.move_novice("west").damage == 0  # type: ignore[union-attr]  # the bin
+    assert _hit(world.move_novice("west")).damage == 0  # the bin
     with pytest.raises(ValueError, match="unknown novice action"):
         world.move_novice("up")
 
@@ -111,7 +117,7 @@ def test_caregiver_actions_move_a_candle_and_block_stairs() -> None:
         assert world.act_caregiver(move)
     assert world.blocked_stairs() == (2, 5)
     world.novice = (2, 4)
-    assert world.move_novice("east").kind == "caregiver"  # type: ignore[union-attr]
+    assert world.move_novice("east").kind == "caregiver"
     assert not world.act_caregiver("east")  # a wall
     with pytest.raises(ValueError, match="unknown caregiver action"):
         world.act_caregiver("fly")

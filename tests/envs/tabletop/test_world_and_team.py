@@ -60,7 +60,8 @@ def test_support_operators_and_their_effects(thesis_table: tuple[Any, Any]) -> N
     assert world.holds(held, ("holding", "support", world.items[free].id))
     spot = world.nearest_free_pose(held, free, (10.0, 60.0), 0)
     assert spot is not None and world.preconditions_hold(held, Put(free, spot), "support")
-    assert not world.preconditions_hold(held, Put(free, TablePose(*world.board.area.center, 0)), "support")
+    x, y = world.board.area.center
+    assert not world.preconditions_hold(held, Put(free, TablePose(x, y, 0)), "support")
     with pytest.raises(PlanningError, match="unknown predicate"):
         world.holds(state, ("floating", name))
 
@@ -77,12 +78,12 @@ def test_prohibited_operators_are_never_chosen(seed: int, scheme: str) -> None:
     for op in plans[0][:2]:
         state = world.apply(state, op, "lead")
     problem = SupportProblem.of(world, plans, state)
-    decision = SupportPlanner(scheme, environments=40).fit(problem).decide(problem, seed)
+    decision = SupportPlanner[Any, Any, Any](scheme, environments=40).fit(problem).decide(problem, seed)
     touched = {op.item for env in decision.candidates.environments for op in env.plan}
     assert not touched & {i for i, s in enumerate(state.status) if s is Status.GOAL}
     assert decision.candidates.discarded.get("prohibited", 0) > 0
     free = SupportProblem.of(world, plans, state, prohibited=[])
-    found = SupportPlanner(scheme, environments=40).fit(free).decide(free, seed).candidates
+    found = SupportPlanner[Any, Any, Any](scheme, environments=40).fit(free).decide(free, seed).candidates
     assert any(
         state.status[op.item] is Status.GOAL
         for env in found.environments
@@ -96,9 +97,9 @@ def test_decisions_are_the_same_for_the_same_seed_in_process_or_in_two_processes
 ) -> None:
     scenario, plans = thesis_table
     problem = SupportProblem.of(scenario.world, plans)
-    alone = SupportPlanner("conservative", environments=40).fit(problem).decide(problem, seed=5)
-    again = SupportPlanner("conservative", environments=40).fit(problem).decide(problem, seed=5)
-    with SupportPlanner("conservative", environments=40, workers=2).fit(problem) as planner:
+    alone = SupportPlanner[Any, Any, Any]("conservative", environments=40).fit(problem).decide(problem, seed=5)
+    again = SupportPlanner[Any, Any, Any]("conservative", environments=40).fit(problem).decide(problem, seed=5)
+    with SupportPlanner[Any, Any, Any]("conservative", environments=40, workers=2).fit(problem) as planner:
         shared = planner.decide(problem, seed=5)
     assert alone.scores == again.scores == shared.scores and alone.chosen == shared.chosen
 
@@ -120,7 +121,7 @@ def test_with_support_the_run_finishes_and_is_deterministic(thesis_table: tuple[
     world = scenario.world.with_speeds(1 / 3, 1.0)
     runs = []
     for _ in range(2):
-        with SupportPlanner("conservative", environments=40).fit(SupportProblem.of(world, plans)) as planner:
+        with SupportPlanner[Any, Any, Any]("conservative", environments=40).fit(SupportProblem.of(world, plans)) as planner:
             runs.append(run_team(world, PlanFollowingLead(plans), planner, plans, seed=3, record=True))
     first, second = runs
     assert first.completed and first.support_actions > 0 and first.support_decisions >= first.support_actions
@@ -132,7 +133,7 @@ def test_the_support_agent_yields_to_the_lead_in_a_collision(thesis_table: tuple
     """Arms of 60 cm buffer always collide once both are out: the support agent gives way, the lead never."""
     scenario, plans = thesis_table
     world = scenario.world.with_speeds(1 / 3, 1.0)
-    with SupportPlanner("conservative", environments=40).fit(SupportProblem.of(world, plans)) as planner:
+    with SupportPlanner[Any, Any, Any]("conservative", environments=40).fit(SupportProblem.of(world, plans)) as planner:
         result = run_team(world, PlanFollowingLead(plans), planner, plans, seed=3, buffer=60.0)
     assert (
         result.completed and result.conflicts["support yielded"] > 0 and result.conflicts["lead yielded"] == 0

@@ -40,7 +40,7 @@ try:
     import gymnasium
     from gymnasium import spaces
     from gymnasium.utils import seeding
-    from pettingzoo import ParallelEnv  # type: ignore[import-untyped]
+    from pettingzoo import ParallelEnv
 except ImportError:  # pragma: no cover - the ``envs`` extra is missing
     raise MissingExtraError("the household PettingZoo environment", "pettingzoo", "envs") from None
 
