@@ -7,6 +7,7 @@ name.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
 
@@ -45,9 +46,14 @@ def task_path(file: str | Path) -> Path:
     >>> task_path("ikea-chair").name, str(task_path("my-task.yaml"))
     ('ikea-chair.yaml', 'my-task.yaml')
     """
+    return _named(file, names(), path)
+
+
+def _named(file: str | Path, bundled: list[str], path_of: Callable[[str], Path]) -> Path:
+    """``file`` itself, or the bundled file of that name when it is no file and has no suffix."""
     given = Path(file)
-    if not given.suffix and not given.exists() and str(file) in names():
-        return path(str(file))
+    if not given.suffix and not given.exists() and str(file) in bundled:
+        return path_of(str(file))
     return given
 
 
@@ -80,7 +86,4 @@ def scenario_path(file: str | Path) -> Path:
     >>> scenario_path("two-cells-led").name, str(scenario_path("my-table.yaml"))
     ('two-cells-led.yaml', 'my-table.yaml')
     """
-    given = Path(file)
-    if not given.suffix and not given.exists() and str(file) in circuit_names():
-        return circuit_path(str(file))
-    return given
+    return _named(file, circuit_names(), circuit_path)

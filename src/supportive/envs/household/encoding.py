@@ -31,11 +31,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from supportive.errors import MissingExtraError, WorldError
+from supportive.errors import MissingExtraError, ResetNeededError, WorldError
 from supportive.worlds.household.grid_map import Cell, GridMap, Terrain, load_map
 from supportive.worlds.household.world import Collision, HouseholdWorld
 
 try:
+    import gymnasium
     from gymnasium import spaces
 except ImportError:  # pragma: no cover - the ``envs`` extra is missing
     raise MissingExtraError("the household RL environments", "gymnasium", "envs") from None
@@ -44,6 +45,7 @@ __all__ = [
     "CODE_CHARS",
     "MAX_CODE",
     "CellCode",
+    "EpisodeHost",
     "EpisodeLimits",
     "EpisodeState",
     "action_name",
@@ -351,3 +353,47 @@ class EpisodeState:
     def render(self, p_safe: float | None = None) -> str:
         """The ``ansi`` rendering: the map with the agents and candles, then :meth:`status`."""
         return render_codes(self.observation(), self.status(p_safe))
+
+
+class EpisodeHost:
+    """What both household environments share: the map, the episode's limits, the render mode and the running
+    episode (the Gymnasium and the PettingZoo class each add their API)."""
+
+    metadata: dict[str, Any]
+    _episode: EpisodeState | None
+
+    def _host(self, grid: GridMap | str, max_steps: int, threshold: int, render_mode: str | None) -> None:
+        """Check and keep the settings every household environment takes; no episode yet.
+
+        Raises:
+            WorldError: for a ``render_mode`` other than None or ``"ansi"``, or limits below 1.
+            MapFileError: for an unknown map name or a bad map file.
+        """
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise WorldError(f"render_mode must be None or 'ansi', got {render_mode!r}")
+        self.grid = resolve_grid(grid)
+        self.limits = EpisodeLimits(max_steps, threshold)
+        self.render_mode = render_mode
+        self._episode = None
+
+    @property
+    def episode(self) -> EpisodeState:
+        """The current episode's state.
+
+        Raises:
+            ResetNeededError: before the first :meth:`reset`.
+        """
+        if self._episode is None:
+            raise ResetNeededError("call reset() before step() or render()")
+        return self._episode
+
+    def _ansi(self, p_safe: float | None = None) -> str | None:
+        """The ``ansi`` text of the current state (None, with a warning, when ``render_mode`` is None).
+
+        Raises:
+            ResetNeededError: before the first :meth:`reset`.
+        """
+        if self.render_mode is None:
+            gymnasium.logger.warn("render() called without a render_mode; create the env with render_mode='ansi'")
+            return None
+        return self.episode.render(p_safe)

@@ -26,15 +26,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from supportive.envs.household.encoding import (
-    EpisodeLimits,
+    EpisodeHost,
     EpisodeState,
     action_name,
     caregiver_cell,
     novice_cell,
     observation_space,
-    resolve_grid,
 )
-from supportive.errors import MissingExtraError, ResetNeededError, WorldError
+from supportive.errors import MissingExtraError
 from supportive.safety.caregiver import Caregiver
 from supportive.safety.episode import map_model
 from supportive.worlds.household.grid_map import GridMap
@@ -52,7 +51,7 @@ ENV_ID = "supportive/Household-v0"
 """The Gymnasium id of :class:`NoviceEnv`."""
 
 
-class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
+class NoviceEnv(EpisodeHost, gymnasium.Env[NDArray[np.int8], np.int64]):
     """The novice in the household, alone or with the built-in caregiver.
 
     Args:
@@ -93,31 +92,15 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
         threshold: int = 15,
         render_mode: str | None = None,
     ) -> None:
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise WorldError(f"render_mode must be None or 'ansi', got {render_mode!r}")
-        self.grid = resolve_grid(grid)
-        self.limits = EpisodeLimits(max_steps, threshold)
-        self.render_mode = render_mode
+        self._host(grid, max_steps, threshold, render_mode)
         self.observation_space = observation_space(self.grid)
         self.action_space = spaces.Discrete(len(NOVICE_ACTIONS))
         self.caregiver: Caregiver | None = None
         if caregiver:
             distances, priors = map_model(self.grid)
             self.caregiver = Caregiver(distances, priors)
-        self._episode: EpisodeState | None = None
         self._p_safe: float | None = None
         self._caregiver_actions: tuple[str, ...] = ()
-
-    @property
-    def episode(self) -> EpisodeState:
-        """The current episode's state.
-
-        Raises:
-            ResetNeededError: before the first :meth:`reset`.
-        """
-        if self._episode is None:
-            raise ResetNeededError("call reset() before step() or render()")
-        return self._episode
 
     def _info(self) -> dict[str, Any]:
         info = self.episode.info()
@@ -192,12 +175,7 @@ class NoviceEnv(gymnasium.Env[NDArray[np.int8], np.int64]):
         Raises:
             ResetNeededError: before the first :meth:`reset`.
         """
-        if self.render_mode is None:
-            gymnasium.logger.warn(
-                "render() called without a render_mode; create the env with render_mode='ansi'"
-            )
-            return None
-        return self.episode.render(self._p_safe)
+        return self._ansi(self._p_safe)
 
 
 def register_envs() -> None:

@@ -24,20 +24,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from supportive.envs.household.encoding import (
-    EpisodeLimits,
+    EpisodeHost,
     EpisodeState,
     action_name,
     caregiver_cell,
     novice_cell,
     observation_space,
-    resolve_grid,
 )
 from supportive.errors import MissingExtraError, ResetNeededError, WorldError
 from supportive.worlds.household.grid_map import GridMap
 from supportive.worlds.household.world import CAREGIVER_ACTIONS, NOVICE_ACTIONS, HouseholdWorld
 
 try:
-    import gymnasium
     from gymnasium import spaces
     from gymnasium.utils import seeding
     from pettingzoo import ParallelEnv
@@ -56,7 +54,7 @@ _Observation = NDArray[np.int8]
 _Action = Any
 
 
-class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
+class HouseholdParallelEnv(EpisodeHost, ParallelEnv):  # type: ignore[misc]
     """The novice and the caregiver acting together in the household.
 
     Args:
@@ -92,11 +90,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         threshold: int = 15,
         render_mode: str | None = None,
     ) -> None:
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise WorldError(f"render_mode must be None or 'ansi', got {render_mode!r}")
-        self.grid = resolve_grid(grid)
-        self.limits = EpisodeLimits(max_steps, threshold)
-        self.render_mode = render_mode
+        self._host(grid, max_steps, threshold, render_mode)
         self.possible_agents: list[str] = list(AGENTS)
         self.agents: list[str] = []
         self.observation_spaces: dict[str, spaces.Space[Any]] = {
@@ -107,7 +101,6 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
             "caregiver": spaces.MultiDiscrete([len(CAREGIVER_ACTIONS)] * CAREGIVER_TURN),
         }
         self.np_random, self.np_random_seed = seeding.np_random()
-        self._episode: EpisodeState | None = None
         self._applied: tuple[bool, ...] = ()
 
     def observation_space(self, agent: str) -> spaces.Space[Any]:
@@ -118,17 +111,6 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         """``Discrete(4)`` for the novice, ``MultiDiscrete([7, 7, 7])`` for the caregiver (the same object on
         every call)."""
         return self.action_spaces[agent]
-
-    @property
-    def episode(self) -> EpisodeState:
-        """The current episode's state.
-
-        Raises:
-            ResetNeededError: before the first :meth:`reset`.
-        """
-        if self._episode is None:
-            raise ResetNeededError("call reset() before step() or render()")
-        return self._episode
 
     def _infos(self) -> dict[str, dict[str, Any]]:
         common = self.episode.info()
@@ -217,12 +199,7 @@ class HouseholdParallelEnv(ParallelEnv):  # type: ignore[misc]
         Raises:
             ResetNeededError: before the first :meth:`reset`.
         """
-        if self.render_mode is None:
-            gymnasium.logger.warn(
-                "render() called without a render_mode; create the env with render_mode='ansi'"
-            )
-            return None
-        return self.episode.render()
+        return self._ansi()
 
     def close(self) -> None:
         """Nothing to release."""
