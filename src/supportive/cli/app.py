@@ -12,6 +12,7 @@ import sys
 from typing import Annotated, Any
 
 import typer
+from typer.exceptions import TyperException
 
 from supportive.cli import caregiver, chat, demo, infer, learn, reproduce, serve, support, teach, workbench
 from supportive.cli.bag import bag_app
@@ -94,7 +95,18 @@ def main() -> None:
     command = typer.main.get_command(app)
     _plain_placeholders(command)
     try:
-        command()
+        command.main(standalone_mode=False)
+    except typer.Abort:
+        say("supportive: aborted", to_stderr=True)
+        sys.exit(1)
+    except TyperException as exc:  # a bad option or argument: one line too, with click's status (2)
+        message = getattr(exc, "format_message", None)
+        if message is None:
+            raise
+        context = getattr(exc, "ctx", None)
+        where = context.command_path if context is not None else "supportive"
+        say(f"{where}: error: {printable(message(), newlines=False)}", to_stderr=True)
+        sys.exit(int(getattr(exc, "exit_code", 2)))
     except SupportiveError as exc:
         say(f"supportive: error: {printable(str(exc), newlines=False)}", to_stderr=True)
         sys.exit(2)
