@@ -19,6 +19,7 @@ Both operators map the mass leaving each subgoal (a vector over leaves) to the m
 from __future__ import annotations
 
 import itertools
+from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -80,9 +81,12 @@ class TaskLayout:
             starts, ends, successors = (0,), (0,), ((),)
         else:
             top = htn.top_level
+            leaving: dict[int, set[int]] = defaultdict(set)
+            for src, root, _ in top.edges:
+                leaving[src].add(root)
             follow: list[set[int]] = [set() for _ in range(n_roots)]
             for _, root, dst in top.edges:
-                follow[root].update(r for src, r, _ in top.edges if src == dst)
+                follow[root] |= leaving.get(dst, set())
             starts = tuple(sorted({r for src, r, _ in top.edges if src in top.initial}))
             ends = tuple(sorted({r for _, r, dst in top.edges if dst in top.terminal}))
             successors = tuple(tuple(sorted(f)) for f in follow)

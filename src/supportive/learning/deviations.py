@@ -8,12 +8,19 @@ of the demonstrations allowed to disagree (``floor(s * m)`` of ``m``, so nothing
 * **rare**: a step performed by at most that many demonstrations is taken out of them (a mislabel leaves a
   one-off step behind);
 * **missing**: a step missing from at most that many demonstrations is reported, not made optional;
-* **out of order**: when all but at most that share of the demonstrations performing two steps agree on
-  their order, a demonstration that has them the other way round has a slip; the step involved in the most
-  such disagreements in it is taken out, until none is left.
+* **out of order**: when the demonstrations performing two steps agree on their order despite a few that
+  reverse it (an agreed order, :func:`~supportive.learning.evidence.agreed_orders`: a free pair would split
+  so unevenly with chance below ``evidence``), each reversing demonstration has a slip in one of the two.
+  A step is taken out of a demonstration when the agreed orders it reverses there outweigh the orders it
+  takes part in that vary freely among people (each counts ``VARYING_WEIGHT``): a step people place freely
+  is not called a slip wherever it lands, while one step done far too early or late reverses many agreed
+  orders at once. The step most worth taking out, over all demonstrations (ties: the demonstration with the
+  most reversals, then the first), goes first; counts and agreements are updated, and so on until none is
+  worth it or the budget is spent.
 
 At most ``share`` of all steps are taken out; the demonstrations with a deviation are reported (the learned
-hierarchy need not admit them) and learning uses the rest of their steps.
+hierarchy need not admit them) and learning uses the rest of their steps. On CaptainCook4D, where about a
+third of the recordings have order errors, this keeps what the error-free recordings show (docs/learning.md).
 """
 
 from __future__ import annotations
@@ -25,14 +32,19 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+import numpy.typing as npt
 
-from supportive.learning.evidence import pair_counts
+from supportive.learning.evidence import BoolMatrix, IntMatrix, agreed_orders, pair_counts, slip_allowance
 from supportive.tasks.htn import Leaf
 
 __all__ = ["MAX_COMPARED_STEPS", "Deviation", "set_aside"]
 
 MAX_COMPARED_STEPS = 2000
 """Tasks with more distinct steps than this are not checked for out-of-order slips (pairwise counts)."""
+
+VARYING_WEIGHT = 0.5
+"""How much each freely varying order a step takes part in counts against calling its place a slip: a step
+is taken out when the agreed orders it reverses outnumber half its varying ones."""
 
 Kind = Literal["rare", "missing", "out of order"]
 
@@ -60,9 +72,10 @@ class Deviation:
 
 
 def set_aside(
-    labelled: Sequence[Sequence[Leaf]], share: float
+    labelled: Sequence[Sequence[Leaf]], share: float, evidence: float = 0.05
 ) -> tuple[list[tuple[Leaf, ...]], tuple[Deviation, ...]]:
-    """The demonstrations with their slips taken out, and the slips (see the module docstring)."""
+    """The demonstrations with their slips taken out, and the slips (see the module docstring); ``evidence``
+    decides which orders are agreed (:func:`~supportive.learning.evidence.agreed_orders`)."""
     m = len(labelled)
     tolerated = math.floor(share * m + 1e-9)
     kept: list[list[tuple[int, Leaf]]] = [list(enumerate(demo)) for demo in labelled]
@@ -86,39 +99,120 @@ def set_aside(
             for d, performed in enumerate(labelled):
                 if leaf not in performed:
                     found.append(Deviation(d, -1, leaf, "missing"))
-    budget = _out_of_order(kept, tolerated, share, budget, found)
+    budget = _out_of_order(kept, evidence, budget, found)
     found.sort(key=lambda dev: (dev.demonstration, dev.position, dev.leaf))
     return [tuple(leaf for _, leaf in demo) for demo in kept], tuple(found)
 
 
 def _out_of_order(
-    kept: list[list[tuple[int, Leaf]]], tolerated: int, share: float, budget: int, found: list[Deviation]
+    kept: list[list[tuple[int, Leaf]]], evidence: float, budget: int, found: list[Deviation]
 ) -> int:
-    """Take out, demonstration by demonstration, the steps that reverse orders (nearly) all others agree on."""
+    """Take out, one at a time and best first, the steps that reverse agreed orders (see the module
+    docstring); counts and agreements are brought up to date after each."""
     leaves = sorted({leaf for demo in kept for _, leaf in demo})
     if len(leaves) > MAX_COMPARED_STEPS or budget <= 0:
         return budget
     index = {leaf: i for i, leaf in enumerate(leaves)}
     sequences = [[index[leaf] for _, leaf in demo] for demo in kept]
     before, together = pair_counts(sequences, list(range(len(leaves))))
-    allowed = np.floor(share * together + 1e-9)
-    agreed = (allowed >= before.T) & (before > before.T) & (before.T > 0)
-    if not agreed.any():
+    allowance = slip_allowance(len(sequences), evidence)
+    if not agreed_orders(before, together, allowance).any():
         return budget
-    for d, sequence in enumerate(sequences):
-        while budget > 0:
-            rank = np.full(len(leaves), -1, dtype=np.int64)
-            rank[np.array(sequence, dtype=np.int64)] = np.arange(len(sequence))
-            present = rank >= 0
-            reversed_here = agreed & present[:, None] & present[None, :] & (rank[None, :] < rank[:, None])
-            conflicts = reversed_here.sum(axis=0) + reversed_here.sum(axis=1)
-            if not conflicts.any():
-                break
-            worst = int(max(sequence, key=lambda s: (int(conflicts[s]), -int(rank[s]))))
-            position = int(rank[worst])
-            original, leaf = kept[d][position]
-            found.append(Deviation(d, original, leaf, "out of order"))
-            budget -= 1
-            del kept[d][position]
-            del sequence[position]
+    slips = _SlipSearch(sequences, before, together, allowance)
+    while budget > 0:
+        chosen = slips.worst()
+        if chosen is None:
+            break
+        d, position = chosen
+        original, leaf = kept[d].pop(position)
+        found.append(Deviation(d, original, leaf, "out of order"))
+        slips.remove(d, position)
+        budget -= 1
     return budget
+
+
+class _SlipSearch:
+    """Pair counts, agreed and freely varying orders, and per demonstration and step the agreed orders it
+    reverses and the varying orders it takes part in; kept up to date as steps are taken out."""
+
+    def __init__(
+        self, sequences: list[list[int]], before: IntMatrix, together: IntMatrix, allowance: npt.NDArray[np.int64]
+    ) -> None:
+        size = len(before)
+        self.sequences = sequences
+        self.before, self.together, self.allowance = before, together, allowance
+        self.agreed = agreed_orders(self.before, self.together, self.allowance)
+        self.varying = self._varying(self.before, self.agreed)
+        self.rank = np.full((len(sequences), size), -1, dtype=np.int64)
+        self.reversals = np.zeros((len(sequences), size), dtype=np.int64)
+        self.varied = np.zeros((len(sequences), size), dtype=np.int64)
+        for d, sequence in enumerate(sequences):
+            order = np.array(sequence, dtype=np.int64)
+            self.rank[d, order] = np.arange(len(order))
+            later = np.triu(np.ones((len(order), len(order)), dtype=bool), 1)  # [i, j]: i done before j
+            reversed_here = self.agreed[np.ix_(order, order)].T & later
+            self.reversals[d, order] = reversed_here.sum(axis=0) + reversed_here.sum(axis=1)
+            self.varied[d, order] = self.varying[np.ix_(order, order)].sum(axis=1)
+
+    @staticmethod
+    def _varying(before: IntMatrix, agreed: BoolMatrix) -> BoolMatrix:
+        both_ways: BoolMatrix = (before > 0) & (before.T > 0)
+        result: BoolMatrix = both_ways & ~agreed & ~agreed.T
+        return result
+
+    def worst(self) -> tuple[int, int] | None:
+        """``(demonstration, position)`` of the step most worth taking out, or None when none is."""
+        score = self.reversals - VARYING_WEIGHT * self.varied
+        best: tuple[tuple[float, int, int], int, int] | None = None
+        for d in range(len(self.sequences)):
+            top = float(score[d].max())
+            if top <= 0:
+                continue
+            candidates = np.flatnonzero(score[d] == top)
+            step = int(candidates[np.argmin(self.rank[d, candidates])])
+            key = (top, int(self.reversals[d].sum()), -d)
+            if best is None or key > best[0]:
+                best = (key, d, int(self.rank[d, step]))
+        return None if best is None else (best[1], best[2])
+
+    def remove(self, d: int, position: int) -> None:
+        """Take the step at ``position`` out of demonstration ``d`` and update everything it touched."""
+        step = self.sequences[d].pop(position)
+        others = np.array(self.sequences[d], dtype=np.int64)
+        earlier = self.rank[d, others] < position
+        self.before[others[earlier], step] -= 1
+        self.before[step, others[~earlier]] -= 1
+        self.together[step, others] -= 1
+        self.together[others, step] -= 1
+        old_agreed_row, old_agreed_col = self.agreed[step].copy(), self.agreed[:, step].copy()
+        old_varying = self.varying[step].copy()
+        self._restate(step)
+        # Demonstration d: the pairs (step, t) are gone from it.
+        self.reversals[d, others] -= np.where(earlier, old_agreed_row[others], old_agreed_col[others])
+        self.varied[d, others] -= old_varying[others]
+        self.reversals[d, step] = self.varied[d, step] = 0
+        self.rank[d, step] = -1
+        self.rank[d, others[~earlier]] -= 1
+        # Every other demonstration with the step: its pairs with the step may have changed state.
+        for e in np.flatnonzero(self.rank[:, step] >= 0):
+            at = self.rank[e, step]
+            mates = np.flatnonzero(self.rank[e] >= 0)
+            mates = mates[mates != step]
+            first = self.rank[e, mates] < at  # mate done before the step in e
+            old = np.where(first, old_agreed_row[mates], old_agreed_col[mates]).astype(np.int64)
+            new = np.where(first, self.agreed[step, mates], self.agreed[mates, step]).astype(np.int64)
+            self.reversals[e, mates] += new - old
+            self.reversals[e, step] += int((new - old).sum())
+            change = self.varying[step, mates].astype(np.int64) - old_varying[mates]
+            self.varied[e, mates] += change
+            self.varied[e, step] += int(change.sum())
+
+    def _restate(self, step: int) -> None:
+        """Recompute which orders of ``step`` are agreed or varying after its counts changed."""
+        first, second = self.before[step], self.before[:, step]  # step before / after each other step
+        allowed = self.allowance[self.together[step]]
+        self.agreed[step] = (second > 0) & (first > second) & (second <= allowed)
+        self.agreed[:, step] = (first > 0) & (second > first) & (first <= allowed)
+        varying = (first > 0) & (second > 0) & ~self.agreed[step] & ~self.agreed[:, step]
+        self.varying[step] = varying
+        self.varying[:, step] = varying

@@ -61,7 +61,7 @@ class GeneralResult:
 def learn_general(demonstrations: Sequence[Sequence[str]], settings: GeneralSettings) -> GeneralResult:
     """Learn a hierarchy from action sequences with the ``general`` learner (see the module docstring)."""
     labelled = label_performances(demonstrations)
-    cleaned, deviations = set_aside(labelled, settings.deviations)
+    cleaned, deviations = set_aside(labelled, settings.deviations, settings.evidence)
     few = 1 < len(cleaned) < settings.subtask_demonstrations
     decomposition = fold_repeats(
         decompose(cleaned, evidence=settings.evidence, order_support=settings.support_needed, modules=not few)

@@ -62,10 +62,13 @@ class HTNLearner(Estimator):
     Args:
         mode: ``"general"`` (default) or ``"strict"`` (see the module docstring). Demonstrations with
             explicit states are always learned strictly.
-        deviations: ``general``: the share of demonstrations that may disagree with the rest before their
-            disagreement counts (slips set aside, :mod:`~supportive.learning.deviations`); 0 sets nothing aside.
+        deviations: ``general``: the share of demonstrations that may perform or skip a step the others do
+            not before it counts, and the most of all steps set aside as slips
+            (:mod:`~supportive.learning.deviations`); 0 sets nothing aside.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
-            this (:func:`~supportive.learning.evidence.contiguity_chance`).
+            this (:func:`~supportive.learning.evidence.contiguity_chance`), and an order despite a few
+            demonstrations reversing it when a free pair would split so unevenly with chance below this
+            (:func:`~supportive.learning.evidence.agreed_orders`).
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
             even when no step is between them (:func:`~supportive.learning.evidence.established_precedences`);
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).
