@@ -37,7 +37,7 @@ import numpy.typing as npt
 from supportive.learning.evidence import BoolMatrix, IntMatrix, agreed_orders, pair_counts, slip_allowance
 from supportive.tasks.htn import Leaf
 
-__all__ = ["MAX_COMPARED_STEPS", "Deviation", "set_aside"]
+__all__ = ["MAX_COMPARED_STEPS", "VARYING_WEIGHT", "Deviation", "set_aside"]
 
 MAX_COMPARED_STEPS = 2000
 """Tasks with more distinct steps than this are not checked for out-of-order slips (pairwise counts)."""
