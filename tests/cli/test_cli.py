@@ -44,6 +44,22 @@ def test_learn_dot_and_hddl(tmp_path: Path, cli: CliRunner) -> None:
     assert "(:htn" in (tmp_path / "h" / "problem.hddl").read_text()
 
 
+def test_learn_names_the_slips_it_set_aside(tmp_path: Path, cli: CliRunner) -> None:
+    rows = ["demonstration,step,action"]
+    demos = ["abcdef"] * 6 + ["abdcef"] * 6 + ["bcdefa"] * 3  # three recordings do "a" last
+    rows += [f"r{i + 1},{j + 1},{a}" for i, demo in enumerate(demos) for j, a in enumerate(demo)]
+    path = tmp_path / "demos.csv"
+    path.write_text("\n".join(rows) + "\n")
+    code, out, err = cli(["learn", str(path)])
+    assert code == 0 and "in order a → … → f" in out
+    assert "set aside as slips (3;" in err
+    assert "r13 step 6 a (out of order); r14 step 6 a (out of order); r15 step 6 a (out of order)" in err
+    code, out, err = cli(["learn", str(path), "-f", "json"])
+    assert code == 0 and err == "" and len(json.loads(out)["deviations"]) == 3
+    code, out, err = cli(["learn", str(examples.path("blocks-v"))])
+    assert code == 0 and "slips" not in err
+
+
 def test_learn_reads_csv(tmp_path: Path, cli: CliRunner) -> None:
     path = tmp_path / "demos.csv"
     path.write_text(

@@ -80,16 +80,37 @@ def learn(
         domain, problem = write_hddl(learner.htn_, output)
         say(f"wrote {domain} and {problem}", to_stderr=True)
         return
+    ids = [d.id for d in spec.demonstrations]
     if format is LearnFormat.json:
         data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
-        ids = [d.id for d in spec.demonstrations]
         data["deviations"] = [d.as_dict(ids) for d in learner.deviations_]
         text = json.dumps(data, indent=2) + "\n"
-    elif format is LearnFormat.dot:
-        text = htn_to_dot(learner.htn_)
     else:
-        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
+        if learner.deviations_:
+            say(_slips_notice([d.as_dict(ids) for d in learner.deviations_]), to_stderr=True)
+        if format is LearnFormat.dot:
+            text = htn_to_dot(learner.htn_)
+        else:
+            text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
     write_text(text, output)
+
+
+SLIPS_SHOWN = 5
+"""Slips named in ``learn``'s notice; ``--format json`` lists every one."""
+
+
+def _slips_notice(slips: list[dict[str, object]]) -> str:
+    """One line: how many steps were set aside as slips, the first few, where to find the rest."""
+    named = []
+    for slip in slips[:SLIPS_SHOWN]:
+        where = f" step {slip['step']}" if "step" in slip else ""
+        named.append(printable(f"{slip['demonstration']}{where} {slip['action']} ({slip['kind']})"))
+    more = f", and {len(slips) - SLIPS_SHOWN} more" if len(slips) > SLIPS_SHOWN else ""
+    return (
+        f"set aside as slips ({len(slips)}; the hierarchy need not admit them, --format json lists them): "
+        + "; ".join(named)
+        + more
+    )
 
 
 def generate(
