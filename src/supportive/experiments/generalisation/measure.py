@@ -13,7 +13,7 @@ from supportive.generate import random_structure
 from supportive.io.captaincook import load_captaincook
 from supportive.learning import HTNLearner
 from supportive.learning.precedence import implied_precedences, precedence_scores
-from supportive.tasks.htn import count_orderings, iter_orderings, sample_ordering, to_leaves
+from supportive.tasks.htn import HTN, count_orderings, iter_orderings, sample_ordering, to_leaves
 
 __all__ = ["LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
 
@@ -23,6 +23,8 @@ LEARNERS = ("general", "strict")
 SIZES = (4, 12)
 DEMONSTRATIONS = 4
 ORDERINGS_LIMIT = 5000
+SLIP_CLEAN, SLIPPED = 16, 4
+"""Slips on generated tasks: this many sampled demonstrations, and this many more with one step moved."""
 
 
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
@@ -57,14 +59,29 @@ def _synthetic(trial: Trial) -> dict[str, Any]:
     out: dict[str, Any] = {"profile": trial.params["profile"], "actions": len(structure.leaves), "orderings": len(valid)}
     for mode in LEARNERS:
         htn = HTNLearner(mode=mode).fit(demos).htn_  # type: ignore[arg-type]
-        admitted = htn.count_orderings()
-        hits = sum(htn.admits(o) for o in valid)
-        out[mode] = {
-            "recall": hits / len(valid),
-            "precision": min(1.0, hits / admitted) if admitted else 1.0,
-            "complete": htn.complete,
-        }
+        out[mode] = {**_orderings_scores(htn, valid), "complete": htn.complete}
+    clean = [[a for a, _ in sample_ordering(structure, rng)] for _ in range(SLIP_CLEAN)]
+    slipped = [_moved_step([a for a, _ in sample_ordering(structure, rng)], rng) for _ in range(SLIPPED)]
+    out["slips"] = {
+        "clean": _orderings_scores(HTNLearner().fit(clean).htn_, valid),
+        "with_slips": _orderings_scores(HTNLearner().fit(clean + slipped).htn_, valid),
+        "with_slips_none_set_aside": _orderings_scores(HTNLearner(deviations=0).fit(clean + slipped).htn_, valid),
+    }
     return out
+
+
+def _orderings_scores(htn: HTN, valid: Sequence[Sequence[str]]) -> dict[str, float]:
+    """Recall of the valid orderings and precision of the admitted ones."""
+    admitted = htn.count_orderings()
+    hits = sum(htn.admits(o) for o in valid)
+    return {"recall": hits / len(valid), "precision": min(1.0, hits / admitted) if admitted else 1.0}
+
+
+def _moved_step(demo: list[str], rng: np.random.Generator) -> list[str]:
+    """``demo`` with one step taken out and put back at a random place (a slip)."""
+    step = demo.pop(int(rng.integers(len(demo))))
+    demo.insert(int(rng.integers(len(demo) + 1)), step)
+    return demo
 
 
 def _recipe(index: int) -> dict[str, Any]:
@@ -94,7 +111,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     """Means per profile and learner; CaptainCook admission and precedence scores per learner."""
     synthetic = [r for r in results if r["kind"] == "synthetic"]
     recipes = [r for r in results if r["kind"] == "recipe"]
-    out: dict[str, Any] = {"synthetic": {}, "captaincook": {}, "tasks": [dict(r) for r in results]}
+    out: dict[str, Any] = {"synthetic": {}, "slips": {}, "captaincook": {}, "tasks": [dict(r) for r in results]}
     for profile in sorted({r["profile"] for r in synthetic}):
         rows = [r for r in synthetic if r["profile"] == profile]
         out["synthetic"][profile] = {
@@ -105,6 +122,13 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 "complete": sum(bool(r[mode]["complete"]) for r in rows),
             }
             for mode in LEARNERS
+        }
+        out["slips"][profile] = {
+            data: {
+                metric: round(float(np.mean([r["slips"][data][metric] for r in rows])), 4)
+                for metric in ("recall", "precision")
+            }
+            for data in ("clean", "with_slips", "with_slips_none_set_aside")
         }
     if recipes:
         held = sum(int(r["held_out"]) for r in recipes)

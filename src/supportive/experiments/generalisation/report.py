@@ -6,7 +6,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from supportive.experiments.generalisation.measure import DEMONSTRATIONS, LEARNERS, SIZES
+from supportive.experiments.generalisation.measure import DEMONSTRATIONS, LEARNERS, SIZES, SLIP_CLEAN, SLIPPED
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
@@ -32,6 +32,23 @@ def report(metrics: Mapping[str, Any]) -> str:
             ],
         ),
     ]
+    if metrics.get("slips"):
+        lines += [
+            "",
+            f"Slips on the same tasks (general learner): {SLIP_CLEAN} sampled demonstrations, then those and {SLIPPED}",
+            "more with one step moved to a random place; the last column sets nothing aside (`deviations=0`). A",
+            "moved step that lands inside another subtask breaks its contiguity rather than an order, which the",
+            "slip search does not look for (docs/learning.md).",
+            "",
+            *markdown_table(
+                ["profile", "clean: recall / precision", "with slips", "with slips, none set aside"],
+                [
+                    [profile]
+                    + [f"{m[data]['recall']:.3f} / {m[data]['precision']:.3f}" for data in ("clean", "with_slips", "with_slips_none_set_aside")]
+                    for profile, m in metrics["slips"].items()
+                ],
+            ),
+        ]
     if metrics["captaincook"]:
         lines += [
             "",
