@@ -99,25 +99,25 @@ def set_aside(
             for d, performed in enumerate(labelled):
                 if leaf not in performed:
                     found.append(Deviation(d, -1, leaf, "missing"))
-    budget = _out_of_order(kept, evidence, budget, found)
+    _out_of_order(kept, evidence, budget, found)
     found.sort(key=lambda dev: (dev.demonstration, dev.position, dev.leaf))
     return [tuple(leaf for _, leaf in demo) for demo in kept], tuple(found)
 
 
 def _out_of_order(
     kept: list[list[tuple[int, Leaf]]], evidence: float, budget: int, found: list[Deviation]
-) -> int:
+) -> None:
     """Take out, one at a time and best first, the steps that reverse agreed orders (see the module
     docstring); counts and agreements are brought up to date after each."""
     leaves = sorted({leaf for demo in kept for _, leaf in demo})
     if len(leaves) > MAX_COMPARED_STEPS or budget <= 0:
-        return budget
+        return
     index = {leaf: i for i, leaf in enumerate(leaves)}
     sequences = [[index[leaf] for _, leaf in demo] for demo in kept]
     before, together = pair_counts(sequences, list(range(len(leaves))))
     allowance = slip_allowance(len(sequences), evidence)
-    if not agreed_orders(before, together, allowance).any():
-        return budget
+    if not agreed_orders(before, before.T, together, allowance).any():
+        return
     slips = _SlipSearch(sequences, before, together, allowance)
     while budget > 0:
         chosen = slips.worst()
@@ -128,7 +128,6 @@ def _out_of_order(
         found.append(Deviation(d, original, leaf, "out of order"))
         slips.remove(d, position)
         budget -= 1
-    return budget
 
 
 class _SlipSearch:
@@ -141,8 +140,8 @@ class _SlipSearch:
         size = len(before)
         self.sequences = sequences
         self.before, self.together, self.allowance = before, together, allowance
-        self.agreed = agreed_orders(self.before, self.together, self.allowance)
-        self.varying = self._varying(self.before, self.agreed)
+        self.agreed = agreed_orders(self.before, self.before.T, self.together, self.allowance)
+        self.varying = self._varying(self.before, self.before.T, self.agreed, self.agreed.T)
         self.rank = np.full((len(sequences), size), -1, dtype=np.int64)
         self.reversals = np.zeros((len(sequences), size), dtype=np.int64)
         self.varied = np.zeros((len(sequences), size), dtype=np.int64)
@@ -155,9 +154,10 @@ class _SlipSearch:
             self.varied[d, order] = self.varying[np.ix_(order, order)].sum(axis=1)
 
     @staticmethod
-    def _varying(before: IntMatrix, agreed: BoolMatrix) -> BoolMatrix:
-        both_ways: BoolMatrix = (before > 0) & (before.T > 0)
-        result: BoolMatrix = both_ways & ~agreed & ~agreed.T
+    def _varying(first: IntMatrix, second: IntMatrix, forward: BoolMatrix, backward: BoolMatrix) -> BoolMatrix:
+        """Elementwise: the order varies freely (seen both ways, agreed neither way); the arguments as for
+        :func:`~supportive.learning.evidence.agreed_orders`, with the agreements each way."""
+        result: BoolMatrix = (first > 0) & (second > 0) & ~forward & ~backward
         return result
 
     def worst(self) -> tuple[int, int] | None:
@@ -210,9 +210,8 @@ class _SlipSearch:
     def _restate(self, step: int) -> None:
         """Recompute which orders of ``step`` are agreed or varying after its counts changed."""
         first, second = self.before[step], self.before[:, step]  # step before / after each other step
-        allowed = self.allowance[self.together[step]]
-        self.agreed[step] = (second > 0) & (first > second) & (second <= allowed)
-        self.agreed[:, step] = (first > 0) & (second > first) & (first <= allowed)
-        varying = (first > 0) & (second > 0) & ~self.agreed[step] & ~self.agreed[:, step]
+        self.agreed[step] = agreed_orders(first, second, self.together[step], self.allowance)
+        self.agreed[:, step] = agreed_orders(second, first, self.together[step], self.allowance)
+        varying = self._varying(first, second, self.agreed[step], self.agreed[:, step])
         self.varying[step] = varying
         self.varying[:, step] = varying

@@ -76,12 +76,15 @@ def slip_allowance(demonstrations: int, evidence: float) -> npt.NDArray[np.int64
     return result
 
 
-def agreed_orders(before: IntMatrix, together: IntMatrix, allowance: npt.NDArray[np.int64]) -> BoolMatrix:
-    """``A[i, j]``: "i before j" is agreed despite some demonstrations reversing it (see the module
-    docstring); ``allowance`` from :func:`slip_allowance`. Unanimous orders are not listed (nothing to set
-    aside)."""
-    reversed_ = before.T
-    agreed: BoolMatrix = (reversed_ > 0) & (before > reversed_) & (reversed_ <= allowance[together])
+def agreed_orders(
+    first: npt.NDArray[np.int64], second: npt.NDArray[np.int64], together: npt.NDArray[np.int64],
+    allowance: npt.NDArray[np.int64],
+) -> BoolMatrix:
+    """Elementwise: "x before y" is agreed despite some demonstrations reversing it (see the module
+    docstring), where ``first`` counts the demonstrations doing x first, ``second`` those doing y first and
+    ``together`` those doing both; ``allowance`` from :func:`slip_allowance`. Unanimous orders are not agreed
+    (nothing to set aside). For the whole matrix: ``agreed_orders(before, before.T, together, allowance)``."""
+    agreed: BoolMatrix = (second > 0) & (first > second) & (second <= allowance[together])
     return agreed
 
 
