@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from supportive.errors import NotFittedError
 from supportive.inference import END_LABEL, ObservationModel, ProgressHMM, StepPredictor
-from supportive.inference.progress import END, ProgressModel
+from supportive.learning.distribution import END, ProgressModel
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, iter_orderings
 
 Shape = str | tuple[str, list["Shape"]]

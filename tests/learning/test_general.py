@@ -115,25 +115,32 @@ def test_unseen_orders_of_a_clique_are_admitted() -> None:
 
 
 def test_a_slip_is_set_aside_and_reported() -> None:
-    clean = [list("abcdef")] * 6 + [list("abdcef")] * 5
+    clean = [list("abcdef")] * 10 + [list("abdcef")] * 10
     slipped = [*clean, list("acbdef")]  # one demonstration swaps b and c, which everyone else orders
     learner = HTNLearner().fit(slipped)
     assert [(d.demonstration, d.kind, d.leaf[0]) for d in learner.deviations_] in (
-        [(11, "out of order", "b")],
-        [(11, "out of order", "c")],
+        [(20, "out of order", "b")],
+        [(20, "out of order", "c")],
     )
+    assert learner.noise_ is not None and learner.noise_.counts == {"out of order": 1} and learner.noise_.gain > 0
     assert learner.htn_.canonical() == HTNLearner().fit(clean).htn_.canonical()
-    kept = HTNLearner(deviations=0).fit(slipped)
+    kept = HTNLearner(slips=False).fit(slipped)
     assert kept.deviations_ == () and all(kept.htn_.admits(d) for d in slipped)
 
 
+def test_a_swap_a_few_demonstrations_cannot_tell_from_a_variant_is_kept() -> None:
+    clean = [list("abcdef")] * 6 + [list("abdcef")] * 6
+    learner = HTNLearner().fit([*clean, list("acbdef")])
+    assert learner.deviations_ == ()  # b before c in 12 of 13 is weaker evidence than the slip would cost
+
+
 def test_rare_steps_and_missing_steps_are_slips_when_rare_enough() -> None:
-    clean = [list("abcd")] * 10
+    clean = [list("abcd")] * 20
     mislabel = list("abxcd")  # a one-off step nobody else performs
     missing = list("abd")
     learner = HTNLearner().fit([*clean, mislabel, missing])
     kinds = {(d.demonstration, d.kind) for d in learner.deviations_}
-    assert (10, "rare") in kinds and (11, "missing") in kinds
+    assert kinds == {(20, "unknown"), (21, "missing")}
     c = next(leaf for leaf in _leaves(learner.htn_.roots[0]) if leaf.action == "c")
     assert not c.optional, "a step one slip left out stays required"
 

@@ -84,6 +84,8 @@ def learn(
     if format is LearnFormat.json:
         data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
         data["deviations"] = [d.as_dict(ids) for d in learner.deviations_]
+        if learner.noise_ is not None:
+            data["noise"] = learner.noise_.as_dict()
         text = json.dumps(data, indent=2) + "\n"
     else:
         if learner.deviations_:
@@ -201,6 +203,7 @@ def captaincook(
     the learned model implies against the recipe's published task graph."""
     from supportive.experiments.captaincook.recipes import captaincook_report, recipe_means
     from supportive.io.captaincook import load_captaincook
+    from supportive.learning.graph_edges import PEERS
     from supportive.render.tables import fitted_table
 
     reports = captaincook_report(load_captaincook(data))
@@ -208,24 +211,32 @@ def captaincook(
         rows = [r.as_dict() for r in reports]
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
-    headers = ["recipe", "demos", "actions", "known orders", "roots", "precision", "recall", "F1"]
+    headers = ["recipe", "demos", "actions", "roots", "precision", "recall", "F1", "edge F1", "5-shot"]
     cells = [
         [
             r.recipe,
             str(r.demonstrations),
             str(r.actions),
-            str(r.known_paths),
             str(r.roots),
             f"{r.score.precision:.3f}",
             f"{r.score.recall:.3f}",
             f"{r.score.f1:.3f}",
+            f"{r.edges.f1:.3f}",
+            f"{r.few_shot_edges.f1:.3f}",
         ]
         for r in reports
     ]
-    title = "CaptainCook4D: implied precedences vs the published task graphs"
+    title = "CaptainCook4D: implied precedences and task-graph edges vs the published task graphs"
     out.print(fitted_table(out, title, headers, cells, numeric=range(1, len(headers))))
     means = recipe_means(reports)
     out.print(
-        f"mean over {means.recipes} recipes: precision {means.precision:.3f}, recall {means.recall:.3f}, "
-        f"F1 {means.f1:.3f}; every learned model admits all its recordings: {means.all_admitted}"
+        f"mean over {means.recipes} recipes: precedence precision {means.precision:.3f}, recall "
+        f"{means.recall:.3f}, F1 {means.f1:.3f}; every learned model admits all its recordings: "
+        f"{means.all_admitted}"
     )
+    for setting, scores in (("full", means.edges), ("5-shot", means.few_shot_edges)):
+        peers = ", ".join(f"{name} {f1[setting]:.3f}" for name, f1 in PEERS.items() if setting in f1)
+        out.print(
+            f"task-graph edges ({setting}, the protocol of Differentiable Task Graph Learning): precision "
+            f"{scores['precision']:.3f}, recall {scores['recall']:.3f}, F1 {scores['f1']:.3f}; published: {peers}"
+        )

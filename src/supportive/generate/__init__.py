@@ -26,6 +26,7 @@ from supportive.generate.orderings import (
     sample_orderings,
     valid_orderings,
 )
+from supportive.generate.partial_orders import PartialOrderTask, random_partial_order
 from supportive.generate.statistics import ikea_statistics, structure_statistics
 from supportive.generate.structures import Profile, random_structure
 from supportive.generate.tasks import THESIS_DEPTH_RANGE, generate_task, ikea_task_set
@@ -36,6 +37,7 @@ __all__ = [
     "THESIS_DEPTH_RANGE",
     "GenerationError",
     "IkeaParams",
+    "PartialOrderTask",
     "Profile",
     "TooManyOrderingsError",
     "UniformParams",
@@ -48,6 +50,7 @@ __all__ = [
     "ikea_task_set",
     "is_normalised",
     "normalise",
+    "random_partial_order",
     "random_structure",
     "sample_demonstrations",
     "sample_orderings",

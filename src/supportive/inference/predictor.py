@@ -23,7 +23,10 @@ from supportive.tasks.spec import TaskSpec
 
 __all__ = ["END_LABEL", "StepPredictor"]
 
-_LEARNER = ("mode", "deviations", "evidence", "order_support", "subtask_demonstrations")
+_LEARNER = (
+    "mode", "slips", "slip_margin", "slip_rate", "slip_rate_weight", "max_slip_candidates", "evidence",
+    "order_support", "subtask_demonstrations",
+)
 _TRACKER = ("smoothing", "slip", "restart", "max_states", "beam")
 
 
@@ -31,7 +34,8 @@ class StepPredictor(Estimator):
     """Next-step prediction (see the module docstring).
 
     Args:
-        **settings: Learner settings (``mode``, ``deviations``, ``evidence``, ``order_support``,
+        **settings: Learner settings (``mode``, ``slips``, ``slip_margin``, ``slip_rate``,
+            ``slip_rate_weight``, ``max_slip_candidates``, ``evidence``, ``order_support``,
             ``subtask_demonstrations``; see :class:`HTNLearner`) and tracker settings (``smoothing``,
             ``slip``, ``restart``, ``max_states``, ``beam``; see :class:`ProgressHMM`).
 

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 from scipy import sparse
 
-from supportive.inference.progress import END, ProgressModel
+from supportive.learning.distribution import END, ProgressModel
 from supportive.tasks.executions import Progress
 
 __all__ = ["ProgressMatrices"]

@@ -1,6 +1,6 @@
 """Track a teammate through a task: a progress-aware filter driven by contact events or by known actions.
 
-The belief is over the states of :class:`~supportive.inference.progress.ProgressModel` (what is done, what is
+The belief is over the states of :class:`~supportive.learning.distribution.ProgressModel` (what is done, what is
 under way) plus **finished**. Two kinds of evidence move it, through one filter:
 
 * :meth:`ProgressFilter.update` takes one moment's contact events (the observation model of §2.1.7.1): the
@@ -35,9 +35,9 @@ from supportive.errors import LearningError
 from supportive.estimator import Estimator
 from supportive.inference.hmm import Belief, fitted_events
 from supportive.inference.observations import ObservationModel
-from supportive.inference.progress import END, ProgressModel
 from supportive.inference.progress_matrices import ProgressMatrices
 from supportive.inference.transitions import TaskLayout
+from supportive.learning.distribution import END, ProgressModel
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode
 from supportive.tasks.naming import named

@@ -54,12 +54,21 @@ class Recipe:
         spec: One task: the published steps as actions, the error-free recordings as demonstrations.
         published: Pairs ``(a, b)`` of leaves ``(action id, occurrence)`` such that the published graph puts
             ``a`` before ``b`` (the transitive closure of its edges, START and END left out).
+        graph_edges: The published graph's edges as given, ``(earlier, later)``, between leaves and the
+            ``"START"`` and ``"END"`` terminals (the ground truth of the task-graph protocol,
+            :mod:`supportive.learning.graph_edges`).
     """
 
     name: str
     title: str
     spec: TaskSpec
     published: frozenset[tuple[Leaf, Leaf]]
+    graph_edges: frozenset[tuple[Leaf | str, Leaf | str]] = frozenset()
+
+    @property
+    def steps(self) -> frozenset[Leaf]:
+        """The published graph's steps, as leaves."""
+        return frozenset(node for edge in self.graph_edges for node in edge if not isinstance(node, str))
 
 
 def recipe_slug(title: str) -> str:
@@ -198,7 +207,9 @@ def _natural(text: str) -> tuple[tuple[int, int | str], ...]:
 def _recipe(root: Path, title: str, recordings: Sequence[Mapping[str, Any]], errors: bool = False) -> Recipe:
     slug = recipe_slug(title)
     path = root / _GRAPHS_DIR / f"{slug}.json"
-    texts, edges = _graph(path)
+    nodes, all_edges = _graph(path)
+    texts = {k: v for k, v in nodes.items() if v not in _TERMINALS}
+    edges = [(a, b) for a, b in all_edges if a in texts and b in texts]
     order = _topological(texts, edges, path)
     ids = _action_ids(dict.fromkeys(texts[n] for n in order))
     leaf_of: dict[str, Leaf] = {}
@@ -215,11 +226,13 @@ def _recipe(root: Path, title: str, recordings: Sequence[Mapping[str, Any]], err
     published = frozenset(
         (leaf_of[a], leaf_of[b]) for a, after in _closure(order, edges).items() for b in after
     )
-    return Recipe(name=slug, title=title, spec=spec, published=published)
+    named: dict[str, Leaf | str] = {k: v for k, v in nodes.items() if v in _TERMINALS} | leaf_of
+    graph_edges = frozenset((named[a], named[b]) for a, b in all_edges)
+    return Recipe(name=slug, title=title, spec=spec, published=published, graph_edges=graph_edges)
 
 
 def _graph(path: Path) -> tuple[dict[str, str], list[tuple[str, str]]]:
-    """Step texts by node id and the edges, START and END removed."""
+    """The graph file's node texts by id (START and END included) and all its edges, checked."""
     data = _read_json(path)
     try:
         steps = {str(k): str(v) for k, v in data["steps"].items()}
@@ -231,10 +244,9 @@ def _graph(path: Path) -> tuple[dict[str, str], list[tuple[str, str]]]:
     for a, b in edges:
         if a not in steps or b not in steps:
             raise DatasetError(f"{path}: edge [{a}, {b}] names an unknown step")
-    texts = {k: v for k, v in steps.items() if v not in _TERMINALS}
-    if not texts:
+    if all(text in _TERMINALS for text in steps.values()):
         raise DatasetError(f"{path}: no steps")
-    return texts, [(a, b) for a, b in edges if a in texts and b in texts]
+    return steps, edges
 
 
 def _topological(texts: Mapping[str, str], edges: Iterable[tuple[str, str]], path: Path) -> list[str]:

@@ -30,31 +30,37 @@ _START, _END = ("<start>", 0), ("<end>", 0)
 def label_performances(demonstrations: Sequence[Sequence[str]]) -> list[tuple[Leaf, ...]]:
     """Each demonstration as a sequence of ``(action, instance)`` labels (see the module docstring).
 
-    A demonstration that performs an action as often as the most frequent one keeps the counted numbering;
-    so with no skipped performances the result is :func:`~supportive.tasks.htn.to_leaves` of each.
+    An action has as many instances as most of the demonstrations performing it perform it (the larger count
+    on a tie). A demonstration that performs it that often keeps the counted numbering, so with no skipped or
+    repeated performance the result is :func:`~supportive.tasks.htn.to_leaves` of each; one that performs it
+    less often has its performances matched to the instances whose contexts fit; one that performs it more
+    often has the instances matched to the performances that fit them best, and its other performances are
+    labelled after the last instance (``k + 1``, ``k + 2``, … in order: a repeated step).
     """
     labelled = [list(to_leaves(demo)) for demo in demonstrations]
-    most = Counter[str]()
+    tallies: dict[str, Counter[int]] = {}
     for demo in demonstrations:
         for action, count in Counter(demo).items():
-            most[action] = max(most[action], count)
+            tallies.setdefault(action, Counter())[count] += 1
+    full = Counter({action: max(t, key=lambda k: (t[k], k)) for action, t in tallies.items()})
     short = {
         action
-        for action, k in most.items()
-        if k > 1 and any(0 < Counter(demo)[action] < k for demo in demonstrations)
+        for action, k in full.items()
+        if any(Counter(demo)[action] not in (0, k) for demo in demonstrations)
+        and (k > 1 or any(Counter(demo)[action] > k for demo in demonstrations))
     }
     if not short:
         return [tuple(demo) for demo in labelled]
     for _ in range(_ROUNDS):
-        contexts = _contexts(labelled, demonstrations, most, short)
+        contexts = _contexts(labelled, demonstrations, full, short)
         changed = False
         for d, demo in enumerate(demonstrations):
             counts = Counter(demo)
             for action in short:
-                if counts[action] in (0, most[action]):
+                if counts[action] in (0, full[action]):
                     continue
                 positions = [i for i, a in enumerate(demo) if a == action]
-                slots = _assign(positions, labelled[d], contexts[action], most[action])
+                slots = _assign(positions, labelled[d], contexts[action], full[action])
                 for position, slot in zip(positions, slots, strict=True):
                     if labelled[d][position] != (action, slot):
                         labelled[d][position] = (action, slot)
@@ -67,18 +73,18 @@ def label_performances(demonstrations: Sequence[Sequence[str]]) -> list[tuple[Le
 def _contexts(
     labelled: Sequence[Sequence[Leaf]],
     demonstrations: Sequence[Sequence[str]],
-    most: Counter[str],
+    full: Counter[str],
     short: set[str],
 ) -> dict[str, list[tuple[Counter[Leaf], Counter[Leaf]]]]:
     """For each action of ``short``: per instance, the labels seen just before and just after it in the
-    demonstrations that perform the action in full."""
+    demonstrations that perform the action as often as it has instances."""
     out: dict[str, list[tuple[Counter[Leaf], Counter[Leaf]]]] = {
-        action: [(Counter(), Counter()) for _ in range(most[action])] for action in short
+        action: [(Counter(), Counter()) for _ in range(full[action])] for action in short
     }
     for demo, labels in zip(demonstrations, labelled, strict=True):
         counts = Counter(demo)
         for i, (action, instance) in enumerate(labels):
-            if action not in short or counts[action] != most[action]:
+            if action not in short or counts[action] != full[action]:
                 continue
             before, after = out[action][instance - 1]
             before[labels[i - 1] if i else _START] += 1
@@ -92,7 +98,9 @@ def _assign(
     contexts: Sequence[tuple[Counter[Leaf], Counter[Leaf]]],
     k: int,
 ) -> list[int]:
-    """Instances (1..k, increasing) for the performances at ``positions``, maximising context agreement."""
+    """Labels for the performances at ``positions``: instances 1..k matched in order to as many of them as
+    possible, maximising context agreement (dynamic programming over an order-preserving matching); the
+    performances left over (when there are more than ``k``) get ``k + 1``, ``k + 2``, … in order."""
     n = len(positions)
 
     def score(p: int, slot: int) -> int:
@@ -102,17 +110,32 @@ def _assign(
         nxt = labels[i + 1] if i + 1 < len(labels) else _END
         return before[prev] + after[nxt]
 
-    # best[p][s]: best score placing performances p.. into slots s.. (slots are 0-based here)
+    # best[p][s]: best score matching performances p.. with slots s.., matching min(n - p, k - s) of them
     best = [[0] * (k + 1) for _ in range(n + 1)]
+    choice = [[0] * (k + 1) for _ in range(n + 1)]  # 0 match, 1 skip the slot, 2 leave the performance over
     for p in range(n - 1, -1, -1):
-        for s in range(k - (n - p), -1, -1):
-            take = score(p, s) + best[p + 1][s + 1]
-            skip = best[p][s + 1] if k - (s + 1) >= n - p else -1
-            best[p][s] = max(take, skip)
-    slots, s = [], 0
-    for p in range(n):
-        while k - (s + 1) >= n - p and best[p][s + 1] >= score(p, s) + best[p + 1][s + 1] + 1:
+        for s in range(k - 1, -1, -1):
+            options = [(score(p, s) + best[p + 1][s + 1], 0)]
+            if k - s - 1 >= n - p:
+                options.append((best[p][s + 1], 1))
+            if n - p - 1 >= k - s:
+                options.append((best[p + 1][s], 2))
+            best[p][s], choice[p][s] = max(options, key=lambda option: (option[0], -option[1]))
+    slots: list[int] = []
+    extra = k
+    p = s = 0
+    while p < n:
+        if s == k:
+            extra += 1
+            slots.append(extra)
+            p += 1
+        elif choice[p][s] == 0:
+            slots.append(s + 1)
+            p, s = p + 1, s + 1
+        elif choice[p][s] == 1:
             s += 1
-        slots.append(s + 1)
-        s += 1
+        else:
+            extra += 1
+            slots.append(extra)
+            p += 1
     return slots

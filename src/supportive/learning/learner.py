@@ -10,6 +10,7 @@ see :mod:`supportive.learning.general` and docs/learning.md for the measurements
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -20,8 +21,10 @@ from supportive.estimator import Estimator
 from supportive.learning.ambiguity import resolve_ambiguity
 from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
-from supportive.learning.deviations import Deviation
-from supportive.learning.general import GeneralSettings, learn_general
+from supportive.learning.general import GeneralResult, learn_general
+from supportive.learning.noise import Deviation, NoiseEstimate, NoiseSettings
+from supportive.learning.selection import CANDIDATES, CONSISTENT, READINGS, Selection, select_reading
+from supportive.learning.structure import FittedStructure, StructureSettings
 from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.naming import known_names, named
 from supportive.tasks.spec import Demonstration, TaskSpec
@@ -30,7 +33,7 @@ from supportive.tasks.task_graph import TaskGraph
 __all__ = ["HTNLearner", "LearningStats", "learn"]
 
 DemonstrationLike = Demonstration | Sequence[str]
-Mode = Literal["general", "strict"]
+Mode = Literal["auto", "general", "strict", "partial order"]
 
 
 @dataclass(frozen=True)
@@ -60,11 +63,20 @@ class HTNLearner(Estimator):
     """Clique/Chain HTN learner (§2.1).
 
     Args:
-        mode: ``"general"`` (default) or ``"strict"`` (see the module docstring). Demonstrations with
-            explicit states are always learned strictly.
-        deviations: ``general``: the share of demonstrations that may perform or skip a step the others do
-            not before it counts, and the most of all steps set aside as slips
-            (:mod:`~supportive.learning.deviations`); 0 sets nothing aside.
+        mode: ``"auto"`` (default): learn the ``general``, ``strict`` and ``partial order`` readings (the
+            first and last also with every consistent order established) and keep the one that best predicts
+            held-out demonstrations (:mod:`~supportive.learning.selection`); or one of the three by name. Demonstrations with explicit states are always learned strictly.
+        slips: ``general``: look for slips (steps out of order, repeated, missing or unknown) and learn
+            without them (:mod:`~supportive.learning.noise`); False learns from every step as it is.
+        slip_margin: ``general``: a set of slips is kept only when it makes the demonstrations more probable
+            by more than this many nats (its natural log-likelihood ratio against the explanation without
+            it, after the noise it claims has been paid for); 0 or more.
+        slip_rate: ``general``: the prior mean of how often a step slips, per step and kind; in (0, 0.5).
+        slip_rate_weight: ``general``: how many observed steps that prior is worth (each kind's rate is
+            integrated out under a beta prior with this mean and weight, so demonstrations with many more
+            steps outweigh it); above 0.
+        max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
+            (the candidates that reverse the most agreed orders); at least 1.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
             this (:func:`~supportive.learning.evidence.contiguity_chance`), and an order despite a few
             demonstrations reversing it when a free pair would split so unevenly with chance below this
@@ -75,6 +87,10 @@ class HTNLearner(Estimator):
         subtask_demonstrations: ``general``: from how many demonstrations on contiguous runs are made
             subtasks (chains and cliques); with fewer, the steps are kept in the orders the evidence
             establishes (a partial order, as a partial hierarchy's top level).
+        selection_folds: ``auto``: folds of the cross-validation that chooses the reading (leave one out with
+            fewer demonstrations); at least 2.
+        selection_demonstrations: ``auto``: the fewest demonstrations the readings are compared on (with
+            fewer, ``general`` is kept); at least 2.
         alternatives: Most alternative hierarchies to look for when the result is partial (0: none).
         max_alternative_roots: Look for alternatives only when at most this many roots are left.
         names: Leaf set -> name for subtasks whose name is known (a ground truth's names, say); by default
@@ -87,6 +103,9 @@ class HTNLearner(Estimator):
         ctg_: Its Conjugate Task Graph (redundant edges removed).
         htn_: The learned hierarchy with its alternatives.
         deviations_: The slips set aside (``general``), in demonstration order.
+        noise_: The noise model fitted with them: slips and rate per kind (``general``; None otherwise).
+        reading_: The reading learned (one of :data:`~supportive.learning.selection.CANDIDATES`).
+        selection_: Why it was chosen (``auto``; None otherwise).
         labelled_: Every demonstration as the leaves the hierarchy gave its steps.
         stats_: Sizes and time.
 
@@ -103,21 +122,35 @@ class HTNLearner(Estimator):
     def __init__(
         self,
         *,
-        mode: Mode = "general",
-        deviations: float = 0.1,
+        mode: Mode = "auto",
+        slips: bool = True,
+        slip_margin: float = 0.0,
+        slip_rate: float = 0.03,
+        slip_rate_weight: float = 1000.0,
+        max_slip_candidates: int = 48,
         evidence: float = 0.05,
         order_support: int | None = None,
         subtask_demonstrations: int = 4,
+        selection_folds: int = 5,
+        selection_demonstrations: int = 5,
         alternatives: int = 8,
         max_alternative_roots: int = 64,
         names: dict[frozenset[Leaf], str] | None = None,
     ) -> None:
-        if mode not in ("general", "strict"):
-            raise LearningError(f"mode must be 'general' or 'strict', got {mode!r}")
+        if mode not in ("auto", *READINGS):
+            raise LearningError(f"mode must be 'auto', 'general', 'strict' or 'partial order', got {mode!r}")
+        if selection_folds < 2 or selection_demonstrations < 2:
+            raise LearningError("selection_folds and selection_demonstrations must be at least 2")
         if alternatives < 0 or max_alternative_roots < 1:
             raise LearningError("alternatives must be >= 0 and max_alternative_roots >= 1")
-        if not 0.0 <= deviations < 0.5:
-            raise LearningError(f"deviations must be a share in [0, 0.5), got {deviations}")
+        if not slip_margin >= 0.0:
+            raise LearningError(f"slip_margin must be 0 or more, got {slip_margin}")
+        if not 0.0 < slip_rate < 0.5:
+            raise LearningError(f"slip_rate must be in (0, 0.5), got {slip_rate}")
+        if not slip_rate_weight > 0.0:
+            raise LearningError(f"slip_rate_weight must be above 0, got {slip_rate_weight}")
+        if max_slip_candidates < 1:
+            raise LearningError(f"max_slip_candidates must be at least 1, got {max_slip_candidates}")
         if not 0.0 < evidence <= 1.0:
             raise LearningError(f"evidence must be in (0, 1], got {evidence}")
         if order_support is not None and order_support < 1:
@@ -125,10 +158,16 @@ class HTNLearner(Estimator):
         if subtask_demonstrations < 1:
             raise LearningError(f"subtask_demonstrations must be >= 1, got {subtask_demonstrations}")
         self.mode = mode
-        self.deviations = deviations
+        self.slips = slips
+        self.slip_margin = slip_margin
+        self.slip_rate = slip_rate
+        self.slip_rate_weight = slip_rate_weight
+        self.max_slip_candidates = max_slip_candidates
         self.evidence = evidence
         self.order_support = order_support
         self.subtask_demonstrations = subtask_demonstrations
+        self.selection_folds = selection_folds
+        self.selection_demonstrations = selection_demonstrations
         self.alternatives = alternatives
         self.max_alternative_roots = max_alternative_roots
         self.names = names
@@ -209,6 +248,30 @@ class HTNLearner(Estimator):
         """True when this fit uses the ``strict`` learner (asked for, or explicit states given)."""
         return self.mode == "strict" or bool(self.task_graph_.explicit_states)
 
+    def _general(self, sequences: Sequence[Sequence[str]], reading: str) -> GeneralResult:
+        """The general learner in one of its readings (:data:`~supportive.learning.selection.CANDIDATES`)."""
+        support = 2 if reading.endswith(CONSISTENT) else self.order_support
+        structure = StructureSettings(self.evidence, support, self.subtask_demonstrations)
+        noise = NoiseSettings(
+            math.inf if not self.slips else self.slip_margin,
+            self.slip_rate,
+            self.slip_rate_weight,
+            self.max_slip_candidates,
+        )
+        return learn_general(sequences, structure, noise, modules=reading.startswith("general"))
+
+    def _reading(self, name: str, sequences: Sequence[Sequence[str]]) -> FittedStructure:
+        """One reading learned from ``sequences`` (for the selection, :mod:`~supportive.learning.selection`)."""
+        if name == "strict":
+            graph = TaskGraph()
+            for i, demo in enumerate(sequences):
+                graph.add(demo, f"d{i + 1}")
+            compaction = Compaction(graph)
+            compaction.run()
+            return FittedStructure(compaction.roots(), compaction.top_level())
+        result = self._general(sequences, name)
+        return FittedStructure(result.roots, result.top_level)
+
     def _compacted(self) -> Compaction:
         """Algorithm 2 over the task graph (run once, then kept up to date by ``partial_fit``)."""
         if self._compaction is None:
@@ -218,22 +281,36 @@ class HTNLearner(Estimator):
 
     def _finish(self, started: float) -> None:
         names = self.names_
-        if self.learns_strictly:
+        self.selection_: Selection | None = None
+        reading = "strict" if self.learns_strictly else self.mode
+        if reading == "auto":
+            sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
+            full = {name: self._reading(name, sequences).htn() for name in CANDIDATES}
+            self.selection_ = select_reading(
+                sequences,
+                lambda name, train: self._reading(name, train).htn(),
+                full,
+                folds=self.selection_folds,
+                min_demonstrations=self.selection_demonstrations,
+                slip_rate=self.slip_rate,
+            )
+            reading = self.selection_.chosen
+        if reading == "strict":
             compaction = self._compacted()
             roots = tuple(named(root, names) for root in compaction.roots())
             top = compaction.top_level()
             self.deviations_: tuple[Deviation, ...] = ()
+            self.noise_: NoiseEstimate | None = None
             self.labelled_ = tuple(tuple(self.task_graph_.subgoals[s] for s in d) for d in self.task_graph_.demonstrations)
         else:
             sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
-            settings = GeneralSettings(
-                self.deviations, self.evidence, self.order_support, self.subtask_demonstrations
-            )
-            result = learn_general(sequences, settings)
+            result = self._general(sequences, reading)
             roots = tuple(named(root, names) for root in result.roots)
             top = result.top_level
             self.deviations_ = result.deviations
+            self.noise_ = result.noise
             self.labelled_ = result.labelled
+        self.reading_ = reading
         alternatives: tuple[HTN, ...] = ()
         if len(roots) > 1 and self.alternatives:
             found = resolve_ambiguity(

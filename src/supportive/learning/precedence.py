@@ -12,7 +12,7 @@ experiments in :mod:`supportive.experiments.captaincook`).
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterable, Iterator
+from collections.abc import Hashable, Iterable, Iterator
 from dataclasses import dataclass
 
 from supportive.learning.reachability import reachable
@@ -92,7 +92,7 @@ def _root_precedences(top: TopLevel, n_roots: int) -> Iterator[tuple[int, int]]:
         yield from ((first, second) for second in range(n_roots) if second not in unordered | {first})
 
 
-def precedence_scores(learned: Iterable[Pair], published: Iterable[Pair]) -> PrecedenceScore:
+def precedence_scores(learned: Iterable[Hashable], published: Iterable[Hashable]) -> PrecedenceScore:
     """Precision, recall and F1 of ``learned`` pairs against ``published`` pairs (see :class:`PrecedenceScore`
     for the empty-set conventions).
 

@@ -53,7 +53,7 @@ class Executions:
     """The state machine of an HTN's executions (see the module docstring).
 
     Besides the runs, the flattened hierarchy is public for models that walk it (the progress model of
-    :mod:`supportive.inference.progress`): nodes are numbered depth first; ``parents[n]`` is ``(parent,
+    :mod:`supportive.learning.distribution`): nodes are numbered depth first; ``parents[n]`` is ``(parent,
     position)`` (``(-1, r)`` for root ``r``), ``tables[n]`` a chain or clique's children and symmetry classes,
     ``masks[n]`` its leaves as bits, ``nullables[n]`` whether it may be performed as nothing, ``leaf_nodes[i]``
     the node of leaf ``i``, ``root_nodes[r]`` and ``root_of_leaf[i]`` the roots, ``top_out`` the top-level

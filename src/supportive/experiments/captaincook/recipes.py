@@ -1,6 +1,9 @@
 """One CaptainCook4D recipe learned from its error-free recordings and scored against its published task graph
 (``supportive captaincook``): the precedences the learned hierarchy implies
-(:func:`~supportive.learning.precedence.implied_precedences`) against the published ones.
+(:func:`~supportive.learning.precedence.implied_precedences`) against the published ones (their transitive
+closure), and the task graph they make against the published graph edge by edge, with the protocol of
+*Differentiable Task Graph Learning* (:mod:`supportive.learning.graph_edges`), learned from every error-free
+recording (``full``) and from the first :data:`FEW_SHOT` (``5-shot``).
 """
 
 from __future__ import annotations
@@ -11,10 +14,14 @@ from typing import Any
 
 from supportive.errors import DatasetError
 from supportive.io.captaincook import Recipe
+from supportive.learning.graph_edges import edge_scores
 from supportive.learning.learner import learn
 from supportive.learning.precedence import PrecedenceScore, implied_precedences, precedence_scores
 
-__all__ = ["RecipeMeans", "RecipeReport", "captaincook_report", "compare_recipe", "recipe_means"]
+__all__ = ["FEW_SHOT", "RecipeMeans", "RecipeReport", "captaincook_report", "compare_recipe", "recipe_means"]
+
+FEW_SHOT = 5
+"""Recordings of the few-shot setting of the task-graph protocol (each recipe's first five)."""
 
 
 @dataclass(frozen=True)
@@ -29,6 +36,9 @@ class RecipeReport:
         complete: True when the learned hierarchy has a single root.
         roots: Number of roots of the learned hierarchy.
         score: Implied precedences of the learned hierarchy against the published ones.
+        edges: The task graph of those precedences against the published graph, edge by edge
+            (:func:`~supportive.learning.graph_edges.edge_scores`).
+        few_shot_edges: The same, learned from the first :data:`FEW_SHOT` recordings.
         admits_demonstrations: True when the learned hierarchy admits every demonstration it did not set
             aside as a deviation (invariant 1).
         deviations: Demonstrations with a step set aside as a slip.
@@ -41,6 +51,8 @@ class RecipeReport:
     complete: bool
     roots: int
     score: PrecedenceScore
+    edges: PrecedenceScore
+    few_shot_edges: PrecedenceScore
     admits_demonstrations: bool
     deviations: int = 0
 
@@ -58,7 +70,13 @@ class RecipeReport:
             "precision": self.score.precision,
             "recall": self.score.recall,
             "f1": self.score.f1,
+            "edges": _as_dict(self.edges),
+            "edges_5_shot": _as_dict(self.few_shot_edges),
         }
+
+
+def _as_dict(score: PrecedenceScore) -> dict[str, float]:
+    return {"precision": score.precision, "recall": score.recall, "f1": score.f1}
 
 
 def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = None) -> RecipeReport:
@@ -71,8 +89,10 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
     Raises:
         LearningError: when the recipe has no demonstration.
     """
-    learner = learn(recipe.spec, **dict(learner_options or {}))
+    options = dict(learner_options or {})
+    learner = learn(recipe.spec, **options)
     htn = learner.htn_
+    few = learn(recipe.spec.with_demonstrations(recipe.spec.demonstrations[:FEW_SHOT]), **options).htn_
     deviating = {d.demonstration for d in learner.deviations_}
     demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
     return RecipeReport(
@@ -83,6 +103,8 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
         complete=htn.complete,
         roots=len(htn.roots),
         score=precedence_scores(implied_precedences(htn), recipe.published),
+        edges=edge_scores(implied_precedences(htn), recipe.steps, recipe.graph_edges),
+        few_shot_edges=edge_scores(implied_precedences(few), recipe.steps, recipe.graph_edges),
         admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
         deviations=len(deviating),
     )
@@ -97,13 +119,16 @@ def captaincook_report(
 
 @dataclass(frozen=True)
 class RecipeMeans:
-    """Means over recipes of their scores, and whether every learned model admits all its recordings."""
+    """Means over recipes of their scores, and whether every learned model admits all its recordings;
+    ``edges`` and ``few_shot_edges`` are the means of the task-graph protocol's precision, recall and F1."""
 
     recipes: int
     precision: float
     recall: float
     f1: float
     all_admitted: bool
+    edges: dict[str, float]
+    few_shot_edges: dict[str, float]
 
 
 def recipe_means(reports: Sequence[RecipeReport]) -> RecipeMeans:
@@ -121,4 +146,15 @@ def recipe_means(reports: Sequence[RecipeReport]) -> RecipeMeans:
         recall=sum(r.score.recall for r in reports) / n,
         f1=sum(r.score.f1 for r in reports) / n,
         all_admitted=all(r.admits_demonstrations for r in reports),
+        edges=_means([r.edges for r in reports]),
+        few_shot_edges=_means([r.few_shot_edges for r in reports]),
     )
+
+
+def _means(scores: Sequence[PrecedenceScore]) -> dict[str, float]:
+    n = len(scores)
+    return {
+        "precision": sum(s.precision for s in scores) / n,
+        "recall": sum(s.recall for s in scores) / n,
+        "f1": sum(s.f1 for s in scores) / n,
+    }

@@ -65,7 +65,7 @@ def _synthetic(trial: Trial) -> dict[str, Any]:
     out["slips"] = {
         "clean": _orderings_scores(HTNLearner().fit(clean).htn_, valid),
         "with_slips": _orderings_scores(HTNLearner().fit(clean + slipped).htn_, valid),
-        "with_slips_none_set_aside": _orderings_scores(HTNLearner(deviations=0).fit(clean + slipped).htn_, valid),
+        "with_slips_none_set_aside": _orderings_scores(HTNLearner(slips=False).fit(clean + slipped).htn_, valid),
     }
     return out
 

@@ -36,7 +36,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         lines += [
             "",
             f"Slips on the same tasks (general learner): {SLIP_CLEAN} sampled demonstrations, then those and {SLIPPED}",
-            "more with one step moved to a random place; the last column sets nothing aside (`deviations=0`). A",
+            "more with one step moved to a random place; the last column sets nothing aside (`slips=False`). A",
             "moved step that lands inside another subtask breaks its contiguity rather than an order, which the",
             "slip search does not look for (docs/learning.md).",
             "",

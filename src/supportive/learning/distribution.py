@@ -16,11 +16,17 @@ explicit option of the trackers (``restart``), not part of the model.
 >>> model = ProgressModel(htn)
 >>> sorted((model.leaves[i][0] if i != END else "<end>", round(p, 2)) for i, (p, _) in model.outcomes(model.executions.initial()[0]).items())
 [('knife', 1.0)]
+>>> round(math.exp(model.log_probability(["knife", "celery", "carrots"])), 2)  # the clique's two orders
+0.5
+>>> model.log_probability(["celery", "knife", "carrots"])  # not an execution
+-inf
 """
 
 from __future__ import annotations
 
+import math
 from collections import defaultdict
+from collections.abc import Sequence
 
 from supportive.errors import LearningError
 from supportive.tasks.executions import Executions, Progress
@@ -51,15 +57,16 @@ class ProgressModel:
         self.smoothing = smoothing
         self.executions = Executions(htn)
         self.leaves = self.executions.leaves
-        self._counts: list[Counts | None] = []
+        self._nodes: list[Node] = []
         for root in htn.roots:
             self._collect(root)
+        self._counts: list[Counts | None] = [node.counts for node in self._nodes]
         self._starts: dict[int, dict[int, float]] = {}
         self._cache: dict[Progress, dict[int, Outcome]] = {}
 
     def _collect(self, node: Node) -> None:
-        """Counts of every node, in the executions' depth-first numbering."""
-        self._counts.append(node.counts)
+        """Every node, in the executions' depth-first numbering."""
+        self._nodes.append(node)
         if not isinstance(node, ActionNode):
             for child in node.children:
                 self._collect(child)
@@ -216,6 +223,49 @@ class ProgressModel:
         counts = self._counts[node]
         return counts.performed if counts is not None else 0
 
+    def log_probability(self, actions: Sequence[str]) -> float:
+        """Natural log of the probability that an execution is exactly ``actions`` (action ids) and then ends,
+        summed over the ways the hierarchy admits it (a repeated subtask's instances); ``-inf`` when it admits
+        none."""
+        belief: dict[Progress, float] = {state: 1.0 / len(self.executions.initial()) for state in self.executions.initial()}
+        log_scale = 0.0
+        for action in actions:
+            moved: dict[Progress, float] = defaultdict(float)
+            for state, mass in belief.items():
+                for leaf, (p, nxt) in self.outcomes(state).items():
+                    if nxt is not None and self.leaves[leaf][0] == action:
+                        moved[nxt] += mass * p
+            total = sum(moved.values())
+            if not total > 0:
+                return -math.inf
+            log_scale += math.log(total)
+            belief = {state: mass / total for state, mass in moved.items()}
+        ending = sum(mass * self.outcomes(state).get(END, (0.0, None))[0] for state, mass in belief.items())
+        return log_scale + math.log(ending) if ending > 0 else -math.inf
+
+    def parameters(self) -> int:
+        """How many choice probabilities the demonstrations had to fix: per choice (an optional node's take
+        or skip, a clique's or the top level's first child, the child after each child or the end), the
+        options the counts show were ever taken, less one. A choice only ever made one way costs nothing
+        (the penalised likelihoods of :mod:`supportive.learning.noise` and :mod:`supportive.learning.selection`
+        charge each parameter ``(1/2) log n``)."""
+        total = 0
+        ex = self.executions
+        for number, node in enumerate(self._nodes):
+            counts = node.counts
+            if counts is None:
+                continue
+            if node.optional and counts.skipped and counts.performed:
+                total += 1
+            table = ex.tables.get(number)
+            if table is not None and not table.chain and counts.first:
+                performed = [self._performed(child) for child in table.children]
+                total += _exercised(counts, performed)
+        top = self.htn.top_level
+        if top is not None and top.counts is not None and top.counts.first:
+            total += _exercised(top.counts, [self._performed(root) for root in ex.root_nodes])
+        return total
+
     # ------------------------------------------------------------------ state space
     def states(self, limit: int) -> list[Progress] | None:
         """Every state reachable from the start (initial states first), or None when there are more than
@@ -231,3 +281,13 @@ class ProgressModel:
                     found[nxt] = None
                     frontier.append(nxt)
         return list(found)
+
+
+def _exercised(counts: Counts, performed: list[int]) -> int:
+    """Free parameters of a choice of the first child and of what follows each child (or the end), counting
+    only the options taken."""
+    total = max(sum(1 for c in counts.first if c) - 1, 0)
+    for row, done in zip(counts.after, performed, strict=True):
+        options = sum(1 for c in row if c) + (done > sum(row))
+        total += max(options - 1, 0)
+    return total

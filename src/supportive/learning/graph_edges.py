@@ -1,0 +1,76 @@
+"""Task-graph accuracy with the protocol of *Differentiable Task Graph Learning* (Seminara et al., NeurIPS 2024).
+
+Their CaptainCook4D benchmark scores a learned task graph edge by edge against the recipe's published one:
+
+1. the learned "a before b" relation becomes a graph, transitively reduced (an edge for each precondition
+   no other precondition already implies);
+2. ``START`` is the precondition of every step that has none, and ``END`` depends on every step nothing
+   depends on;
+3. precision and recall are taken over the flattened adjacency matrices (every ordered pair of nodes), i.e.
+   over the two edge sets, and F1 from them; the ground truth is the published graph as given, with its own
+   ``START`` and ``END`` edges.
+
+Scored against itself this way, a published graph gets 1.0 unless it holds an edge that other edges imply
+(the reduction drops it from the learned side). Edges are written ``(earlier, later)``; the direction of
+"precondition of" is the reverse, which changes no count.
+
+>>> a, b, c = ("a", 1), ("b", 1), ("c", 1)
+>>> sorted(reduced_edges({(a, b), (b, c), (a, c)}, [a, b, c]), key=str)
+[('START', ('a', 1)), (('a', 1), ('b', 1)), (('b', 1), ('c', 1)), (('c', 1), 'END')]
+>>> edge_scores({(a, b)}, [a, b, c], {("START", a), (a, b), (b, "END"), ("START", c), (c, "END")}).f1
+1.0
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable
+
+import networkx as nx
+
+from supportive.errors import LearningError
+from supportive.learning.precedence import Pair, PrecedenceScore, precedence_scores
+from supportive.tasks.htn import Leaf
+
+__all__ = ["END_NODE", "PEERS", "START_NODE", "GraphEdge", "edge_scores", "reduced_edges"]
+
+START_NODE = "START"
+END_NODE = "END"
+
+GraphEdge = tuple[Leaf | str, Leaf | str]
+"""An edge ``(earlier, later)`` between steps (leaves) or the ``START``/``END`` terminals."""
+
+PEERS: dict[str, dict[str, float]] = {
+    "DO (Seminara et al. 2024)": {"full": 0.878, "5-shot": 0.837},
+    "Count-Based (ibid.)": {"full": 0.606},
+    "MSG² (ibid.)": {"full": 0.711},
+}
+"""Task-graph F1 on CaptainCook4D published in *Differentiable Task Graph Learning* (Table 1), by setting."""
+
+
+def reduced_edges(pairs: Iterable[Pair], steps: Collection[Leaf]) -> frozenset[GraphEdge]:
+    """The relation ``pairs`` over ``steps`` as the protocol's graph: transitively reduced, with ``START``
+    before every step nothing precedes and ``END`` after every step nothing follows. Pairs naming a step
+    outside ``steps`` are left out (the published graph cannot judge them).
+
+    Raises:
+        LearningError: when the relation has a cycle (it is then no precedence relation).
+    """
+    graph: nx.DiGraph[Leaf] = nx.DiGraph()
+    graph.add_nodes_from(steps)
+    graph.add_edges_from((a, b) for a, b in pairs if a in graph and b in graph)
+    if not nx.is_directed_acyclic_graph(graph):
+        raise LearningError("the learned precedences have a cycle: no task graph")
+    reduced = nx.transitive_reduction(graph)
+    edges: set[GraphEdge] = set(reduced.edges())
+    for step in steps:
+        if reduced.in_degree(step) == 0:
+            edges.add((START_NODE, step))
+        if reduced.out_degree(step) == 0:
+            edges.add((step, END_NODE))
+    return frozenset(edges)
+
+
+def edge_scores(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[GraphEdge]) -> PrecedenceScore:
+    """Precision, recall and F1 of the learned relation ``pairs`` over ``steps`` against the published graph
+    ``truth`` (edges with their ``START``/``END`` ones), by the protocol of the module docstring."""
+    return precedence_scores(reduced_edges(pairs, steps), truth)

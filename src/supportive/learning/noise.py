@@ -1,0 +1,451 @@
+"""Slips as noise: what people do wrong, estimated from the demonstrations by comparing explanations.
+
+A learned hierarchy is a distribution over executions (:class:`~supportive.learning.distribution.ProgressModel`).
+People add noise to the execution they meant: with some rate per step, a step is done **out of order**
+(taken from its place and done at a random other one), **repeated** (done again at a random place), forgotten
+(**missing**), or a step the others never do is done (**unknown**). A demonstration is then explained either
+as it is, by a hierarchy loose enough to admit it, or as a valid execution of a tighter hierarchy plus noise.
+The learner keeps the explanation of all the demonstrations that is more probable (hard EM over which steps
+are noise):
+
+* the score of a set of slips is the log-likelihood of the demonstrations with those slips undone (a step
+  set aside is put back where the hierarchy learned without it makes the execution most probable; a missing
+  step where it fits best) under the hierarchy learned from them, plus the log-likelihood of the slips
+  themselves: a rate per kind estimated as slips of that kind over all steps (its maximum-likelihood value;
+  ``(1/2) log N`` is charged for each kind whose rate is not zero, as BIC charges a parameter), and where each
+  landed (a uniform choice among the demonstration's positions);
+* the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
+  gain exceeds ``margin`` nats. Candidates are the steps that reverse an order the others agree on
+  (:func:`~supportive.learning.evidence.agreed_orders`), every performance of a step the others do not do,
+  and every demonstration that skips a step the others do; those the others would have to agree on are
+  shown by at least ``support`` demonstrations (no slip can be told from a variant with fewer).
+
+So on clean data nothing is set aside: a tighter hierarchy gains less than the noise costs, whatever the
+pair frequencies a partial order implies (a free pair in a partial order is not a coin: the hierarchy's own
+distribution says how often each order comes). The estimated rates (:class:`NoiseEstimate`) go to zero.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from supportive.learning.evidence import agreed_orders, pair_counts, slip_allowance
+from supportive.learning.order_likelihood import OrderLikelihood
+from supportive.learning.structure import FittedStructure, StructureSettings, fit_structure
+from supportive.tasks.htn import Leaf
+
+__all__ = ["KINDS", "Deviation", "NoiseEstimate", "NoiseSettings", "SlipResult", "find_slips"]
+
+Kind = Literal["out of order", "repeated", "missing", "unknown"]
+KINDS: tuple[Kind, ...] = ("out of order", "repeated", "missing", "unknown")
+"""The kinds of slip, in the order reports list them."""
+
+_TAKEN_OUT = frozenset({"out of order", "repeated", "unknown"})
+_PUT_BACK = frozenset({"out of order", "missing"})
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """One slip: in demonstration ``demonstration`` (an index), the step at ``position`` (-1 for a missing
+    step) labelled ``leaf``, of kind ``kind``."""
+
+    demonstration: int
+    position: int
+    leaf: Leaf
+    kind: Kind
+
+    def as_dict(self, demo_ids: Sequence[str] = ()) -> dict[str, object]:
+        """Plain-data form; ``demo_ids`` names the demonstrations by their ids."""
+        action, instance = self.leaf
+        name = demo_ids[self.demonstration] if self.demonstration < len(demo_ids) else str(self.demonstration + 1)
+        data: dict[str, object] = {"demonstration": name, "kind": self.kind, "action": action}
+        if instance != 1:
+            data["occurrence"] = instance
+        if self.position >= 0:
+            data["step"] = self.position + 1
+        return data
+
+
+@dataclass(frozen=True)
+class NoiseSettings:
+    """The slip search's settings (see :class:`~supportive.learning.learner.HTNLearner`)."""
+
+    margin: float = 0.0
+    rate: float = 0.03
+    weight: float = 1000.0
+    max_candidates: int = 48
+
+
+@dataclass(frozen=True)
+class NoiseEstimate:
+    """The noise model fitted with the slips: per kind, how many slips and their rate per observed step.
+
+    Attributes:
+        steps: Observed steps over all demonstrations.
+        counts: Slips per kind.
+        gain: How much more probable (natural log) the demonstrations are with these slips than with none.
+        evaluations: Explanations scored by the search.
+    """
+
+    steps: int
+    counts: dict[str, int] = field(default_factory=dict)
+    gain: float = 0.0
+    evaluations: int = 0
+
+    @property
+    def rates(self) -> dict[str, float]:
+        """Slips per observed step, by kind (every kind listed; 0 where none was found)."""
+        return {kind: (self.counts.get(kind, 0) / self.steps if self.steps else 0.0) for kind in KINDS}
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form (``"noise"`` in the HTN JSON)."""
+        return {
+            "steps": self.steps,
+            "slips": {kind: self.counts.get(kind, 0) for kind in KINDS},
+            "rates": {kind: round(rate, 6) for kind, rate in self.rates.items()},
+            "log_likelihood_gain": round(self.gain, 4),
+        }
+
+
+@dataclass(frozen=True)
+class SlipResult:
+    """The demonstrations with their slips taken out, the slips, the noise model and the hierarchy learned
+    from the cleaned demonstrations."""
+
+    cleaned: list[tuple[Leaf, ...]]
+    deviations: tuple[Deviation, ...]
+    noise: NoiseEstimate
+    structure: FittedStructure
+
+
+def find_slips(
+    labelled: Sequence[Sequence[Leaf]], structure: StructureSettings, settings: NoiseSettings, *, modules: bool = True
+) -> SlipResult:
+    """The most probable explanation of ``labelled`` as valid executions plus slips (see the module
+    docstring).
+
+    Args:
+        labelled: The demonstrations as leaves (:func:`~supportive.learning.labelling.label_performances`).
+        structure: How hierarchies are learned (:func:`~supportive.learning.structure.fit_structure`).
+        settings: The search's margin, the slip rates' prior and how many candidates a round scores.
+        modules: False learns partial orders of steps only (see :func:`fit_structure`).
+    """
+    return _Search(labelled, structure, settings, modules).run()
+
+
+class _Search:
+    """Greedy search over sets of slips, scoring each set by refitting (see the module docstring)."""
+
+    def __init__(
+        self, labelled: Sequence[Sequence[Leaf]], structure: StructureSettings, settings: NoiseSettings, modules: bool
+    ) -> None:
+        self.labelled = [tuple(demo) for demo in labelled]
+        self.structure_settings = structure
+        self.settings = settings
+        self.modules = modules
+        self.steps = sum(len(demo) for demo in self.labelled)
+        self._scores: dict[frozenset[Deviation], tuple[float, FittedStructure]] = {}
+
+    # ------------------------------------------------------------------ search
+    def run(self) -> SlipResult:
+        slips: frozenset[Deviation] = frozenset()
+        current = start = self._total(slips)
+        while self._searchable():
+            chosen = self._round(slips)
+            if chosen is None:
+                break
+            slips, current = chosen, self._total(chosen)
+        _, fitted = self._structure(slips)
+        deviations = tuple(sorted(slips, key=_order))
+        counts = Counter(d.kind for d in deviations)
+        noise = NoiseEstimate(self.steps, {k: counts[k] for k in KINDS if counts[k]}, current - start, len(self._scores))
+        return SlipResult(self._cleaned(slips), deviations, noise, fitted)
+
+    def _round(self, slips: frozenset[Deviation]) -> frozenset[Deviation] | None:
+        """One round of hard EM from ``slips``: score every candidate's gain for the hierarchy, estimate the
+        rates at which the candidates worth their noise are a fixed point, and keep them when the whole
+        explanation gains more than ``margin``; else the single best candidate, if it does."""
+        base, _ = self._structure(slips)
+        current = self._total(slips)
+        gains = []
+        for candidate in self._candidates(slips):
+            value, _ = self._structure(slips | candidate)
+            if value > -math.inf:
+                gains.append((value - base, candidate))
+        if not gains:
+            return None
+        counts = Counter(d.kind for d in slips)
+        rates = self._rates(counts + Counter(d.kind for _, c in gains for d in c))
+        for _ in range(50):  # the rates' fixed point: each step keeps or drops candidates, monotonically
+            net = [(gain + sum(_log_odds(rates[d.kind]) for d in c), c) for gain, c in gains]
+            worth = _one_per_demonstration([c for value, c in sorted(net, key=_by_value) if value > 0])
+            new_rates = self._rates(counts + Counter(d.kind for c in worth for d in c))
+            if new_rates == rates:
+                break
+            rates = new_rates
+        joined = slips.union(*worth) if worth else slips
+        if worth and self._total(joined) - current > self.settings.margin:
+            return joined
+        best = min(gains, key=_by_value)[1]
+        if self._total(slips | best) - current > self.settings.margin:
+            return slips | best
+        return None
+
+    def _searchable(self) -> bool:
+        """With no more demonstrations than the support an agreement needs, no slip can be told from a
+        variant: nothing to search (nor with an infinite margin)."""
+        return math.isfinite(self.settings.margin) and len(self.labelled) > self.structure_settings.support_needed
+
+    # ------------------------------------------------------------------ candidates
+    def _candidates(self, slips: frozenset[Deviation]) -> list[frozenset[Deviation]]:
+        cleaned = self._cleaned_positions(slips)
+        n = len(cleaned)
+        need = self.structure_settings.support_needed
+        performers: dict[Leaf, list[tuple[int, int]]] = {}
+        for d, demo in enumerate(cleaned):
+            for position, leaf in demo:
+                performers.setdefault(leaf, []).append((d, position))
+        excused = {(d.demonstration, d.leaf) for d in slips if d.kind == "missing"}
+        out: list[frozenset[Deviation]] = []
+        for leaf, where in sorted(performers.items()):
+            k = len({d for d, _ in where})
+            kind: Kind = "repeated" if leaf[1] > 1 else "unknown"
+            if n - k >= need and k < n - k:
+                out.append(frozenset(Deviation(d, p, leaf, kind) for d, p in where))
+                if kind == "repeated":  # or another performance of it was the one done again
+                    out.extend(
+                        frozenset({Deviation(d, p, other, "repeated")})
+                        for d, _ in where
+                        for p, other in cleaned[d]
+                        if other[0] == leaf[0] and other != leaf
+                    )
+            if k >= need and 0 < n - k < k:
+                doing = {d for d, _ in where}
+                skippers = [d for d in range(n) if d not in doing and (d, leaf) not in excused]
+                if skippers:
+                    out.append(frozenset(Deviation(d, -1, leaf, "missing") for d in skippers))
+        reversing = self._moved(cleaned)
+        repairs = self._repairs(cleaned, {d.demonstration for c in reversing for d in c})
+        moved = list(dict.fromkeys(_interleave(repairs, reversing, self._inserted(cleaned))))
+        out.extend(moved[: self.settings.max_candidates])
+        by_leaf: dict[Leaf, set[Deviation]] = {}  # the same step out of order in several demonstrations
+        for candidate in repairs:
+            (slip,) = candidate
+            by_leaf.setdefault(slip.leaf, set()).add(slip)
+        out.extend(frozenset(group) for _, group in sorted(by_leaf.items()) if len(group) > 1)
+        if len(repairs) > 1:
+            out.append(frozenset().union(*_one_per_demonstration(repairs)))
+        return out
+
+    def _repairs(self, cleaned: list[list[tuple[int, Leaf]]], odd: set[int]) -> list[frozenset[Deviation]]:
+        """Steps whose move would make a demonstration that reverses agreed orders an execution of the
+        hierarchy learned from the demonstrations that reverse none (when there are enough of those)."""
+        core = [tuple(leaf for _, leaf in demo) for d, demo in enumerate(cleaned) if d not in odd]
+        if len(core) <= self.structure_settings.support_needed or not odd:
+            return []
+        htn = fit_structure(core, (), self.structure_settings, modules=self.modules).htn()
+        out: list[frozenset[Deviation]] = []
+        for d in sorted(odd):
+            leaves = [leaf for _, leaf in cleaned[d]]
+            if htn.admits_leaves(leaves):
+                continue
+            for i, (position, leaf) in enumerate(cleaned[d]):
+                rest = leaves[:i] + leaves[i + 1 :]
+                if any(htn.admits_leaves([*rest[:j], leaf, *rest[j:]]) for j in range(len(rest) + 1) if j != i):
+                    out.append(frozenset({Deviation(d, position, leaf, "out of order")}))
+        return out
+
+    def _moved(self, cleaned: list[list[tuple[int, Leaf]]]) -> list[frozenset[Deviation]]:
+        """Single steps that reverse orders the other demonstrations agree on, the most telling first: each
+        reversed order weighs one over the number of demonstrations reversing it (a step moved alone
+        reverses orders nobody else does)."""
+        leaves = sorted({leaf for demo in cleaned for _, leaf in demo})
+        index = {leaf: i for i, leaf in enumerate(leaves)}
+        sequences = [[index[leaf] for _, leaf in demo] for demo in cleaned]
+        before, together = pair_counts(sequences, list(range(len(leaves))))
+        allowance = slip_allowance(len(sequences), self.structure_settings.evidence)
+        agreed = agreed_orders(before, before.T, together, allowance) & (before >= self.structure_settings.support_needed)
+        if not agreed.any():
+            return []
+        weight = np.where(agreed.T, 1.0 / np.maximum(before.T, 1), 0.0)  # [i, j]: j before i agreed, i first here
+        ranked: list[tuple[float, int, int, Leaf]] = []
+        for d, sequence in enumerate(sequences):
+            order = np.asarray(sequence, dtype=np.int64)
+            later = np.triu(np.ones((len(order), len(order)), dtype=bool), 1)
+            reversed_here = np.where(later, weight[np.ix_(order, order)], 0.0)
+            scores = reversed_here.sum(axis=0) + reversed_here.sum(axis=1)
+            for i in np.flatnonzero(scores):
+                position, leaf = cleaned[d][int(i)]
+                ranked.append((-float(scores[i]), d, position, leaf))
+        ranked.sort()
+        return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
+
+    def _inserted(self, cleaned: list[list[tuple[int, Leaf]]]) -> list[frozenset[Deviation]]:
+        """Single steps that look put where they do not belong: the other demonstrations go from the step
+        before to the step after directly more often than through it (a step moved into a subtask reverses
+        no order but breaks it), most telling first."""
+        pairs: Counter[tuple[Leaf | None, Leaf | None]] = Counter()
+        for demo in cleaned:
+            labels: list[Leaf | None] = [None, *(leaf for _, leaf in demo), None]
+            pairs.update(itertools.pairwise(labels))
+        ranked: list[tuple[int, int, int, Leaf]] = []
+        for d, demo in enumerate(cleaned):
+            labels = [None, *(leaf for _, leaf in demo), None]
+            mine = Counter(itertools.pairwise(labels))
+            for i in range(1, len(labels) - 1):
+                before, leaf, after = labels[i - 1], labels[i], labels[i + 1]
+                assert leaf is not None
+                through = pairs[(before, leaf)] - mine[(before, leaf)] + pairs[(leaf, after)] - mine[(leaf, after)]
+                direct = pairs[(before, after)] - mine[(before, after)]
+                if direct > through:
+                    ranked.append((through - direct, d, demo[i - 1][0], leaf))
+        ranked.sort()
+        return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
+
+    # ------------------------------------------------------------------ scoring
+    def _cleaned_positions(self, slips: frozenset[Deviation]) -> list[list[tuple[int, Leaf]]]:
+        out_at = {(d.demonstration, d.position) for d in slips if d.kind in _TAKEN_OUT}
+        return [[(p, leaf) for p, leaf in enumerate(demo) if (d, p) not in out_at] for d, demo in enumerate(self.labelled)]
+
+    def _cleaned(self, slips: frozenset[Deviation]) -> list[tuple[Leaf, ...]]:
+        """The demonstrations with the slips taken out; where a repeated performance was, the performances
+        left of that action are numbered again in order (the one done again may have been the first)."""
+        renumber: dict[int, set[str]] = {}
+        for slip in slips:
+            if slip.kind == "repeated":
+                renumber.setdefault(slip.demonstration, set()).add(slip.leaf[0])
+        out = []
+        for d, demo in enumerate(self._cleaned_positions(slips)):
+            actions = renumber.get(d)
+            if not actions:
+                out.append(tuple(leaf for _, leaf in demo))
+                continue
+            seen: Counter[str] = Counter()
+            labels = []
+            for _, (action, instance) in demo:
+                if action in actions:
+                    seen[action] += 1
+                    instance = seen[action]
+                labels.append((action, instance))
+            out.append(tuple(labels))
+        return out
+
+    def _total(self, slips: frozenset[Deviation]) -> float:
+        """The score of an explanation: the hierarchy's part and the noise's."""
+        return self._structure(slips)[0] + self._noise(Counter(s.kind for s in slips))
+
+    def _structure(self, slips: frozenset[Deviation]) -> tuple[float, FittedStructure]:
+        """The hierarchy learned with ``slips`` taken out, and its part of the score: the log-likelihood of
+        the demonstrations with the slips undone and of where the slips landed, in the reading of
+        :class:`~supportive.learning.order_likelihood.OrderLikelihood`, less ``(1/2) log n`` per frequency
+        it fixes."""
+        cached = self._scores.get(slips)
+        if cached is not None:
+            return cached
+        cleaned = self._cleaned(slips)
+        excused = [(d.demonstration, d.leaf) for d in slips if d.kind in _PUT_BACK]
+        fitted = fit_structure(cleaned, excused, self.structure_settings, modules=self.modules)
+        reading = OrderLikelihood(fitted.htn())
+        by_demo: dict[int, list[Deviation]] = {}
+        for slip in slips:
+            by_demo.setdefault(slip.demonstration, []).append(slip)
+        total = 0.0
+        for d, demo in enumerate(cleaned):
+            mine = by_demo.get(d)
+            total += reading.log_probability(demo) if mine is None else self._restored(reading, list(demo), mine)
+            if total == -math.inf:
+                break
+        total -= 0.5 * math.log(max(len(cleaned), 1)) * reading.parameters()
+        self._scores[slips] = (total, fitted)
+        return total, fitted
+
+    @staticmethod
+    def _restored(reading: OrderLikelihood, leaves: list[Leaf], slips: list[Deviation]) -> float:
+        """Log-probability of a demonstration with its slips undone (a step put back at the first place the
+        hierarchy admits it; every admitted order is as probable) and of where its slips landed: a step out
+        of order or unknown at any of the demonstration's places, a repeated one at any place after the
+        performance it repeats."""
+        length = len(leaves) + sum(1 for s in slips if s.kind in _TAKEN_OUT)
+        placed = 0.0
+        for slip in sorted(slips, key=_order):
+            if slip.kind in _PUT_BACK:
+                for position in range(len(leaves) + 1):
+                    trial = [*leaves[:position], slip.leaf, *leaves[position:]]
+                    if reading.htn.admits_leaves(trial):
+                        leaves = trial
+                        break
+                else:
+                    return -math.inf
+            if slip.kind == "repeated":
+                first = next((i for i, (a, _) in enumerate(leaves) if a == slip.leaf[0]), -1)
+                placed -= math.log(max(length - 1 - first, 1))
+            elif slip.kind != "missing":
+                placed -= math.log(max(length, 1))
+        return reading.log_probability(leaves) + placed
+
+    def _noise(self, counts: Counter[str]) -> float:
+        """Log-probability of which steps are slips of each kind, the rate of each integrated out under its
+        beta prior (beta-binomial; :meth:`_prior`)."""
+        a, b = self._prior()
+        n = self.steps
+        return sum(
+            math.lgamma(k + a) + math.lgamma(n - k + b) - math.lgamma(n + a + b)
+            - (math.lgamma(a) + math.lgamma(b) - math.lgamma(a + b))
+            for k in (counts[kind] for kind in KINDS)
+        )
+
+    def _rates(self, counts: Counter[str]) -> dict[str, float]:
+        """The posterior mean rate of each kind given these slips."""
+        a, b = self._prior()
+        return {kind: (counts[kind] + a) / (self.steps + a + b) for kind in KINDS}
+
+    def _prior(self) -> tuple[float, float]:
+        """The beta prior of each kind's rate: mean ``rate``, worth ``weight`` observed steps."""
+        return self.settings.rate * self.settings.weight, (1.0 - self.settings.rate) * self.settings.weight
+
+
+def _by_value(item: tuple[float, frozenset[Deviation]]) -> tuple[float, list[tuple[int, int, Leaf, str]]]:
+    """Best first; ties by the slips' order (deterministic)."""
+    return (-item[0], [_order(d) for d in sorted(item[1], key=_order)])
+
+
+def _one_per_demonstration(candidates: list[frozenset[Deviation]]) -> list[frozenset[Deviation]]:
+    """The candidates in order, skipping any that touches a demonstration an earlier one touched (two
+    explanations of one demonstration's oddity would both be paid for; the next round finds a second slip)."""
+    touched: set[int] = set()
+    out = []
+    for candidate in candidates:
+        demos = {d.demonstration for d in candidate}
+        if demos & touched:
+            continue
+        touched |= demos
+        out.append(candidate)
+    return out
+
+
+def _interleave(*ranked: list[frozenset[Deviation]]) -> list[frozenset[Deviation]]:
+    """The ranked lists taken in turn, best first."""
+    out: list[frozenset[Deviation]] = []
+    for group in itertools.zip_longest(*ranked):
+        out.extend(candidate for candidate in group if candidate is not None)
+    return out
+
+
+def _log_odds(rate: float) -> float:
+    """What one more slip of a kind with this rate costs against a clean step (natural log odds)."""
+    if rate <= 0.0:
+        return -math.inf
+    if rate >= 1.0:
+        return math.inf
+    return math.log(rate / (1.0 - rate))
+
+
+def _order(deviation: Deviation) -> tuple[int, int, Leaf, str]:
+    return (deviation.demonstration, deviation.position, deviation.leaf, deviation.kind)

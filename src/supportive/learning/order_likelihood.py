@@ -1,0 +1,139 @@
+"""A hierarchy read as "which parts, then any valid order": the likelihood the slip search compares.
+
+An execution is drawn in two steps: every optional node whose parent is performed is performed or skipped
+with the frequencies the demonstrations show (``(performed + 1/2) / (performed + skipped + 1)``, a Jeffreys
+estimate), then the performed leaves are done in an order drawn **uniformly** among the orders the hierarchy
+admits for them. So an execution's probability is the product of its take-or-skip choices over the number
+of valid orders of what it performs.
+
+This reading judges structure, not habit: how much a hierarchy must loosen to admit a demonstration is the
+factor by which the number of valid orders grows, paid by every demonstration. Weighting orders by how often
+people chose them (:class:`~supportive.learning.distribution.ProgressModel`, the predictor's reading) would
+reward a hierarchy for forbidding what few people happened to do, and a rare but valid order of free steps
+would then look like a slip.
+
+>>> from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode
+>>> htn = HTN("t", (ChainNode((ActionNode("k"), CliqueNode((ActionNode("a"), ActionNode("b"))))),))
+>>> reading = OrderLikelihood(htn)
+>>> round(math.exp(reading.log_probability([("k", 1), ("b", 1), ("a", 1)])), 3)  # one of two orders
+0.5
+>>> reading.log_probability([("a", 1), ("k", 1), ("b", 1)])
+-inf
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, to_leaves
+
+__all__ = ["OrderLikelihood"]
+
+
+class OrderLikelihood:
+    """The two-step reading of ``htn`` (see the module docstring)."""
+
+    def __init__(self, htn: HTN) -> None:
+        self.htn = htn
+        self._orders: dict[frozenset[Leaf], int] = {}
+
+    def log_probability(self, leaves: Sequence[Leaf]) -> float:
+        """Natural log of the probability of the execution ``leaves``; ``-inf`` when the hierarchy does not
+        admit it."""
+        if not self.htn.admits_leaves(leaves):
+            return -math.inf
+        done = frozenset(leaves)
+        orders = self._orders.get(done)
+        if orders is None:
+            orders = self._orders[done] = self._count(done)
+        return sum(_choice(node, done) for root in self.htn.roots for node in _performed_parents(root, done)) - math.log(
+            orders
+        )
+
+    def log_probability_of_actions(self, actions: Sequence[str]) -> float:
+        """:meth:`log_probability` of an execution given as action ids (the k-th performance of an action
+        counted as its k-th leaf; whether the hierarchy admits it is decided by action ids, as
+        :meth:`HTN.admits <supportive.tasks.htn.HTN.admits>` does)."""
+        if not self.htn.admits(actions):
+            return -math.inf
+        leaves = to_leaves(actions)
+        if self.htn.admits_leaves(leaves):
+            return self.log_probability(leaves)
+        done = frozenset(leaves)  # a repeated subtask's instances, matched by the hierarchy, not by count
+        orders = self._orders.get(done)
+        if orders is None:
+            orders = self._orders[done] = max(self._count(done), 1)
+        return -math.log(orders)
+
+    def parameters(self) -> int:
+        """The take-or-skip frequencies the demonstrations fix: optional nodes both performed and skipped."""
+        return sum(
+            1
+            for root in self.htn.roots
+            for node in _nodes(root)
+            if node.optional and node.counts is not None and node.counts.performed and node.counts.skipped
+        )
+
+    def _count(self, done: frozenset[Leaf]) -> int:
+        """Valid orders of exactly the leaves ``done``."""
+        counts = [_orders(root, done) for root in self.htn.roots]
+        top = self.htn.top_level
+        if top is None:
+            return math.prod(c for c in counts if c)
+        performed = {i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves)}
+        successors = top.successors()
+        memo: dict[tuple[int, int], int] = {}
+
+        def paths(state: int, left: int) -> int:
+            key = (state, left)
+            if key not in memo:
+                total = int(left == 0 and state in top.terminal)
+                if left:
+                    total += sum(
+                        counts[root] * paths(nxt, left - 1)
+                        for root, nxt in successors.get(state, {}).items()
+                        if root in performed
+                    )
+                memo[key] = total
+            return memo[key]
+
+        return sum(paths(state, len(performed)) for state in top.initial)
+
+
+def _nodes(node: Node) -> list[Node]:
+    out = [node]
+    if not isinstance(node, ActionNode):
+        for child in node.children:
+            out.extend(_nodes(child))
+    return out
+
+
+def _performed_parents(node: Node, done: frozenset[Leaf]) -> list[Node]:
+    """Every node whose take-or-skip was decided in an execution performing ``done``: the optional nodes
+    whose parent was performed (the roots count as performed by the task)."""
+    out = [node] if node.optional else []
+    if not isinstance(node, ActionNode) and not done.isdisjoint(node.leaves):
+        for child in node.children:
+            out.extend(_performed_parents(child, done))
+    return out
+
+
+def _choice(node: Node, done: frozenset[Leaf]) -> float:
+    """Log-probability of ``node`` being performed or skipped, as ``done`` shows."""
+    counts = node.counts
+    performed = counts.performed if counts is not None else 0
+    skipped = counts.skipped if counts is not None else 0
+    take = (performed + 0.5) / (performed + skipped + 1.0)
+    return math.log(take if not done.isdisjoint(node.leaves) else 1.0 - take)
+
+
+def _orders(node: Node, done: frozenset[Leaf]) -> int:
+    """Orders of exactly the leaves of ``done`` under ``node`` (1 when it performs none of them)."""
+    if isinstance(node, ActionNode):
+        return 1
+    parts = [child for child in node.children if not done.isdisjoint(child.leaves)]
+    product = math.prod(_orders(child, done) for child in parts)
+    if isinstance(node, ChainNode):
+        return product
+    return math.factorial(len(parts)) * product
