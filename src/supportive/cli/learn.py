@@ -8,12 +8,13 @@ import json
 import sys
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
 from supportive.cli.output import about, out, say, write_text
 from supportive.errors import OptionError, TaskFileError
+from supportive.extras import require_extra
 from supportive.render.terminal import printable
 
 __all__ = ["captaincook", "evaluate", "generate", "learn"]
@@ -147,10 +148,15 @@ def evaluate(
     ] = "loo",
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the folds (K folds only).")] = 0,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
+    plot: Annotated[
+        Path | None,
+        typer.Option("--plot", help="Draw the predictors' reliability diagram as a PNG (needs matplotlib)."),
+    ] = None,
 ) -> None:
     """Cross-validate your demonstrations: does the hierarchy learned from the others admit the one held out
     (with a ground-truth structure: recall and precision of its orderings), and how well the progress-aware
-    next-step predictor and three simple baselines predict each step."""
+    next-step predictor and three simple baselines predict each step, and how well calibrated their
+    probabilities are (expected calibration error and the reliability table of the top-1 probability)."""
     from supportive.evaluation import evaluate_task
     from supportive.examples import task_path
     from supportive.experiments.progress import progress_bar
@@ -159,6 +165,8 @@ def evaluate(
 
     if folds != "loo" and not (folds.isdigit() and int(folds) >= 2):
         raise OptionError(f"expected loo or a number of folds of at least 2, got {folds!r}", "--folds")
+    if plot is not None:
+        require_extra("drawing the reliability diagram (--plot)", "matplotlib", "plot")
     spec = parse_task_file(task_path(file))
     if len(spec.demonstrations) < 2:
         raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")
@@ -166,6 +174,13 @@ def evaluate(
     with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
         result = evaluate_task(spec, k=k, seed=seed, progress=advance)
     data = result.as_dict()
+    prediction: dict[str, dict[str, Any]] = data["prediction"]  # type: ignore[assignment]
+    if plot is not None:
+        from supportive.render.reliability import write_reliability
+
+        tables = {name: scores["reliability"] for name, scores in prediction.items()}
+        write_reliability(tables, plot, f"{spec.name}: next-step reliability")
+        say(f"wrote {plot}", to_stderr=True)
     if as_json:
         out.print_json(json.dumps(data))
         return
@@ -185,11 +200,18 @@ def evaluate(
             f"{m['zero']:.3f}",
             f"{m['log2']:.3f}",
             f"{m['done_top1']:.3f}",
+            f"{m['ece']:.3f}",
         ]
-        for name, m in result.as_dict()["prediction"].items()  # type: ignore[attr-defined]
+        for name, m in prediction.items()
     ]
-    headers = ["next-step predictor", "top-1", "top-3", "P = 0", "log2 P / step", "top-1 done"]
-    out.print(fitted_table(out, f"{result.prediction['progress-aware'].steps} steps", headers, rows, numeric=range(1, 6)))
+    headers = ["next-step predictor", "top-1", "top-3", "P = 0", "log2 P / step", "top-1 done", "calibration error"]
+    out.print(fitted_table(out, f"{result.prediction['progress-aware'].steps} steps", headers, rows, numeric=range(1, 7)))
+    reliability = [
+        [f"{row['from']:.1f}–{row['to']:.1f}", str(row["predictions"]), f"{row['confidence']:.3f}", f"{row['accuracy']:.3f}"]
+        for row in prediction["progress-aware"]["reliability"]
+    ]
+    headers = ["top-1 probability", "predictions", "mean probability", "right"]
+    out.print(fitted_table(out, "progress-aware: reliability", headers, reliability, numeric=range(1, 4)))
 
 
 def captaincook(

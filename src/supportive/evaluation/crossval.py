@@ -28,7 +28,10 @@ from supportive.tasks.executions import Executions, Progress
 from supportive.tasks.htn import HTN, Leaf, Node, count_orderings, iter_orderings
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["ENUMERATION_LIMIT", "Evaluation", "StepScores", "evaluate_task", "folds"]
+__all__ = ["ENUMERATION_LIMIT", "RELIABILITY_BINS", "Evaluation", "StepScores", "evaluate_task", "folds"]
+
+RELIABILITY_BINS = 10
+"""The reliability table splits the top-1 probability into this many equal bins."""
 
 ENUMERATION_LIMIT = 20_000
 """Recall and precision of orderings are computed when both languages have at most this many sequences."""
@@ -38,7 +41,11 @@ PREDICTOR = "progress-aware"
 
 @dataclass
 class StepScores:
-    """Next-step scores of one predictor, summed over steps (see :meth:`as_dict` for the rates)."""
+    """Next-step scores of one predictor, summed over steps (see :meth:`as_dict` for the rates).
+
+    ``bins`` is the reliability table's raw sums: for each tenth of the top-1 probability (``[0, 0.1)``, …,
+    ``[0.9, 1]``), how many predictions fell in it, the sum of their top-1 probabilities and how many of
+    their top-1s were right."""
 
     steps: int = 0
     top1: int = 0
@@ -46,6 +53,7 @@ class StepScores:
     zero: int = 0
     log2: float = 0.0
     done_top1: int = 0
+    bins: list[list[float]] = field(default_factory=lambda: [[0, 0.0, 0] for _ in range(RELIABILITY_BINS)])
 
     def add(self, predicted: dict[str, float], truth: str, already_done: set[str]) -> None:
         """Score one prediction against what was done next."""
@@ -57,6 +65,12 @@ class StepScores:
         self.zero += p <= 0.0
         self.log2 += math.log2(p) if p > 0 else 0.0
         self.done_top1 += bool(ranked) and ranked[0] in already_done
+        if ranked:
+            confidence = predicted[ranked[0]]
+            row = self.bins[min(int(confidence * RELIABILITY_BINS), RELIABILITY_BINS - 1)]
+            row[0] += 1
+            row[1] += confidence
+            row[2] += ranked[0] == truth
 
     def merge(self, other: StepScores) -> None:
         """Add another's sums to these."""
@@ -66,11 +80,36 @@ class StepScores:
         self.zero += other.zero
         self.log2 += other.log2
         self.done_top1 += other.done_top1
+        for mine, theirs in zip(self.bins, other.bins, strict=True):
+            for i in range(3):
+                mine[i] += theirs[i]
 
-    def as_dict(self) -> dict[str, float | int | None]:
+    def reliability(self) -> list[dict[str, float | int]]:
+        """The reliability table: for each tenth of the top-1 probability that holds predictions, how many,
+        their mean top-1 probability (confidence) and the share whose top-1 was right (accuracy)."""
+        return [
+            {
+                "from": i / RELIABILITY_BINS,
+                "to": (i + 1) / RELIABILITY_BINS,
+                "predictions": int(n),
+                "confidence": round(total / n, 4),
+                "accuracy": round(right / n, 4),
+            }
+            for i, (n, total, right) in enumerate(self.bins)
+            if n
+        ]
+
+    def calibration_error(self) -> float:
+        """Expected calibration error of the top-1 probability: the mean over predictions of
+        ``|accuracy - confidence|`` of their tenth (0 for a perfectly calibrated predictor)."""
+        n = sum(row[0] for row in self.bins)
+        return sum(abs(right - total) for _, total, right in self.bins) / n if n else 0.0
+
+    def as_dict(self) -> dict[str, object]:
         """Rates: ``top1``, ``top3``, ``zero`` (share of steps given probability 0), ``log2`` (mean over the
         steps given a probability above 0, so models that zero some steps can still be compared),
-        ``done_top1`` (share whose top-1 was already done)."""
+        ``done_top1`` (share whose top-1 was already done), ``ece`` (:meth:`calibration_error`) and
+        ``reliability`` (:meth:`reliability`)."""
         n = max(self.steps, 1)
         scored = max(self.steps - self.zero, 1)
         return {
@@ -80,6 +119,8 @@ class StepScores:
             "zero": round(self.zero / n, 4),
             "log2": round(self.log2 / scored, 4),
             "done_top1": round(self.done_top1 / n, 4),
+            "ece": round(self.calibration_error(), 4),
+            "reliability": self.reliability(),
         }
 
 
@@ -196,13 +237,13 @@ def _score_demo(
     most: Counter[str],
     scores: dict[str, StepScores],
 ) -> None:
-    running = predictor.tracker()
+    running = predictor.session()
     done: Counter[str] = Counter()
     for position in range(len(actions) + 1):
         truth = actions[position] if position < len(actions) else END
         prefix = actions[:position]
         already = {a for a, n in done.items() if n >= most.get(a, 0)}
-        scores[PREDICTOR].add(dict(running.last.next_actions), truth, already)
+        scores[PREDICTOR].add(running.next_step(), truth, already)
         for name, model in baselines.items():
             scores[name].add(model.next_step(prefix), truth, already)
         if position < len(actions):

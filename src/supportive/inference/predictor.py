@@ -1,10 +1,17 @@
 """What comes next: a next-step predictor over action ids, learned from demonstrations.
 
-``StepPredictor(**settings).fit(demonstrations)`` learns the hierarchy and its frequencies with the general
-learner (:class:`~supportive.learning.learner.HTNLearner`), then ``next_step(prefix)`` runs the
-progress-aware tracker (:class:`~supportive.inference.tracker.ProgressFilter`) over the known actions of
-``prefix`` and returns the probability of each action id being done next, plus ``"<end>"`` for "the task is
-finished"; the probabilities add up to one. Unknown actions in ``prefix`` are slips, not errors.
+``StepPredictor(**settings).fit(demonstrations)`` learns the hierarchy and its frequencies with
+:class:`~supportive.learning.learner.HTNLearner`; ``next_step(prefix)`` runs the progress-aware tracker
+(:class:`~supportive.inference.tracker.ProgressFilter`) over the known actions of ``prefix`` and returns the
+probability of each action id being done next, plus ``"<end>"`` for "the task is finished"; the
+probabilities add up to one. Unknown actions in ``prefix`` are slips, not errors.
+
+**Calibrated, not only accurate.** What the hierarchy says is mixed with an add-one smoothed bigram
+(:class:`~supportive.inference.bigram.Bigram`, weight ``backoff``), so a step it did not expect still has a
+probability, and its choices are smoothed by ``smoothing`` pseudo-counts per option. Both are fitted inside
+``fit`` by K-fold cross-validation over the demonstrations (``calibration_folds``; the grid pair with the
+highest held-out log-likelihood of the next step), unless given; with fewer than three demonstrations there is
+nothing to hold out and the first values of the grids' defaults apply (see :class:`StepPredictor`).
 
 >>> predictor = StepPredictor().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]] * 2)
 >>> {a: round(p, 2) for a, p in predictor.next_step(["knife", "carrots"]).items() if p > 0.1}
@@ -14,63 +21,207 @@ finished"; the probabilities add up to one. Unknown actions in ``prefix`` are sl
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from typing import Any, Self
 
+import numpy as np
+
+from supportive.errors import LearningError
 from supportive.estimator import Estimator
+from supportive.inference.bigram import Bigram
 from supportive.inference.tracker import END_LABEL, ProgressFilter, ProgressHMM
 from supportive.learning.learner import DemonstrationLike, HTNLearner
-from supportive.tasks.spec import TaskSpec
+from supportive.tasks.htn import HTN
+from supportive.tasks.spec import Demonstration, TaskSpec
 
-__all__ = ["END_LABEL", "StepPredictor"]
+__all__ = ["END_LABEL", "Calibration", "PredictionSession", "StepPredictor"]
 
 _LEARNER = (
     "mode", "slips", "slip_margin", "slip_rate", "slip_rate_weight", "max_slip_candidates", "evidence",
-    "order_support", "subtask_demonstrations",
+    "order_support", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
 )
-_TRACKER = ("smoothing", "slip", "restart", "max_states", "beam")
+_TRACKER = ("slip", "restart", "max_states", "beam")
+_OWN = ("smoothing", "backoff", "smoothing_grid", "backoff_grid", "calibration_folds")
+_DEFAULTS: dict[str, Any] = {
+    "smoothing_grid": (1.0, 0.25, 4.0),
+    "backoff_grid": (0.1, 0.0, 0.01, 0.03, 0.2, 0.35, 0.5),
+    "calibration_folds": 5,
+}
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """How ``smoothing`` and ``backoff`` were chosen.
+
+    Attributes:
+        smoothing: The pseudo-counts kept.
+        backoff: The bigram's weight kept.
+        folds: Folds of the cross-validation (0: not fitted, the values given or the grids' first).
+        steps: Held-out steps scored.
+        log2: Mean held-out ``log2`` probability of the next step, per smoothing (rows) and back-off weight
+            (columns), as the grids list them.
+    """
+
+    smoothing: float
+    backoff: float
+    folds: int = 0
+    steps: int = 0
+    log2: tuple[tuple[float, ...], ...] = ()
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form."""
+        return {
+            "smoothing": self.smoothing,
+            "backoff": self.backoff,
+            "folds": self.folds,
+            "held_out_steps": self.steps,
+            "held_out_log2": [[round(v, 4) for v in row] for row in self.log2],
+        }
 
 
 class StepPredictor(Estimator):
     """Next-step prediction (see the module docstring).
 
     Args:
-        **settings: Learner settings (``mode``, ``slips``, ``slip_margin``, ``slip_rate``,
-            ``slip_rate_weight``, ``max_slip_candidates``, ``evidence``, ``order_support``,
-            ``subtask_demonstrations``; see :class:`HTNLearner`) and tracker settings (``smoothing``,
-            ``slip``, ``restart``, ``max_states``, ``beam``; see :class:`ProgressHMM`).
+        **settings: Learner settings (see :class:`HTNLearner`: ``mode``, ``slips``, ``slip_margin``,
+            ``slip_rate``, ``slip_rate_weight``, ``max_slip_candidates``, ``evidence``, ``order_support``,
+            ``subtask_demonstrations``, ``selection_folds``, ``selection_demonstrations``), tracker settings
+            (see :class:`ProgressHMM`: ``slip``, ``restart``, ``max_states``, ``beam``) and the predictor's own:
+            ``smoothing`` (pseudo-counts per option of every choice, above 0) and ``backoff`` (the bigram's
+            weight, in [0, 1)), each fitted when not given; ``smoothing_grid`` and ``backoff_grid`` (the
+            values tried, the first used when there is too little to fit on; defaults ``(1, 0.25, 4)`` and
+            ``(0.1, 0, 0.01, 0.03, 0.2, 0.35, 0.5)``); ``calibration_folds`` (at most this many folds, at
+            least 2; default 5).
 
     Attributes (after ``fit``):
         learner_: The fitted hierarchy learner.
         model_: The progress-aware model over its hierarchy.
+        bigram_: The back-off.
+        calibration_: How ``smoothing`` and ``backoff`` were chosen.
     """
 
     def __init__(self, **settings: Any) -> None:
-        unknown = sorted(set(settings) - set(_LEARNER) - set(_TRACKER))
+        unknown = sorted(set(settings) - set(_LEARNER) - set(_TRACKER) - set(_OWN))
         if unknown:
             raise TypeError(f"StepPredictor got unknown setting(s): {', '.join(unknown)}")
+        smoothing, backoff = settings.get("smoothing"), settings.get("backoff")
+        if smoothing is not None and not smoothing > 0:
+            raise LearningError(f"smoothing must be above 0, got {smoothing}")
+        if backoff is not None and not 0.0 <= backoff < 1.0:
+            raise LearningError(f"backoff must be in [0, 1), got {backoff}")
+        if int(settings.get("calibration_folds", 2)) < 2:
+            raise LearningError("calibration_folds must be at least 2")
         self.settings = dict(settings)
 
+    def _setting(self, name: str) -> Any:
+        return self.settings.get(name, _DEFAULTS.get(name))
+
     def fit(self, demonstrations: TaskSpec | Iterable[DemonstrationLike]) -> Self:
-        """Learn the hierarchy, its frequencies and the tracker from demonstrations (a task spec or step
-        sequences of action ids)."""
-        learner_settings = {k: v for k, v in self.settings.items() if k in _LEARNER}
-        tracker_settings = {k: v for k, v in self.settings.items() if k in _TRACKER}
+        """Learn the hierarchy, its frequencies, the back-off and the tracker from demonstrations (a task spec
+        or step sequences of action ids), and fit ``smoothing`` and ``backoff`` when not given."""
         self._forget()
-        self.learner_ = HTNLearner(alternatives=0, **learner_settings).fit(demonstrations)
-        self.model_ = ProgressHMM(self.learner_.htn_, **tracker_settings).fit()
+        demos = list(demonstrations.demonstrations if isinstance(demonstrations, TaskSpec) else demonstrations)
+        self.learner_ = self._learner().fit(demonstrations)
+        self.bigram_ = Bigram().fit(demos)
+        self.calibration_ = self._calibrate(demos)
+        self.model_ = self._hmm(self.learner_.htn_, self.calibration_.smoothing)
         return self
 
     def tracker(self) -> ProgressFilter:
-        """A fresh tracker over the fitted model (for predictions step by step).
+        """A fresh tracker over the fitted model (the hierarchy's own belief, without the back-off).
 
         Raises:
             NotFittedError: before ``fit``.
         """
         return self.model_.filter()
 
+    def session(self) -> PredictionSession:
+        """A fresh prediction, step by step (``observe`` each action, ``next_step`` for what comes next)."""
+        return PredictionSession(self.tracker(), self.bigram_, self.calibration_.backoff)
+
     def next_step(self, prefix: Sequence[str]) -> dict[str, float]:
         """Probability of each action id being done next after ``prefix``, and of ``"<end>"``."""
-        running = self.tracker()
+        running = self.session()
         for action in prefix:
             running.observe(action)
-        return dict(running.last.next_actions)
+        return running.next_step()
+
+    # ------------------------------------------------------------------ fitting
+    def _learner(self) -> HTNLearner:
+        return HTNLearner(alternatives=0, **{k: v for k, v in self.settings.items() if k in _LEARNER})
+
+    def _hmm(self, htn: HTN, smoothing: float) -> ProgressHMM:
+        tracker = {k: v for k, v in self.settings.items() if k in _TRACKER}
+        return ProgressHMM(htn, smoothing=smoothing, **tracker).fit()
+
+    def _calibrate(self, demos: Sequence[DemonstrationLike]) -> Calibration:
+        """Choose ``smoothing`` and ``backoff`` by the held-out log-likelihood of the next step."""
+        smoothings = [self.settings["smoothing"]] if "smoothing" in self.settings else list(self._setting("smoothing_grid"))
+        backoffs = [self.settings["backoff"]] if "backoff" in self.settings else list(self._setting("backoff_grid"))
+        if len(demos) < 3 or (len(smoothings) == 1 and len(backoffs) == 1):
+            return Calibration(float(smoothings[0]), float(backoffs[0]))
+        k = min(int(self._setting("calibration_folds")), len(demos))
+        weights = np.asarray(backoffs, dtype=float)
+        totals = np.zeros((len(smoothings), len(weights)))
+        steps = 0
+        for fold in range(k):
+            train = [d for i, d in enumerate(demos) if i % k != fold]
+            held = [_actions(d) for i, d in enumerate(demos) if i % k == fold]
+            htn = self._learner().fit(train).htn_
+            bigram = Bigram().fit(train)
+            for row, smoothing in enumerate(smoothings):
+                hmm = self._hmm(htn, float(smoothing))
+                for actions in held:
+                    model, back = _truth_probabilities(hmm.filter(), bigram, actions)
+                    mixed = (1.0 - weights)[None, :] * model[:, None] + weights[None, :] * back[:, None]
+                    totals[row] += np.log2(np.maximum(mixed, 1e-300)).sum(axis=0)
+                    if row == 0:
+                        steps += len(actions) + 1
+        best = np.unravel_index(int(np.argmax(totals)), totals.shape)
+        table = tuple(tuple(float(v) / steps for v in row) for row in totals)
+        return Calibration(float(smoothings[best[0]]), float(weights[best[1]]), k, steps, table)
+
+
+class PredictionSession:
+    """One prediction step by step: the tracker's belief of what comes next, mixed with the back-off."""
+
+    def __init__(self, tracker: ProgressFilter, bigram: Bigram, backoff: float) -> None:
+        self.tracker = tracker
+        self.bigram = bigram
+        self.backoff = backoff
+        self.prefix: list[str] = []
+
+    def observe(self, action: str) -> None:
+        """One more completed action."""
+        self.tracker.observe(action)
+        self.prefix.append(action)
+
+    def next_step(self) -> dict[str, float]:
+        """Probability of each action id being done next, and of ``"<end>"``; sums to one."""
+        return _mixed(self.tracker.last.next_actions, self.bigram.next_step(self.prefix), self.backoff)
+
+
+def _mixed(model: dict[str, float], back: dict[str, float], weight: float) -> dict[str, float]:
+    if weight == 0.0:
+        return dict(model)
+    keys = dict.fromkeys([*model, *back])
+    return {a: (1.0 - weight) * model.get(a, 0.0) + weight * back.get(a, 0.0) for a in keys}
+
+
+def _truth_probabilities(
+    running: ProgressFilter, bigram: Bigram, actions: Sequence[str]
+) -> tuple[np.ndarray, np.ndarray]:
+    """The probability the tracker and the bigram gave each next step of ``actions`` (and its end)."""
+    model, back = [], []
+    for position in range(len(actions) + 1):
+        truth = actions[position] if position < len(actions) else END_LABEL
+        model.append(running.last.next_actions.get(truth, 0.0))
+        back.append(bigram.next_step(actions[:position]).get(truth, 0.0))
+        if position < len(actions):
+            running.observe(truth)
+    return np.asarray(model), np.asarray(back)
+
+
+def _actions(demo: DemonstrationLike) -> tuple[str, ...]:
+    return demo.actions if isinstance(demo, Demonstration) else tuple(demo)
+

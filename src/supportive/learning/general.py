@@ -24,14 +24,15 @@ __all__ = ["GeneralResult", "learn_general"]
 
 @dataclass(frozen=True)
 class GeneralResult:
-    """Roots, top level (None when one root is left), the slips set aside, the noise model and the labelled
-    demonstrations."""
+    """Roots, top level (None when one root is left), the slips set aside, the noise model, the labelled
+    demonstrations and the same with their slips taken out (``cleaned``)."""
 
     roots: tuple[Node, ...]
     top_level: TopLevel | None
     deviations: tuple[Deviation, ...]
     noise: NoiseEstimate
     labelled: tuple[tuple[Leaf, ...], ...]
+    cleaned: tuple[tuple[Leaf, ...], ...]
 
 
 def learn_general(
@@ -46,5 +47,10 @@ def learn_general(
     labelled = label_performances(demonstrations)
     found = find_slips(labelled, structure, noise, modules=modules)
     return GeneralResult(
-        found.structure.roots, found.structure.top_level, found.deviations, found.noise, tuple(labelled)
+        found.structure.roots,
+        found.structure.top_level,
+        found.deviations,
+        found.noise,
+        tuple(labelled),
+        tuple(tuple(demo) for demo in found.cleaned),
     )

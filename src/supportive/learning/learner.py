@@ -23,8 +23,8 @@ from supportive.learning.compaction import Compaction
 from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
 from supportive.learning.general import GeneralResult, learn_general
 from supportive.learning.noise import Deviation, NoiseEstimate, NoiseSettings
-from supportive.learning.selection import CANDIDATES, CONSISTENT, READINGS, Selection, select_reading
-from supportive.learning.structure import FittedStructure, StructureSettings
+from supportive.learning.selection import CONSISTENT, READINGS, Selection, select_reading
+from supportive.learning.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.naming import known_names, named
 from supportive.tasks.spec import Demonstration, TaskSpec
@@ -248,29 +248,67 @@ class HTNLearner(Estimator):
         """True when this fit uses the ``strict`` learner (asked for, or explicit states given)."""
         return self.mode == "strict" or bool(self.task_graph_.explicit_states)
 
-    def _general(self, sequences: Sequence[Sequence[str]], reading: str) -> GeneralResult:
-        """The general learner in one of its readings (:data:`~supportive.learning.selection.CANDIDATES`)."""
+    def _structure_settings(self, reading: str) -> StructureSettings:
+        """The evidence settings of a reading (``consistent orders``: two demonstrations establish an order)."""
         support = 2 if reading.endswith(CONSISTENT) else self.order_support
-        structure = StructureSettings(self.evidence, support, self.subtask_demonstrations)
+        return StructureSettings(self.evidence, support, self.subtask_demonstrations)
+
+    def _general(self, sequences: Sequence[Sequence[str]], reading: str) -> GeneralResult:
+        """The general learner in one of its readings, slips searched (:mod:`~supportive.learning.noise`)."""
         noise = NoiseSettings(
             math.inf if not self.slips else self.slip_margin,
             self.slip_rate,
             self.slip_rate_weight,
             self.max_slip_candidates,
         )
-        return learn_general(sequences, structure, noise, modules=reading.startswith("general"))
+        return learn_general(
+            sequences, self._structure_settings(reading), noise, modules=not reading.startswith("partial order")
+        )
 
-    def _reading(self, name: str, sequences: Sequence[Sequence[str]]) -> FittedStructure:
-        """One reading learned from ``sequences`` (for the selection, :mod:`~supportive.learning.selection`)."""
+    def _reading(self, name: str, found: GeneralResult, indices: Sequence[int]) -> FittedStructure:
+        """One reading learned from the demonstrations ``indices`` with the slips ``found`` taken out (for
+        the selection, :mod:`~supportive.learning.selection`)."""
+        cleaned = [found.cleaned[i] for i in indices]
         if name == "strict":
             graph = TaskGraph()
-            for i, demo in enumerate(sequences):
-                graph.add(demo, f"d{i + 1}")
+            for i, demo in enumerate(cleaned):
+                graph.add([action for action, _ in demo], f"d{i + 1}")
             compaction = Compaction(graph)
             compaction.run()
-            return FittedStructure(compaction.roots(), compaction.top_level())
-        result = self._general(sequences, name)
-        return FittedStructure(result.roots, result.top_level)
+            return FittedStructure(tuple(compaction.roots()), compaction.top_level())
+        position = {d: i for i, d in enumerate(indices)}
+        excused = [
+            (position[d.demonstration], d.leaf)
+            for d in found.deviations
+            if d.kind in ("out of order", "missing") and d.demonstration in position
+        ]
+        return fit_structure(
+            cleaned, excused, self._structure_settings(name), modules=not name.startswith("partial order")
+        )
+
+    def _selected(self, found: GeneralResult, general: FittedStructure) -> tuple[FittedStructure, Selection]:
+        """The reading the held-out likelihood prefers, learned from the demonstrations with the slips
+        ``found`` taken out, and why it was chosen."""
+        fits: dict[tuple[str, tuple[int, ...]], FittedStructure] = {}
+
+        def fit(name: str, indices: Sequence[int]) -> HTN:
+            key = (name, tuple(indices))
+            if key not in fits:
+                fits[key] = self._reading(name, found, indices)
+            return fits[key].htn()
+
+        everything = tuple(range(len(found.cleaned)))
+        fits[("general", everything)] = general
+        selection = select_reading(
+            [[action for action, _ in demo] for demo in found.cleaned],
+            fit,
+            general.htn(),
+            folds=self.selection_folds,
+            min_demonstrations=self.selection_demonstrations,
+            slip_rate=self.slip_rate,
+        )
+        chosen = selection.chosen
+        return fits.get((chosen, everything)) or self._reading(chosen, found, everything), selection
 
     def _compacted(self) -> Compaction:
         """Algorithm 2 over the task graph (run once, then kept up to date by ``partial_fit``)."""
@@ -282,31 +320,23 @@ class HTNLearner(Estimator):
     def _finish(self, started: float) -> None:
         names = self.names_
         self.selection_: Selection | None = None
-        reading = "strict" if self.learns_strictly else self.mode
-        if reading == "auto":
-            sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
-            full = {name: self._reading(name, sequences).htn() for name in CANDIDATES}
-            self.selection_ = select_reading(
-                sequences,
-                lambda name, train: self._reading(name, train).htn(),
-                full,
-                folds=self.selection_folds,
-                min_demonstrations=self.selection_demonstrations,
-                slip_rate=self.slip_rate,
-            )
-            reading = self.selection_.chosen
+        self.deviations_: tuple[Deviation, ...] = ()
+        self.noise_: NoiseEstimate | None = None
+        reading: str = "strict" if self.learns_strictly else self.mode
         if reading == "strict":
             compaction = self._compacted()
             roots = tuple(named(root, names) for root in compaction.roots())
             top = compaction.top_level()
-            self.deviations_: tuple[Deviation, ...] = ()
-            self.noise_: NoiseEstimate | None = None
             self.labelled_ = tuple(tuple(self.task_graph_.subgoals[s] for s in d) for d in self.task_graph_.demonstrations)
         else:
             sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
-            result = self._general(sequences, reading)
-            roots = tuple(named(root, names) for root in result.roots)
-            top = result.top_level
+            result = self._general(sequences, "general" if reading == "auto" else reading)
+            fitted = FittedStructure(result.roots, result.top_level)
+            if reading == "auto":
+                fitted, self.selection_ = self._selected(result, fitted)
+                reading = self.selection_.chosen
+            roots = tuple(named(root, names) for root in fitted.roots)
+            top = fitted.top_level
             self.deviations_ = result.deviations
             self.noise_ = result.noise
             self.labelled_ = result.labelled

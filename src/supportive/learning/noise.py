@@ -27,6 +27,7 @@ distribution says how often each order comes). The estimated rates (:class:`Nois
 
 from __future__ import annotations
 
+import heapq
 import itertools
 import math
 from collections import Counter
@@ -35,9 +36,11 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
+from scipy.stats import binom
 
-from supportive.learning.evidence import agreed_orders, pair_counts, slip_allowance
+from supportive.learning.evidence import pair_counts
 from supportive.learning.order_likelihood import OrderLikelihood
+from supportive.learning.pair_orders import order_probabilities
 from supportive.learning.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.tasks.htn import Leaf
 
@@ -151,52 +154,88 @@ class _Search:
         self.settings = settings
         self.modules = modules
         self.steps = sum(len(demo) for demo in self.labelled)
-        self._scores: dict[frozenset[Deviation], tuple[float, FittedStructure]] = {}
+        self._scores: dict[frozenset[Deviation], float] = {}
+        self._fits: dict[frozenset[Deviation], FittedStructure] = {}
 
     # ------------------------------------------------------------------ search
     def run(self) -> SlipResult:
         slips: frozenset[Deviation] = frozenset()
-        current = start = self._total(slips)
-        while self._searchable():
-            chosen = self._round(slips)
-            if chosen is None:
-                break
-            slips, current = chosen, self._total(chosen)
-        _, fitted = self._structure(slips)
+        gain = 0.0
+        if self._searchable():
+            start = self._joint()
+            if start and self._total(start) > self._total(slips):
+                slips, gain = start, self._total(start) - self._total(slips)
+            slips, added = self._forward(slips)
+            gain += added
+            slips, dropped = self._backward(slips)
+            gain += dropped
+        fitted = self._fit(slips)
         deviations = tuple(sorted(slips, key=_order))
         counts = Counter(d.kind for d in deviations)
-        noise = NoiseEstimate(self.steps, {k: counts[k] for k in KINDS if counts[k]}, current - start, len(self._scores))
+        noise = NoiseEstimate(self.steps, {k: counts[k] for k in KINDS if counts[k]}, gain, len(self._scores))
         return SlipResult(self._cleaned(slips), deviations, noise, fitted)
 
-    def _round(self, slips: frozenset[Deviation]) -> frozenset[Deviation] | None:
-        """One round of hard EM from ``slips``: score every candidate's gain for the hierarchy, estimate the
-        rates at which the candidates worth their noise are a fixed point, and keep them when the whole
-        explanation gains more than ``margin``; else the single best candidate, if it does."""
-        base, _ = self._structure(slips)
-        current = self._total(slips)
-        gains = []
-        for candidate in self._candidates(slips):
-            value, _ = self._structure(slips | candidate)
-            if value > -math.inf:
-                gains.append((value - base, candidate))
-        if not gains:
-            return None
-        counts = Counter(d.kind for d in slips)
-        rates = self._rates(counts + Counter(d.kind for _, c in gains for d in c))
-        for _ in range(50):  # the rates' fixed point: each step keeps or drops candidates, monotonically
-            net = [(gain + sum(_log_odds(rates[d.kind]) for d in c), c) for gain, c in gains]
-            worth = _one_per_demonstration([c for value, c in sorted(net, key=_by_value) if value > 0])
-            new_rates = self._rates(counts + Counter(d.kind for c in worth for d in c))
-            if new_rates == rates:
+    def _joint(self) -> frozenset[Deviation]:
+        """The most telling single step out of place in each demonstration that has one (the largest
+        candidate, a start the search may prune): from a hierarchy loosened by many slips, each alone may
+        gain little while a variant many people do gains much."""
+        candidates = self._candidates(frozenset())
+        singles = [c for c in candidates if len(c) == 1 and next(iter(c)).kind == "out of order"]
+        best = {next(iter(c)).demonstration: c for c in reversed(singles)}
+        return frozenset().union(*best.values()) if best else frozenset()
+
+    def _forward(self, slips: frozenset[Deviation]) -> tuple[frozenset[Deviation], float]:
+        """Add, one at a time, the candidate whose slips make the explanation most probable per slip, while
+        it gains more than ``margin``; return the slips and the total gain. Per slip: a group of slips (the
+        same step out of order in several demonstrations) must be worth more than its best single members,
+        or a variant many people do would be taken for many slips at once. Lazy: a candidate's gain in an
+        earlier round bounds its gain now (adding slips rarely makes another worth more), so only the
+        candidates that might be best are scored again."""
+        bounds: dict[frozenset[Deviation], float] = {}
+        current: float | None = None
+        gain = 0.0
+        while True:
+            candidates = self._candidates(slips)
+            if not candidates:
                 break
-            rates = new_rates
-        joined = slips.union(*worth) if worth else slips
-        if worth and self._total(joined) - current > self.settings.margin:
-            return joined
-        best = min(gains, key=_by_value)[1]
-        if self._total(slips | best) - current > self.settings.margin:
-            return slips | best
-        return None
+            if current is None:
+                current = self._total(slips)
+            heap = [(-bounds.get(c, math.inf), i, c) for i, c in enumerate(candidates)]
+            heapq.heapify(heap)
+            best: tuple[float, frozenset[Deviation]] | None = None
+            while heap:
+                _, i, candidate = heapq.heappop(heap)
+                value = self._total(slips | candidate) - current
+                bounds[candidate] = value / len(candidate)
+                if not heap or value / len(candidate) >= -heap[0][0]:
+                    best = (value, candidate)
+                    break
+                heapq.heappush(heap, (-value / len(candidate), i, candidate))
+            if best is None or not best[0] > self.settings.margin:
+                break
+            slips |= best[1]
+            current += best[0]
+            gain += best[0]
+        return slips, gain
+
+    def _backward(self, slips: frozenset[Deviation]) -> tuple[frozenset[Deviation], float]:
+        """Take back the slips whose removal makes the explanation more probable, best first, one slip or
+        one group at a time (a group: the same step slipped the same way in several demonstrations, which
+        only together tighten the hierarchy, and only together are seen to be a variant); return the slips
+        and the gain of the removals."""
+        gain = 0.0
+        current = self._total(slips) if slips else 0.0
+        while slips:
+            groups: dict[tuple[Leaf, str], set[Deviation]] = {}
+            for slip in slips:
+                groups.setdefault((slip.leaf, slip.kind), set()).add(slip)
+            units = [frozenset({slip}) for slip in sorted(slips, key=_order)]
+            units += [frozenset(g) for _, g in sorted(groups.items()) if len(g) > 1]
+            value, unit = max(((self._total(slips - u) - current, u) for u in units), key=lambda t: t[0])
+            if not value > 0.0:
+                break
+            slips, current, gain = slips - unit, current + value, gain + value
+        return slips, gain
 
     def _searchable(self) -> bool:
         """With no more demonstrations than the support an agreement needs, no slip can be told from a
@@ -231,7 +270,7 @@ class _Search:
                 skippers = [d for d in range(n) if d not in doing and (d, leaf) not in excused]
                 if skippers:
                     out.append(frozenset(Deviation(d, -1, leaf, "missing") for d in skippers))
-        reversing = self._moved(cleaned)
+        reversing = self._moved(cleaned, slips)
         repairs = self._repairs(cleaned, {d.demonstration for c in reversing for d in c})
         moved = list(dict.fromkeys(_interleave(repairs, reversing, self._inserted(cleaned))))
         out.extend(moved[: self.settings.max_candidates])
@@ -240,8 +279,9 @@ class _Search:
             (slip,) = candidate
             by_leaf.setdefault(slip.leaf, set()).add(slip)
         out.extend(frozenset(group) for _, group in sorted(by_leaf.items()) if len(group) > 1)
-        if len(repairs) > 1:
-            out.append(frozenset().union(*_one_per_demonstration(repairs)))
+        best = {next(iter(c)).demonstration: c for c in reversed(moved)}  # the most telling per demonstration
+        if len(best) > 1:
+            out.append(frozenset().union(*best.values()))
         return out
 
     def _repairs(self, cleaned: list[list[tuple[int, Leaf]]], odd: set[int]) -> list[frozenset[Deviation]]:
@@ -262,16 +302,32 @@ class _Search:
                     out.append(frozenset({Deviation(d, position, leaf, "out of order")}))
         return out
 
-    def _moved(self, cleaned: list[list[tuple[int, Leaf]]]) -> list[frozenset[Deviation]]:
+    def _moved(self, cleaned: list[list[tuple[int, Leaf]]], slips: frozenset[Deviation]) -> list[frozenset[Deviation]]:
         """Single steps that reverse orders the other demonstrations agree on, the most telling first: each
         reversed order weighs one over the number of demonstrations reversing it (a step moved alone
-        reverses orders nobody else does)."""
+        reverses orders nobody else does).
+
+        An order is *agreed* when the demonstrations reverse it far less often than the hierarchy learned so
+        far, which admits the reversals, predicts (:func:`~supportive.learning.pair_orders.order_probabilities`):
+        with ``r`` of ``m`` demonstrations performing both reversing it (fewer than keep it, and at least the
+        support an order needs keep it) and the hierarchy predicting the reversal with chance ``q``,
+        ``P[Bin(m, q) <= r]`` is below ``evidence`` over the number of orders so tested (Bonferroni: the
+        chance that any free order of the task looks agreed is below ``evidence``). A free pair of a partial order is not a coin: two steps far apart in two
+        interleaved chains come in the unusual order rarely, and as rarely as predicted is no evidence."""
         leaves = sorted({leaf for demo in cleaned for _, leaf in demo})
         index = {leaf: i for i, leaf in enumerate(leaves)}
         sequences = [[index[leaf] for _, leaf in demo] for demo in cleaned]
         before, together = pair_counts(sequences, list(range(len(leaves))))
-        allowance = slip_allowance(len(sequences), self.structure_settings.evidence)
-        agreed = agreed_orders(before, before.T, together, allowance) & (before >= self.structure_settings.support_needed)
+        reversed_ = (before.T > 0) & (before > before.T) & (before >= self.structure_settings.support_needed)
+        if not reversed_.any():
+            return []
+        model_leaves, predicted = order_probabilities(self._fit(slips).htn())
+        where = np.array([index.get(leaf, -1) for leaf in model_leaves])
+        known = where >= 0
+        chance = np.full((len(leaves), len(leaves)), 0.5)  # [i, j]: j before i, as the hierarchy predicts
+        chance[np.ix_(where[known], where[known])] = predicted[np.ix_(known, known)].T
+        tested = int(reversed_.sum())
+        agreed = reversed_ & (binom.cdf(before.T, together, chance) < self.structure_settings.evidence / tested)
         if not agreed.any():
             return []
         weight = np.where(agreed.T, 1.0 / np.maximum(before.T, 1), 0.0)  # [i, j]: j before i agreed, i first here
@@ -288,13 +344,15 @@ class _Search:
         return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
 
     def _inserted(self, cleaned: list[list[tuple[int, Leaf]]]) -> list[frozenset[Deviation]]:
-        """Single steps that look put where they do not belong: the other demonstrations go from the step
-        before to the step after directly more often than through it (a step moved into a subtask reverses
-        no order but breaks it), most telling first."""
+        """Single steps put where they never are otherwise: the step before and the step after follow one
+        another directly in at least the support an order needs of the other demonstrations, and no other
+        demonstration has the step right after the one or right before the other (a step moved into a
+        subtask reverses no order but breaks it). Most telling first."""
         pairs: Counter[tuple[Leaf | None, Leaf | None]] = Counter()
         for demo in cleaned:
             labels: list[Leaf | None] = [None, *(leaf for _, leaf in demo), None]
             pairs.update(itertools.pairwise(labels))
+        need = self.structure_settings.support_needed
         ranked: list[tuple[int, int, int, Leaf]] = []
         for d, demo in enumerate(cleaned):
             labels = [None, *(leaf for _, leaf in demo), None]
@@ -304,8 +362,8 @@ class _Search:
                 assert leaf is not None
                 through = pairs[(before, leaf)] - mine[(before, leaf)] + pairs[(leaf, after)] - mine[(leaf, after)]
                 direct = pairs[(before, after)] - mine[(before, after)]
-                if direct > through:
-                    ranked.append((through - direct, d, demo[i - 1][0], leaf))
+                if through == 0 and direct >= need:
+                    ranked.append((-direct, d, demo[i - 1][0], leaf))
         ranked.sort()
         return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
 
@@ -339,20 +397,28 @@ class _Search:
 
     def _total(self, slips: frozenset[Deviation]) -> float:
         """The score of an explanation: the hierarchy's part and the noise's."""
-        return self._structure(slips)[0] + self._noise(Counter(s.kind for s in slips))
+        return self._structure(slips) + self._noise(Counter(s.kind for s in slips))
 
-    def _structure(self, slips: frozenset[Deviation]) -> tuple[float, FittedStructure]:
-        """The hierarchy learned with ``slips`` taken out, and its part of the score: the log-likelihood of
-        the demonstrations with the slips undone and of where the slips landed, in the reading of
+    def _fit(self, slips: frozenset[Deviation]) -> FittedStructure:
+        """The hierarchy learned with ``slips`` taken out (a step out of place or forgotten counts as
+        performed where it was slipped on, for the optional flags)."""
+        fitted = self._fits.get(slips)
+        if fitted is None:
+            excused = [(d.demonstration, d.leaf) for d in slips if d.kind in _PUT_BACK]
+            fitted = fit_structure(self._cleaned(slips), excused, self.structure_settings, modules=self.modules)
+            self._fits[slips] = fitted
+        return fitted
+
+    def _structure(self, slips: frozenset[Deviation]) -> float:
+        """The hierarchy's part of the score of ``slips``: the log-likelihood of the demonstrations with the
+        slips undone and of where the slips landed, in the reading of
         :class:`~supportive.learning.order_likelihood.OrderLikelihood`, less ``(1/2) log n`` per frequency
-        it fixes."""
+        the hierarchy learned without them fixes."""
         cached = self._scores.get(slips)
         if cached is not None:
             return cached
         cleaned = self._cleaned(slips)
-        excused = [(d.demonstration, d.leaf) for d in slips if d.kind in _PUT_BACK]
-        fitted = fit_structure(cleaned, excused, self.structure_settings, modules=self.modules)
-        reading = OrderLikelihood(fitted.htn())
+        reading = OrderLikelihood(self._fit(slips).htn())
         by_demo: dict[int, list[Deviation]] = {}
         for slip in slips:
             by_demo.setdefault(slip.demonstration, []).append(slip)
@@ -363,8 +429,8 @@ class _Search:
             if total == -math.inf:
                 break
         total -= 0.5 * math.log(max(len(cleaned), 1)) * reading.parameters()
-        self._scores[slips] = (total, fitted)
-        return total, fitted
+        self._scores[slips] = total
+        return total
 
     @staticmethod
     def _restored(reading: OrderLikelihood, leaves: list[Leaf], slips: list[Deviation]) -> float:
@@ -401,33 +467,11 @@ class _Search:
             for k in (counts[kind] for kind in KINDS)
         )
 
-    def _rates(self, counts: Counter[str]) -> dict[str, float]:
-        """The posterior mean rate of each kind given these slips."""
-        a, b = self._prior()
-        return {kind: (counts[kind] + a) / (self.steps + a + b) for kind in KINDS}
-
     def _prior(self) -> tuple[float, float]:
         """The beta prior of each kind's rate: mean ``rate``, worth ``weight`` observed steps."""
         return self.settings.rate * self.settings.weight, (1.0 - self.settings.rate) * self.settings.weight
 
 
-def _by_value(item: tuple[float, frozenset[Deviation]]) -> tuple[float, list[tuple[int, int, Leaf, str]]]:
-    """Best first; ties by the slips' order (deterministic)."""
-    return (-item[0], [_order(d) for d in sorted(item[1], key=_order)])
-
-
-def _one_per_demonstration(candidates: list[frozenset[Deviation]]) -> list[frozenset[Deviation]]:
-    """The candidates in order, skipping any that touches a demonstration an earlier one touched (two
-    explanations of one demonstration's oddity would both be paid for; the next round finds a second slip)."""
-    touched: set[int] = set()
-    out = []
-    for candidate in candidates:
-        demos = {d.demonstration for d in candidate}
-        if demos & touched:
-            continue
-        touched |= demos
-        out.append(candidate)
-    return out
 
 
 def _interleave(*ranked: list[frozenset[Deviation]]) -> list[frozenset[Deviation]]:
@@ -437,14 +481,6 @@ def _interleave(*ranked: list[frozenset[Deviation]]) -> list[frozenset[Deviation
         out.extend(candidate for candidate in group if candidate is not None)
     return out
 
-
-def _log_odds(rate: float) -> float:
-    """What one more slip of a kind with this rate costs against a clean step (natural log odds)."""
-    if rate <= 0.0:
-        return -math.inf
-    if rate >= 1.0:
-        return math.inf
-    return math.log(rate / (1.0 - rate))
 
 
 def _order(deviation: Deviation) -> tuple[int, int, Leaf, str]:

@@ -1,24 +1,30 @@
-"""Which reading of the demonstrations to keep: chosen by how well each predicts demonstrations it did not see.
+"""Which reading of the demonstrations to keep: the one that best predicts demonstrations it did not see.
 
-Readings of the same demonstrations (:class:`~supportive.learning.learner.HTNLearner`):
+Readings of the same demonstrations (:class:`~supportive.learning.learner.HTNLearner`), each learned from the
+demonstrations with their slips taken out (the slips are found once, :mod:`~supportive.learning.noise`):
 
-* ``general``: chains and cliques the evidence supports, a partial order where no tree fits, slips set aside;
+* ``general``: chains and cliques the evidence supports, a partial order where no tree fits;
 * ``strict``: the thesis's reading, only what was seen in full;
-* ``partial order``: no subtasks, the steps in the orders the evidence establishes (slips set aside);
+* ``partial order``: no subtasks, the steps in the orders the evidence establishes;
 * ``general`` and ``partial order`` with **consistent orders**: every order two or more demonstrations keep
-  without exception counts as established (``order_support=2``), not only those unlikely by chance; people
+  without exception counts as established (``order_support=2``), not only those unlikely by chance. People
   with habits keep orders that are free, but a task also has orders too few demonstrations show to rule out
-  chance, and which of the two explains the demonstrations better is for them to say.
+  chance; which of the two explains the demonstrations better is for them to say.
 
-When they differ, each is scored by K-fold cross-validation: learned from the other folds, the held-out
-demonstrations' log-likelihood in the reading of :class:`~supportive.learning.order_likelihood.OrderLikelihood`
-(which parts, then any valid order), and for a demonstration the reading does not admit, its probability as
-noise, as the slip model of :mod:`~supportive.learning.noise` reads it: one step out of order (``slip_rate``
-times the landing place, times the most probable admitted execution it came from), or when no single move
-explains it, ``slip_rate`` times a uniformly random order of its steps. So a reading too tight to generalise
-pays for every demonstration it refuses. The reading with the highest mean held-out log-likelihood per
-demonstration is kept (``general`` on a tie). With fewer than ``min_demonstrations`` demonstrations there is
-nothing to hold out and ``general`` is kept.
+They are scored by K-fold cross-validation: learned from the other folds, each held-out demonstration's
+log-likelihood when every execution the reading admits is equally likely (``-log`` of how many it admits; no
+frequency is fitted, so no reading is favoured for its parameters). A held-out demonstration the reading does
+not admit is explained as noise, as the slip model reads it: one step out of place (``slip_rate``, times the
+place it landed among the demonstration's, times the probability of the execution it came from), or, when no
+single move explains it, ``slip_rate`` times a uniformly random order of its steps. So a reading too tight to
+generalise pays for every demonstration it refuses, and one too loose for every one it admits. The reading
+with the highest mean held-out log-likelihood per demonstration is kept (the first of :data:`CANDIDATES` on a
+tie), unless, learned from all the demonstrations, it admits exactly the executions the ``general`` reading
+admits: then the same distribution is kept with its subtasks (:func:`same_executions`).
+
+No comparison is run (``general`` is kept) with fewer than ``min_demonstrations`` demonstrations, when every
+reading admits the same executions, or when the demonstrations show every execution the ``general`` reading
+admits (none can then predict a held-out demonstration better: the others admit the same or more).
 """
 
 from __future__ import annotations
@@ -27,10 +33,18 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
-from supportive.learning.order_likelihood import OrderLikelihood
-from supportive.tasks.htn import HTN
+from supportive.tasks.executions import Progress
+from supportive.tasks.htn import HTN, Leaf
 
-__all__ = ["CANDIDATES", "CONSISTENT", "READINGS", "Selection", "held_out_log_likelihood", "select_reading"]
+__all__ = [
+    "CANDIDATES",
+    "CONSISTENT",
+    "READINGS",
+    "Selection",
+    "held_out_log_likelihood",
+    "same_executions",
+    "select_reading",
+]
 
 READINGS = ("general", "strict", "partial order")
 """The readings one can ask for by name (``mode``), the default first."""
@@ -42,8 +56,8 @@ established (``order_support=2``), however likely by chance."""
 CANDIDATES = ("general", f"general{CONSISTENT}", "strict", "partial order", f"partial order{CONSISTENT}")
 """The readings ``auto`` chooses between, the default first."""
 
-Fitter = Callable[[str, Sequence[Sequence[str]]], HTN]
-"""Learns one reading (by name) from action sequences."""
+Fitter = Callable[[str, Sequence[int]], HTN]
+"""Learns one reading (by name) from the demonstrations of the given indices."""
 
 
 @dataclass(frozen=True)
@@ -52,7 +66,8 @@ class Selection:
 
     Attributes:
         chosen: The reading kept.
-        reason: ``"held-out likelihood"``, ``"the readings agree"`` or ``"too few demonstrations"``.
+        reason: ``"held-out likelihood"``, ``"the readings agree"``, ``"every execution was demonstrated"``
+            or ``"too few demonstrations"``.
         scores: Mean held-out log-likelihood per demonstration (nats) of each reading, when compared.
         admitted: Held-out demonstrations each reading admitted, when compared.
         folds: Folds of the cross-validation (0 when none was run).
@@ -79,35 +94,27 @@ class Selection:
         if not self.scores:
             return f"reading: {self.chosen} ({self.reason})"
         scores = ", ".join(f"{name} {value:.2f}" for name, value in self.scores.items())
-        return (
-            f"reading: {self.chosen} (held-out log-likelihood per demonstration, {self.folds} folds: {scores})"
-        )
+        return f"reading: {self.chosen} (held-out log-likelihood per demonstration, {self.folds} folds: {scores})"
 
 
 def held_out_log_likelihood(htn: HTN, actions: Sequence[str], slip_rate: float) -> tuple[float, bool]:
     """The log-likelihood of a held-out demonstration under ``htn`` and whether it admits it (see the module
     docstring for how a refused one is explained)."""
-    reading = OrderLikelihood(htn)
-    value = reading.log_probability_of_actions(actions)
-    if value > -math.inf:
-        return value, True
+    uniform = -math.log(max(htn.count_orderings(), 1))
+    if htn.admits(actions):
+        return uniform, True
     steps = list(actions)
-    best = -math.inf
     for i, step in enumerate(steps):
         rest = steps[:i] + steps[i + 1 :]
-        for j in range(len(rest) + 1):
-            if j != i:
-                best = max(best, reading.log_probability_of_actions([*rest[:j], step, *rest[j:]]))
-    landing = math.log(slip_rate) - math.log(max(len(steps), 1))
-    if best > -math.inf:
-        return best + landing, False
+        if any(htn.admits([*rest[:j], step, *rest[j:]]) for j in range(len(rest) + 1) if j != i):
+            return uniform + math.log(slip_rate) - math.log(max(len(steps), 1)), False
     return math.log(slip_rate) - math.lgamma(len(steps) + 1), False
 
 
 def select_reading(
-    sequences: Sequence[Sequence[str]],
+    actions: Sequence[Sequence[str]],
     fit: Fitter,
-    full: dict[str, HTN],
+    general: HTN,
     *,
     folds: int,
     min_demonstrations: int,
@@ -116,30 +123,75 @@ def select_reading(
     """Choose a reading among those of ``full`` (see the module docstring).
 
     Args:
-        sequences: The demonstrations, as action ids.
-        fit: Learns a reading from some of them.
-        full: Each reading learned from all of them (to tell whether they differ).
+        actions: The demonstrations with their slips taken out, as action ids.
+        fit: Learns a reading from some of them (by index); called for each reading with every index, then
+            for each fold.
+        general: The ``general`` reading learned from all of them.
         folds: At most this many folds (leave one out when there are fewer demonstrations).
         min_demonstrations: Compare only from this many demonstrations on.
         slip_rate: The probability of a refused demonstration as noise (see the module docstring).
     """
-    if len({htn.canonical() + (htn.count_orderings(),) for htn in full.values()}) == 1:
-        return Selection(READINGS[0], "the readings agree")
-    if len(sequences) < min_demonstrations:
+    if len(actions) < min_demonstrations:
         return Selection(READINGS[0], "too few demonstrations")
-    k = min(folds, len(sequences))
+    if general.count_orderings() <= len({tuple(a) for a in actions}):
+        return Selection(READINGS[0], "every execution was demonstrated")
+    everything = list(range(len(actions)))
+    full = {name: general if name == READINGS[0] else fit(name, everything) for name in CANDIDATES}
+    if len({(*htn.canonical(), htn.count_orderings()) for htn in full.values()}) == 1:
+        return Selection(READINGS[0], "the readings agree")
+    k = min(folds, len(actions))
     totals = dict.fromkeys(full, 0.0)
     admitted = dict.fromkeys(full, 0)
     for fold in range(k):
-        train = [s for i, s in enumerate(sequences) if i % k != fold]
-        held = [s for i, s in enumerate(sequences) if i % k == fold]
+        train = [i for i in range(len(actions)) if i % k != fold]
+        held = [i for i in range(len(actions)) if i % k == fold]
         for name in full:
             htn = fit(name, train)
-            for actions in held:
-                value, ok = held_out_log_likelihood(htn, actions, slip_rate)
+            for i in held:
+                value, ok = held_out_log_likelihood(htn, actions[i], slip_rate)
                 totals[name] += value
                 admitted[name] += ok
-    scores = {name: total / len(sequences) for name, total in totals.items()}
+    scores = {name: total / len(actions) for name, total in totals.items()}
     best = max(scores.values())
     chosen = next(name for name in full if scores[name] == best)
+    if chosen != READINGS[0] and same_executions(full[chosen], general):
+        reason = f"held-out likelihood; {chosen}, the best, admits the same executions"
+        return Selection(READINGS[0], reason, scores, admitted, k)
     return Selection(chosen, "held-out likelihood", scores, admitted, k)
+
+
+def same_executions(first: HTN, second: HTN, *, limit: int = 20_000) -> bool:
+    """True when ``first`` and ``second`` admit exactly the same leaf sequences: their execution machines
+    explored together, each as the set of states a prefix may lead to, until a prefix one may extend or end
+    and the other not (False), or ``limit`` pairs of state sets (False: not shown equal).
+
+    >>> from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, TopLevel
+    >>> a, b = ActionNode("a"), ActionNode("b")
+    >>> clique = HTN("t", (CliqueNode((a, b)),))
+    >>> free = HTN("t", (a, b), TopLevel((0,), (3,), ((0, 0, 1), (0, 1, 2), (1, 1, 3), (2, 0, 3))))
+    >>> same_executions(clique, free), same_executions(clique, HTN("t", (ChainNode((a, b)),)))
+    (True, False)
+    """
+    machines = (first.executions, second.executions)
+    start = (frozenset(machines[0].initial()), frozenset(machines[1].initial()))
+    seen = {start}
+    stack = [start]
+    while stack:
+        states = stack.pop()
+        if len({any(m.can_finish(s) for s in group) for m, group in zip(machines, states, strict=True)}) > 1:
+            return False
+        nexts: list[dict[Leaf, set[Progress]]] = [{}, {}]
+        for side, (machine, group) in enumerate(zip(machines, states, strict=True)):
+            for state in group:
+                for leaf, after in machine.moves(state).items():
+                    nexts[side].setdefault(machine.leaves[leaf], set()).add(after)
+        if nexts[0].keys() != nexts[1].keys():
+            return False
+        for label, reached in nexts[0].items():
+            pair = (frozenset(reached), frozenset(nexts[1][label]))
+            if pair not in seen:
+                if len(seen) >= limit:
+                    return False
+                seen.add(pair)
+                stack.append(pair)
+    return True
