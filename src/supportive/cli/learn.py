@@ -30,10 +30,17 @@ class LearnFormat(StrEnum):
 
 
 class LearnMode(StrEnum):
-    """Which learner (see :class:`~supportive.learning.learner.HTNLearner`)."""
+    """Which reading of the demonstrations (see :class:`~supportive.learning.learner.HTNLearner`)."""
 
+    auto = "auto"
     general = "general"
     strict = "strict"
+    partial_order = "partial-order"
+
+    @property
+    def learner_mode(self) -> str:
+        """The learner's name for it (``partial order``)."""
+        return self.value.replace("-", " ")
 
 
 class Profile(StrEnum):
@@ -55,10 +62,11 @@ def learn(
         LearnMode,
         typer.Option(
             "--mode",
-            help="general: what the evidence supports (optional steps, repeats, slips); "
-            "strict: only what was seen in full (the thesis's reading).",
+            help="auto: the reading that best predicts held-out demonstrations; general: what the evidence "
+            "supports (optional steps, repeats, subtasks, slips); strict: only what was seen in full (the "
+            "thesis's reading); partial-order: no subtasks, the orders the evidence establishes.",
         ),
-    ] = LearnMode.general,
+    ] = LearnMode.auto,
 ) -> None:
     """Learn the CC-HTN of a task from its demonstrations and print or write it."""
     from supportive.examples import task_path
@@ -72,7 +80,7 @@ def learn(
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     with about(file):
-        learner = learn_htn(spec, mode=mode.value)
+        learner = learn_htn(spec, mode=mode.learner_mode)
     if format is LearnFormat.hddl:
         from supportive.io.hddl import write_hddl
 
@@ -87,8 +95,13 @@ def learn(
         data["deviations"] = [d.as_dict(ids) for d in learner.deviations_]
         if learner.noise_ is not None:
             data["noise"] = learner.noise_.as_dict()
+        data["reading"] = learner.reading_
+        if learner.selection_ is not None:
+            data["selection"] = learner.selection_.as_dict()
         text = json.dumps(data, indent=2) + "\n"
     else:
+        if learner.selection_ is not None:
+            say(learner.selection_.describe(), to_stderr=True)
         if learner.deviations_:
             say(_slips_notice([d.as_dict(ids) for d in learner.deviations_]), to_stderr=True)
         if format is LearnFormat.dot:

@@ -63,6 +63,7 @@ _BUILTINS = (
     "supportive.experiments.captaincook",
     "supportive.experiments.captaincook_prediction",
     "supportive.experiments.generalisation",
+    "supportive.experiments.learner_settings",
     "supportive.experiments.transfer",
     "supportive.experiments.caregiver",
     "supportive.experiments.support_tamp",

@@ -18,6 +18,7 @@ inside the thesis's 1.99–3.61 (its mean: 2.84). By size (40 seeds each): about
 
 from supportive.errors import GenerationError, TooManyOrderingsError
 from supportive.generate.ikea import IkeaParams, ikea_structure
+from supportive.generate.mistakes import Injected, KnownTask, inject, random_known_task
 from supportive.generate.normalise import is_normalised, normalise
 from supportive.generate.orderings import (
     all_demonstrations,
@@ -37,6 +38,8 @@ __all__ = [
     "THESIS_DEPTH_RANGE",
     "GenerationError",
     "IkeaParams",
+    "Injected",
+    "KnownTask",
     "PartialOrderTask",
     "Profile",
     "TooManyOrderingsError",
@@ -48,8 +51,10 @@ __all__ = [
     "ikea_statistics",
     "ikea_structure",
     "ikea_task_set",
+    "inject",
     "is_normalised",
     "normalise",
+    "random_known_task",
     "random_partial_order",
     "random_structure",
     "sample_demonstrations",

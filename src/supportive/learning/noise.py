@@ -163,7 +163,7 @@ class _Search:
         gain = 0.0
         if self._searchable():
             start = self._joint()
-            if start and self._total(start) > self._total(slips):
+            if start and self._total(start) - self._total(slips) > self.settings.margin * len(start):
                 slips, gain = start, self._total(start) - self._total(slips)
             slips, added = self._forward(slips)
             gain += added
@@ -219,8 +219,8 @@ class _Search:
         return slips, gain
 
     def _backward(self, slips: frozenset[Deviation]) -> tuple[frozenset[Deviation], float]:
-        """Take back the slips whose removal makes the explanation more probable, best first, one slip or
-        one group at a time (a group: the same step slipped the same way in several demonstrations, which
+        """Take back the slips whose removal costs the explanation less than ``margin`` nats a slip, best
+        first, one slip or one group at a time (a group: the same step slipped the same way in several demonstrations, which
         only together tighten the hierarchy, and only together are seen to be a variant); return the slips
         and the gain of the removals."""
         gain = 0.0
@@ -231,9 +231,13 @@ class _Search:
                 groups.setdefault((slip.leaf, slip.kind), set()).add(slip)
             units = [frozenset({slip}) for slip in sorted(slips, key=_order)]
             units += [frozenset(g) for _, g in sorted(groups.items()) if len(g) > 1]
-            value, unit = max(((self._total(slips - u) - current, u) for u in units), key=lambda t: t[0])
+            value, unit = max(
+                ((self._total(slips - u) - current + self.settings.margin * len(u), u) for u in units),
+                key=lambda t: t[0],
+            )
             if not value > 0.0:
                 break
+            value -= self.settings.margin * len(unit)
             slips, current, gain = slips - unit, current + value, gain + value
         return slips, gain
 

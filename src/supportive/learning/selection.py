@@ -12,11 +12,14 @@ demonstrations with their slips taken out (the slips are found once, :mod:`~supp
   chance; which of the two explains the demonstrations better is for them to say.
 
 They are scored by K-fold cross-validation: learned from the other folds, each held-out demonstration's
-log-likelihood when every execution the reading admits is equally likely (``-log`` of how many it admits; no
-frequency is fitted, so no reading is favoured for its parameters). A held-out demonstration the reading does
-not admit is explained as noise, as the slip model reads it: one step out of place (``slip_rate``, times the
-place it landed among the demonstration's, times the probability of the execution it came from), or, when no
-single move explains it, ``slip_rate`` times a uniformly random order of its steps. So a reading too tight to
+log-likelihood when every execution the reading admits is equally likely (``-log`` of how many action sequences
+it admits, the instances of a repeated subtask counted once; no frequency is fitted, so no reading is
+favoured for its parameters). A held-out demonstration the reading does
+not admit is explained as noise, as the slip model reads it: each step out of place costs ``slip_rate`` times
+the place it landed among the demonstration's, on top of the probability of the execution it came from. The
+steps out of place are one when moving one step makes the demonstration admitted, else those a greedy cover
+takes out so that no order the reading requires is reversed and no subtask interleaved (at least two; an
+upper bound on the fewest). So a reading too tight to
 generalise pays for every demonstration it refuses, and one too loose for every one it admits. The reading
 with the highest mean held-out log-likelihood per demonstration is kept (the first of :data:`CANDIDATES` on a
 tie), unless, learned from all the demonstrations, it admits exactly the executions the ``general`` reading
@@ -29,12 +32,15 @@ admits (none can then predict a held-out demonstration better: the others admit 
 
 from __future__ import annotations
 
+import itertools
 import math
+from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
+from supportive.learning.pair_orders import order_probabilities
 from supportive.tasks.executions import Progress
-from supportive.tasks.htn import HTN, Leaf
+from supportive.tasks.htn import HTN, ActionNode, CliqueNode, Leaf, Node, shape, to_leaves
 
 __all__ = [
     "CANDIDATES",
@@ -100,15 +106,75 @@ class Selection:
 def held_out_log_likelihood(htn: HTN, actions: Sequence[str], slip_rate: float) -> tuple[float, bool]:
     """The log-likelihood of a held-out demonstration under ``htn`` and whether it admits it (see the module
     docstring for how a refused one is explained)."""
-    uniform = -math.log(max(htn.count_orderings(), 1))
+    uniform = _log_symmetry(htn) - math.log(max(htn.count_orderings(), 1))
     if htn.admits(actions):
         return uniform, True
+    moved = _moves_needed(htn, actions)
+    return uniform + moved * (math.log(slip_rate) - math.log(max(len(actions), 1))), False
+
+
+def _moves_needed(htn: HTN, actions: Sequence[str]) -> int:
+    """How many steps of ``actions`` were done out of place, for a demonstration ``htn`` refuses: 1 when
+    moving one step makes it admitted; else the steps a greedy cover takes out so that no order ``htn``
+    requires is reversed and no subtask is interleaved, and at least 2."""
     steps = list(actions)
     for i, step in enumerate(steps):
         rest = steps[:i] + steps[i + 1 :]
         if any(htn.admits([*rest[:j], step, *rest[j:]]) for j in range(len(rest) + 1) if j != i):
-            return uniform + math.log(slip_rate) - math.log(max(len(steps), 1)), False
-    return math.log(slip_rate) - math.lgamma(len(steps) + 1), False
+            return 1
+    leaves = to_leaves(steps)
+    model_leaves, before = order_probabilities(htn)
+    index = {leaf: i for i, leaf in enumerate(model_leaves)}
+    conflicts: dict[int, set[int]] = {p: set() for p in range(len(leaves))}
+    for p, q in itertools.combinations(range(len(leaves)), 2):  # p done before q: reversed when q must precede
+        first, second = index.get(leaves[p]), index.get(leaves[q])  # a step the reading lacks is out of place
+        if first is None or second is None or before[second, first] == 1.0:
+            conflicts[p].add(q)
+            conflicts[q].add(p)
+    for node_leaves in _module_leaves(htn):  # a step inside a subtask's span that is not of it
+        inside = [p for p, leaf in enumerate(leaves) if leaf in node_leaves]
+        for p in range(inside[0] + 1, inside[-1]) if len(inside) > 1 else ():
+            if leaves[p] not in node_leaves:
+                for q in inside:
+                    conflicts[p].add(q)
+                    conflicts[q].add(p)
+    moved = 0
+    while any(conflicts.values()):
+        worst = max(conflicts, key=lambda p: (len(conflicts[p]), -p))
+        for other in conflicts.pop(worst):
+            conflicts[other].discard(worst)
+        moved += 1
+    return max(moved, 2)
+
+
+def _log_symmetry(htn: HTN) -> float:
+    """``log`` of how many leaf sequences of ``htn`` make one action sequence: the instances of a repeated
+    subtask (siblings of one shape in a clique, the legs of a table) swap without changing what is done
+    (``m!`` for ``m`` of them; exact when every instance is performed)."""
+    total = 0.0
+    stack: list[Node] = list(htn.roots)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ActionNode):
+            continue
+        if isinstance(node, CliqueNode):
+            classes = Counter(repr(shape(child)) for child in node.children)
+            total += sum(math.lgamma(m + 1) for m in classes.values())
+        stack.extend(node.children)
+    return total
+
+
+def _module_leaves(htn: HTN) -> list[frozenset[Leaf]]:
+    """The leaves of every chain and clique below the roots (each performed without interruption)."""
+    out: list[frozenset[Leaf]] = []
+    stack: list[Node] = list(htn.roots)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ActionNode):
+            continue
+        out.append(frozenset(node.leaves))
+        stack.extend(node.children)
+    return out
 
 
 def select_reading(

@@ -8,10 +8,12 @@ from typing import Any
 import numpy as np
 
 from supportive.errors import ExperimentError
+from supportive.experiments.captaincook.recipes import FEW_SHOT
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate import random_structure
 from supportive.io.captaincook import load_captaincook
 from supportive.learning import HTNLearner
+from supportive.learning.graph_edges import edge_scores
 from supportive.learning.precedence import implied_precedences, precedence_scores
 from supportive.tasks.htn import HTN, count_orderings, iter_orderings, sample_ordering, to_leaves
 
@@ -19,7 +21,9 @@ __all__ = ["LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
 
 SYNTHETIC = 300
 """Generated tasks of a full run (half of each profile)."""
-LEARNERS = ("general", "strict")
+LEARNERS = ("auto", "general", "strict")
+"""The default learner (``auto``: the reading chosen by held-out likelihood), the ``general`` reading alone, and
+the thesis's ``strict`` one."""
 SIZES = (4, 12)
 DEMONSTRATIONS = 4
 ORDERINGS_LIMIT = 5000
@@ -103,7 +107,12 @@ def _recipe(index: int) -> dict[str, Any]:
             score = precedence_scores(judged, clean.published)
             everything = precedence_scores(implied, clean.published)
             scores[name] = {"precision": score.precision, "recall": score.recall, "all_precision": everything.precision}
-        out[mode] = {"admitted": sum(learned.admits(d) for d in demos[half:]), **scores}
+        edges = {}
+        for setting, recordings in (("full", clean.spec.demonstrations), ("5-shot", clean.spec.demonstrations[:FEW_SHOT])):
+            htn = HTNLearner(mode=mode).fit(clean.spec.with_demonstrations(recordings)).htn_  # type: ignore[arg-type]
+            score = edge_scores(implied_precedences(htn), clean.steps, clean.graph_edges)
+            edges[setting] = {"precision": score.precision, "recall": score.recall, "f1": score.f1}
+        out[mode] = {"admitted": sum(learned.admits(d) for d in demos[half:]), **scores, "edges": edges}
     return out
 
 
@@ -143,6 +152,13 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                     f"{data}_{metric}": round(float(np.mean([r[mode][data][metric] for r in recipes])), 4)
                     for data in ("error_free", "with_errors")
                     for metric in ("precision", "recall", "all_precision")
+                },
+                "edges": {
+                    setting: {
+                        metric: round(float(np.mean([r[mode]["edges"][setting][metric] for r in recipes])), 4)
+                        for metric in ("precision", "recall", "f1")
+                    }
+                    for setting in ("full", "5-shot")
                 },
             }
     return out

@@ -1,0 +1,175 @@
+"""Learner-settings trials: one generated task, demonstrations sampled uniformly from its valid executions,
+one kind of mistake put into a tenth of them (or none), learned under every setting of the grid.
+
+A slip the learner reports is **right** when it is in a demonstration that had a mistake put in, of the
+matching kind (``moved`` ↔ ``out of order``, ``repeated``, ``dropped`` ↔ ``missing``) and putting it right
+(the step moved back to a valid place, the repeat taken out, the missing step done where it may be) makes the
+demonstration a valid execution; a mistake is **found** when a right slip explains its demonstration. (A step
+moved past one neighbour is the neighbour moved past it; either explanation is right.) On clean data every
+reported slip is wrong.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+from supportive.errors import ExperimentError
+from supportive.experiments.trials import Trial, spawn_trials
+from supportive.generate.mistakes import KINDS, PROFILES, inject, random_known_task
+from supportive.learning import HTNLearner
+from supportive.learning.noise import Deviation
+
+__all__ = [
+    "CLEAN_DEMONSTRATIONS",
+    "CLEAN_TASKS",
+    "DEMONSTRATIONS",
+    "GRID",
+    "KIND_OF_SLIP",
+    "SHARE",
+    "SIZES",
+    "TASKS",
+    "make_trials",
+    "run_trial",
+    "settings_name",
+    "summarize",
+]
+
+DEMONSTRATIONS = (20, 50, 100)
+"""Demonstrations per task."""
+SHARE = 0.1
+"""Share of the demonstrations given a mistake."""
+SIZES = (6, 12)
+"""Steps per task (inclusive range)."""
+TASKS = 6
+"""Generated tasks per profile, number of demonstrations and kind of mistake (a full run)."""
+CLEAN_TASKS = 300
+"""Generated tasks without mistakes (a full run), each with 1–200 demonstrations: how often a setting reports
+a slip where there is none."""
+CLEAN_DEMONSTRATIONS = (1, 200)
+KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
+"""Which kind of slip the learner should report for each kind of mistake put in."""
+GRID: dict[str, tuple[float, ...]] = {"slip_margin": (0.0, 1.0, 2.0), "slip_rate": (0.03, 0.1, 0.2)}
+"""The settings swept: every combination."""
+
+
+def settings_name(settings: Mapping[str, float]) -> str:
+    """``slip_margin=1 slip_rate=0.1``: a combination of the grid as text (a key of the metrics)."""
+    return " ".join(f"{k}={v:g}" for k, v in settings.items())
+
+
+def _combinations() -> list[dict[str, float]]:
+    return [dict(zip(GRID, values, strict=True)) for values in itertools.product(*GRID.values())]
+
+
+def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
+    """Trials with mistakes cycle through profile × demonstrations × kind (a full run has :data:`TASKS` of
+    each), then clean ones cycle through the profiles (:data:`CLEAN_TASKS`); fewer trials keep the proportion."""
+    if trials < 2:
+        raise ExperimentError("learner-settings: at least 2 trials (one with mistakes, one clean)")
+    cells = list(itertools.product(PROFILES, DEMONSTRATIONS, KINDS))
+    mistaken = max(1, round(trials * len(cells) * TASKS / (len(cells) * TASKS + CLEAN_TASKS)))
+    params: list[dict[str, Any]] = [
+        {"profile": profile, "demonstrations": n, "case": kind}
+        for profile, n, kind in (cells[i % len(cells)] for i in range(mistaken))
+    ]
+    params += [{"profile": PROFILES[i % len(PROFILES)], "case": "none"} for i in range(trials - mistaken)]
+    return spawn_trials(seed, params)
+
+
+def run_trial(trial: Trial) -> dict[str, Any]:
+    """Generate the task and its demonstrations, then learn them under every setting of the grid."""
+    rng = trial.rng()
+    profile, case = trial.params["profile"], trial.params["case"]
+    if case == "none":
+        n = int(rng.integers(CLEAN_DEMONSTRATIONS[0], CLEAN_DEMONSTRATIONS[1] + 1))
+    else:
+        n = int(trial.params["demonstrations"])
+    task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
+    demos = [task.sample(rng) for _ in range(n)]
+    truth: set[int] = set()
+    if case != "none":
+        demos, injected = inject(demos, case, SHARE, task.admits, rng)
+        truth = {i.demonstration for i in injected}
+    out: dict[str, Any] = {
+        "index": trial.index, "profile": profile, "demonstrations": n, "case": case,
+        "steps": sum(len(d) for d in demos), "mistakes": len(truth), "settings": {},
+    }
+    timing: dict[str, float] = {}
+    for settings in _combinations():
+        started = time.perf_counter()
+        learner = HTNLearner(mode="general", alternatives=0, **settings).fit(demos)  # type: ignore[arg-type]
+        name = settings_name(settings)
+        timing[name] = time.perf_counter() - started
+        right = [d for d in learner.deviations_ if _right(d, case, demos, task.admits) and d.demonstration in truth]
+        found = {d.demonstration for d in right}
+        out["settings"][name] = {
+            "reported": len(learner.deviations_),
+            "right": len(right),
+            "found": len(found),
+            "wrong_tasks": int(len(learner.deviations_) > len(right)),
+        }
+    out["timing"] = timing
+    return out
+
+
+def _right(slip: Deviation, case: str, demos: Sequence[Sequence[str]], valid: Callable[[Sequence[str]], bool]) -> bool:
+    """The slip is of the kind put in and putting it right makes its demonstration valid."""
+    if case == "none" or slip.kind != KIND_OF_SLIP[case]:
+        return False
+    demo = list(demos[slip.demonstration])
+    action = slip.leaf[0]
+    if slip.kind == "missing":
+        return any(valid([*demo[:j], action, *demo[j:]]) for j in range(len(demo) + 1))
+    rest = demo[: slip.position] + demo[slip.position + 1 :]
+    if slip.kind == "repeated":
+        return valid(rest)
+    return any(valid([*rest[:j], action, *rest[j:]]) for j in range(len(rest) + 1))
+
+
+def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """Per setting: precision and recall per kind and number of demonstrations, the share of steps reported on
+    clean data and of clean tasks with any report; the chosen setting (see :func:`choose`)."""
+    names = list(results[0]["settings"]) if results else []
+    table: dict[str, Any] = {}
+    for name in names:
+        row: dict[str, Any] = {"kinds": {}}
+        for kind, n in itertools.product(KINDS, DEMONSTRATIONS):
+            cell = [r for r in results if r["case"] == kind and r["demonstrations"] == n]
+            reported = sum(r["settings"][name]["reported"] for r in cell)
+            right = sum(r["settings"][name]["right"] for r in cell)
+            found = sum(r["settings"][name]["found"] for r in cell)
+            mistakes = sum(r["mistakes"] for r in cell)
+            precision = right / reported if reported else 1.0
+            recall = found / mistakes if mistakes else 1.0
+            f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+            row["kinds"][f"{kind} {n}"] = {
+                "precision": round(precision, 4), "recall": round(recall, 4), "f1": round(f1, 4), "mistakes": mistakes,
+            }
+        clean = [r for r in results if r["case"] == "none"]
+        steps = sum(r["steps"] for r in clean)
+        row["clean_flagged"] = round(sum(r["settings"][name]["reported"] for r in clean) / steps, 6) if steps else 0.0
+        row["clean_tasks_flagged"] = sum(r["settings"][name]["wrong_tasks"] for r in clean)
+        row["clean_tasks"] = len(clean)
+        row["worst_f1"] = min((k["f1"] for k in row["kinds"].values() if k["mistakes"]), default=0.0)
+        table[name] = row
+    return {"settings": table, "chosen": choose(table), "tasks": [dict(r) for r in results]}
+
+
+def choose(table: Mapping[str, Mapping[str, Any]]) -> str | None:
+    """The procedure that picks the defaults: among the settings that report at most 0.5 % of the steps of
+    clean demonstrations and a slip in at most 1 % of the clean tasks, the one with the best worst F1 over kinds
+    of mistake and numbers of demonstrations (ties: the first in grid order, i.e. the smaller margin and rate).
+    None when no setting qualifies."""
+    qualified = [
+        name
+        for name, row in table.items()
+        if row["clean_flagged"] <= 0.005 and row["clean_tasks_flagged"] <= 0.01 * row["clean_tasks"]
+    ]
+    if not qualified:
+        return None
+    best = max(table[name]["worst_f1"] for name in qualified)
+    return next(name for name in qualified if table[name]["worst_f1"] == best)
+
