@@ -1,4 +1,12 @@
-"""Slips as noise (learning/noise.py): nothing set aside on clean data; injected slips found."""
+"""Slips as noise (learning/noise.py): nothing set aside on clean data, whatever its structure and size; the
+mistakes put into generated demonstrations are found, each as the kind it was.
+
+The clean-data properties draw their examples deterministically (``derandomize``): no detector can promise
+that no sample of valid executions ever looks like one with a slip (a partial order's rare order may happen to
+come up once in 25 where it is due six times), so the rate at which it happens on generated tasks is measured
+by ``supportive reproduce learner-settings`` and quoted in docs/learning.md, and these tests pin that the
+defaults keep clean data clean on a fixed, varied sample of tasks and sizes.
+"""
 
 from __future__ import annotations
 
@@ -7,11 +15,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from supportive.generate import random_partial_order, random_structure
+from supportive.generate import inject, random_known_task, random_partial_order, random_structure
 from supportive.learning import HTNLearner
 from supportive.tasks.htn import sample_ordering
 
-CLEAN = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+CLEAN = settings(max_examples=20, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
 
 
 def _assert_clean(demos: list[list[str]]) -> None:
@@ -50,6 +59,23 @@ def test_partial_orders_sampled_uniformly_have_no_slips(seed: int, size: int, ch
 
 @pytest.mark.parametrize("n", [10, 20, 40, 80])
 def test_two_interleaved_chains_the_issue_case(n: int) -> None:
+    # a1 < a2 < a3 and b1 < b2 < b3 interleaved freely (20 orders): b3 before a1 comes once in twenty, which is
+    # what the partial order predicts, not a slip; the old test against a fair coin called it one.
     task = random_partial_order(6, 0, chains=2)
     rng = np.random.default_rng(n)
     _assert_clean([list(task.sample(rng)) for _ in range(n)])
+
+
+@pytest.mark.parametrize("kind", ["moved", "repeated", "dropped"])
+@pytest.mark.parametrize("profile", ["ikea", "partial order"])
+def test_a_mistake_put_in_is_found_as_its_kind(kind: str, profile: str) -> None:
+    task = random_known_task(profile, 8, seed=3)  # type: ignore[arg-type]
+    rng = np.random.default_rng(11)
+    demos, injected = inject([task.sample(rng) for _ in range(60)], kind, 0.05, task.admits, rng)  # type: ignore[arg-type]
+    learner = HTNLearner().fit(demos)
+    found = {(d.demonstration, d.kind) for d in learner.deviations_}
+    assert {(i.demonstration, KIND_OF_SLIP[kind]) for i in injected} <= found
+    assert {d for d, _ in found} <= {i.demonstration for i in injected}, "no slip where none was put in"
+    assert learner.noise_ is not None and learner.noise_.rates[KIND_OF_SLIP[kind]] > 0
+    cleaned = [d for i, d in enumerate(demos) if i not in {s.demonstration for s in injected}]
+    assert all(learner.htn_.admits(d) for d in cleaned)
