@@ -1,0 +1,222 @@
+"""Online mistake detection: after each step a person takes, is it a mistake, of which kind, and how sure.
+
+A :class:`MistakeDetector` runs beside the progress-aware tracker
+(:class:`~supportive.inference.tracker.ProgressFilter`). After each observed step (a known action, or the
+start of a new subgoal read from contact events) it returns a :class:`StepVerdict`: the probability that the
+step was off-script (the tracker's posterior ``off_script``: the steps so far, the learned hierarchy and its
+frequencies, and a slip rate), and — when that reaches ``threshold`` and the step is one the hierarchy
+refuses — what kind of mistake it is:
+
+* ``unknown-step``: an action the task does not have;
+* ``repeated``: an action done again, already done as often as the task has it;
+* ``missing``: the step needs others that were due just before it and were not done: the person skipped
+  them (they are named as ``skipped``);
+* ``out-of-order``: the step needs others that were not yet due: it came too early (its unmet
+  ``prerequisites`` are named), or it breaks into a subtask under way.
+
+A step's prerequisites are the steps that come before it in every execution the hierarchy admits and that
+every execution performs (:func:`~supportive.learning.pair_orders.order_probabilities`). Decisions use only
+the past. A step already named as skipped or as a prerequisite is not flagged again when it is done late (the
+robot has said it once). :meth:`MistakeDetector.finish` names the required steps never done when the task
+ends (``missing``, raised at the end).
+
+>>> from supportive.inference import StepPredictor
+>>> demos = [["knife", "carrots", "celery", "bowl"], ["knife", "celery", "carrots", "bowl"]] * 3
+>>> detector = MistakeDetector.from_predictor(StepPredictor().fit(demos))
+>>> [(v.action, v.mistake) for v in map(detector.observe, ["knife", "carrots"])]
+[('knife', False), ('carrots', False)]
+>>> verdict = detector.observe("bowl")
+>>> verdict.mistake, verdict.kind, verdict.skipped
+(True, 'missing', ('celery',))
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from supportive.errors import LearningError
+from supportive.inference.tracker import ProgressFilter, ProgressHMM
+from supportive.learning.pair_orders import order_probabilities
+from supportive.tasks.htn import HTN, ActionNode, Leaf, Node
+
+__all__ = ["MISTAKE_KINDS", "MistakeDetector", "MistakeKind", "StepVerdict"]
+
+MistakeKind = Literal["out-of-order", "missing", "repeated", "unknown-step"]
+MISTAKE_KINDS: tuple[MistakeKind, ...] = ("out-of-order", "missing", "repeated", "unknown-step")
+"""The kinds of mistake a verdict names, in the order reports list them."""
+
+
+@dataclass(frozen=True)
+class StepVerdict:
+    """What the detector says of one step.
+
+    Attributes:
+        step: The step's index (0-based) among those observed; for the task's end, their number.
+        action: The action done (``"<end>"`` for the task's end).
+        probability: Probability that the step was off-script, given only the steps so far.
+        mistake: True when it is a mistake (``probability`` reached the threshold and the hierarchy refuses
+            the step, or the task ended with ``skipped`` steps never done).
+        kind: The kind of mistake (None when it is not one).
+        prerequisites: ``out-of-order``: the steps it needs that are not done, in task order.
+        skipped: ``missing``: the steps skipped, in task order.
+    """
+
+    step: int
+    action: str
+    probability: float
+    mistake: bool = False
+    kind: MistakeKind | None = None
+    prerequisites: tuple[str, ...] = ()
+    skipped: tuple[str, ...] = ()
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain-data form (the ``mistake`` field of ``infer``'s JSON lines)."""
+        data: dict[str, object] = {
+            "step": self.step,
+            "action": self.action,
+            "mistake": self.mistake,
+            "probability": round(self.probability, 6),
+        }
+        if self.kind is not None:
+            data["kind"] = self.kind
+        if self.prerequisites:
+            data["prerequisites"] = list(self.prerequisites)
+        if self.skipped:
+            data["skipped"] = list(self.skipped)
+        return data
+
+
+@dataclass
+class _Requirements:
+    """What the hierarchy requires: each leaf's prerequisites (leaf indices) and which leaves every
+    execution performs."""
+
+    leaves: tuple[Leaf, ...]
+    prerequisites: list[list[int]]
+    required: list[bool]
+    actions: frozenset[str] = field(default_factory=frozenset)
+
+    @classmethod
+    def of(cls, htn: HTN) -> _Requirements:
+        leaves, before = order_probabilities(htn)
+        required = _required_leaves(htn)
+        need = [bool(required.get(leaf, False)) for leaf in leaves]
+        always = before >= 1.0
+        prerequisites = [[int(i) for i in np.flatnonzero(always[:, j]) if need[int(i)]] for j in range(len(leaves))]
+        return cls(leaves, prerequisites, need, frozenset(a for a, _ in leaves))
+
+
+def _required_leaves(htn: HTN) -> dict[Leaf, bool]:
+    """Leaf -> whether every execution performs it (it and every node above it not optional)."""
+    out: dict[Leaf, bool] = {}
+
+    def walk(node: Node, required: bool) -> None:
+        here = required and not node.optional
+        if isinstance(node, ActionNode):
+            out[node.leaf] = here
+        else:
+            for child in node.children:
+                walk(child, here)
+
+    for root in htn.roots:
+        walk(root, True)
+    return out
+
+
+class MistakeDetector:
+    """Online mistake detection over a progress-aware tracker (see the module docstring).
+
+    Args:
+        hmm: A fitted :class:`~supportive.inference.tracker.ProgressHMM` (its hierarchy, frequencies and slip
+            rate; contact events need its observation model).
+        threshold: A step is a mistake when the probability that it was off-script reaches this; in (0, 1].
+            The default was chosen on generated tasks by ``supportive reproduce mistake-detection`` (the most
+            recall at no more than 1 % false alarms on clean executions; docs/inference.md).
+    """
+
+    def __init__(self, hmm: ProgressHMM, *, threshold: float = 0.5) -> None:
+        if not 0.0 < threshold <= 1.0:
+            raise LearningError(f"threshold must be in (0, 1], got {threshold}")
+        self.hmm = hmm
+        self.threshold = threshold
+        self._requirements = _Requirements.of(hmm.htn_)
+        self._index = {leaf: i for i, leaf in enumerate(self._requirements.leaves)}
+        self.reset()
+
+    @classmethod
+    def from_predictor(cls, predictor: object, *, threshold: float = 0.5) -> MistakeDetector:
+        """A detector over a fitted :class:`~supportive.inference.predictor.StepPredictor`'s model."""
+        model = getattr(predictor, "model_", None)
+        if not isinstance(model, ProgressHMM):
+            raise LearningError("from_predictor needs a fitted StepPredictor")
+        return cls(model, threshold=threshold)
+
+    def reset(self) -> None:
+        """Forget everything observed: the task has not started."""
+        self.tracker: ProgressFilter = self.hmm.filter()
+        self._events: ProgressFilter | None = None
+        self._current: int | None = None
+        self.history: list[str] = []
+        self._done: Counter[str] = Counter()
+        self._said: set[str] = set()
+
+    # ------------------------------------------------------------------ evidence
+    def observe(self, action: str) -> StepVerdict:
+        """Take one completed action into account and judge it."""
+        before = dict(self.tracker.last.next_actions)
+        belief = self.tracker.observe(action)
+        verdict = self._judge(action, before, belief.off_script)
+        self.history.append(action)
+        self._done[action] += 1
+        return verdict
+
+    def update(self, events: Iterable[str]) -> StepVerdict | None:
+        """Take one moment's contact events into account; when the most probable subgoal under way changes to
+        a new one, judge its action as the step just started (None otherwise)."""
+        if self._events is None:
+            self._events = self.hmm.filter()
+        belief = self._events.update(events)
+        subgoal = int(np.argmax(belief.subgoals)) if belief.subgoals.size and belief.subgoals.max() > 0 else None
+        if subgoal is None or subgoal == self._current:
+            return None
+        self._current = subgoal
+        return self.observe(self._requirements.leaves[subgoal][0])
+
+    def finish(self) -> StepVerdict:
+        """The task has ended: the required steps never done are missing."""
+        done = self._done_leaves()
+        never = [i for i, need in enumerate(self._requirements.required) if need and not done[i]]
+        skipped = tuple(self._requirements.leaves[i][0] for i in never if self._requirements.leaves[i][0] not in self._said)
+        probability = 1.0 if skipped else 0.0
+        return StepVerdict(len(self.history), "<end>", probability, bool(skipped), "missing" if skipped else None, (), skipped)
+
+    # ------------------------------------------------------------------ judging
+    def _judge(self, action: str, before: dict[str, float], probability: float) -> StepVerdict:
+        step = len(self.history)
+        if probability < self.threshold:
+            return StepVerdict(step, action, probability)
+        requirements = self._requirements
+        if action not in requirements.actions:
+            return StepVerdict(step, action, probability, True, "unknown-step")
+        occurrence = self._done[action] + 1
+        leaf = self._index.get((action, occurrence))
+        if leaf is None:
+            return StepVerdict(step, action, probability, True, "repeated")
+        done = self._done_leaves()
+        unmet = [i for i in requirements.prerequisites[leaf] if not done[i]]
+        names = tuple(dict.fromkeys(requirements.leaves[i][0] for i in unmet))
+        if action in self._said and not names:  # done late after the robot named it: said once already
+            return StepVerdict(step, action, probability)
+        self._said.update(names)
+        if names and all(before.get(name, 0.0) > 0.0 for name in names):
+            return StepVerdict(step, action, probability, True, "missing", (), names)
+        return StepVerdict(step, action, probability, True, "out-of-order", names)
+
+    def _done_leaves(self) -> list[bool]:
+        """Whether each leaf is done, by how often its action was done so far."""
+        return [self._done[a] >= k for a, k in self._requirements.leaves]
