@@ -66,14 +66,17 @@ def infer(
     ] = None,
 ) -> None:
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation or known action
-    (one JSON line each: top subgoals, enclosing subtasks and next steps, with probabilities)."""
+    (one JSON line each: top subgoals, enclosing subtasks and next steps, with probabilities; with the progress
+    model, whether each step is a mistake and the help the robot offers)."""
     from supportive.examples import task_path
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM
     from supportive.inference.bags import belief_record, infer_bag
+    from supportive.inference.mistakes import MistakeDetector
     from supportive.io.action_file import parse_action_file
     from supportive.io.htn_json import htn_to_dict
     from supportive.io.observation_file import parse_observation_file
     from supportive.io.taskfile import parse_task_file
+    from supportive.language.help import mistake_record
     from supportive.learning.learner import learn as learn_htn
 
     if sum(source is not None for source in (observations, bag, actions)) != 1:
@@ -87,32 +90,38 @@ def infer(
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     steps = parse_action_file(actions) if actions is not None else []
     stream = parse_observation_file(observations) if observations is not None else []
+    detector: MistakeDetector | None = None
     with about(file):
         learner = learn_htn(spec)
         if model is InferenceModel.progress:
             events = ObservationModel.from_spec(spec) if actions is None else None
-            running: Any = ProgressHMM(learner.htn_, events, mean_duration=mean_duration).fit().filter()
+            detector = MistakeDetector(ProgressHMM(learner.htn_, events, mean_duration=mean_duration).fit())
+            running: Any = detector.tracker if actions is not None else detector.events
         else:
             kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
             model_events = ObservationModel.from_spec(spec)
             running = kind(learner.htn_, model_events, mean_duration=mean_duration).fit().filter()
+    texts = spec.texts()
 
     def emit(record: dict[str, object]) -> None:
         sys.stdout.write(json.dumps(record) + "\n")
 
+    def frame(moment: frozenset[str], time: float | None) -> dict[str, Any]:
+        if detector is None:
+            return belief_record(running, running.update(moment), top, time)
+        verdict = detector.update(moment)
+        record = belief_record(running, running.last, top, time)
+        if verdict is not None:
+            record["mistake"] = mistake_record(verdict, texts)
+        return record
+
     if bag is not None:
         hierarchy = htn_to_dict(learner.htn_, learner.stats_.as_dict())
-        infer_bag(
-            running,
-            bag,
-            contacts_topic,
-            top=top,
-            emit=emit,
-            write_bag=write_bag,
-            hierarchy=hierarchy,
-            definitions=types or (),
-        )
+        infer_bag(frame, bag, contacts_topic, emit=emit, write_bag=write_bag, hierarchy=hierarchy, definitions=types or ())
     for moment, time in stream:
-        emit(belief_record(running, running.update(moment), top, time))
+        emit(frame(moment, time))
     for action in steps:
-        emit(belief_record(running, running.observe(action), top, None))
+        assert detector is not None  # --actions needs the progress model
+        verdict = detector.observe(action)
+        emit(belief_record(running, running.last, top, None) | {"mistake": mistake_record(verdict, texts)})
+

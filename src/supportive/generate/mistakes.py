@@ -7,7 +7,8 @@ It draws executions uniformly among its valid ones and says whether a sequence i
 puts one mistake into some of them, of one of three kinds:
 
 * ``moved``: a step taken from its place and done at a random other place, redrawn until the result is not a
-  valid execution (a move that lands where the step may be is no mistake);
+  valid execution (a move that lands where the step may be is no mistake); ``early``: the same, to an earlier
+  place only (a step done before what it needs);
 * ``repeated``: a step done a second time, at a random later place;
 * ``dropped``: a step left out.
 
@@ -40,9 +41,9 @@ from supportive.tasks.htn import Node, admits, sample_ordering, to_leaves
 
 __all__ = ["KINDS", "PROFILES", "Injected", "KnownTask", "MistakeKind", "TaskProfile", "inject", "random_known_task"]
 
-MistakeKind = Literal["moved", "repeated", "dropped"]
+MistakeKind = Literal["moved", "early", "repeated", "dropped"]
 KINDS: tuple[MistakeKind, ...] = ("moved", "repeated", "dropped")
-"""The kinds of mistake :func:`inject` puts in."""
+"""The kinds of slip the learner is scored on (``learner-settings``); :func:`inject` also puts in ``early``."""
 
 TaskProfile = Literal["ikea", "uniform", "partial order"]
 PROFILES: tuple[TaskProfile, ...] = ("ikea", "uniform", "partial order")
@@ -96,7 +97,8 @@ def random_known_task(profile: TaskProfile, n_actions: int, seed: Seed = None) -
 @dataclass(frozen=True)
 class Injected:
     """One mistake put in: in demonstration ``demonstration`` (an index), ``action`` was ``kind``; ``position``
-    is where the mistaken step now is (-1 for a dropped step)."""
+    is where the mistaken step now is (a dropped step: where it should have been, i.e. the index of the step
+    done in its place)."""
 
     demonstration: int
     action: str
@@ -121,8 +123,8 @@ def inject(
     """
     if not 0.0 < share <= 1.0:
         raise GenerationError(f"share must be in (0, 1], got {share}")
-    if kind not in KINDS:
-        raise GenerationError(f"unknown mistake kind {kind!r}; expected one of {', '.join(KINDS)}")
+    if kind not in (*KINDS, "early"):
+        raise GenerationError(f"unknown mistake kind {kind!r}; expected one of {', '.join((*KINDS, 'early'))}")
     rng = rng_from(seed)
     out = [list(d) for d in demonstrations]
     chosen = rng.choice(len(out), size=max(1, round(share * len(out))), replace=False)
@@ -141,15 +143,18 @@ def _one(
     """One mistake of ``kind`` in ``demo``: the new sequence, the action and where it now is."""
     if kind == "dropped":
         i = int(rng.integers(len(demo)))
-        return demo[:i] + demo[i + 1 :], demo[i], -1
+        return demo[:i] + demo[i + 1 :], demo[i], i
     if kind == "repeated":
         i = int(rng.integers(len(demo)))
         j = int(rng.integers(i + 1, len(demo) + 1))
         return [*demo[:j], demo[i], *demo[j:]], demo[i], j
+    earliest = 1 if kind == "early" else 0  # an early step needs a place before it
+    if len(demo) <= earliest:
+        return None
     for _ in range(_MOVE_DRAWS):
-        i = int(rng.integers(len(demo)))
+        i = int(rng.integers(earliest, len(demo)))
         rest = demo[:i] + demo[i + 1 :]
-        j = int(rng.integers(len(rest) + 1))
+        j = int(rng.integers(i if kind == "early" else len(rest) + 1))
         moved = [*rest[:j], demo[i], *rest[j:]]
         if not valid(moved):
             return moved, demo[i], j

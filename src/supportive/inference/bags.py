@@ -41,19 +41,19 @@ def belief_record(running: GoalFilter, belief: Belief, top: int, time: float | N
 
 
 def infer_bag(
-    running: GoalFilter,
+    record: Callable[[frozenset[str], float], dict[str, Any]],
     bag: Path,
     topic: str,
     *,
-    top: int,
     emit: Callable[[dict[str, Any]], None],
     write_bag: Path | None = None,
     hierarchy: Mapping[str, Any] | None = None,
     definitions: Sequence[Path] = (),
 ) -> int:
-    """Run the filter over a bag's contact frames (streamed, never all in memory); ``emit`` each frame's
-    record and, with ``write_bag``, write the beliefs to a new MCAP bag at the frames' times (the hierarchy
-    as a latched topic). How many frames there were.
+    """Run a bag's contact frames (streamed, never all in memory) through ``record`` — one frame's events and
+    time in seconds to its record, e.g. a filter's :func:`belief_record` and the mistake judged there — then
+    ``emit`` each record and, with ``write_bag``, write them to a new MCAP bag at the frames' times (the
+    hierarchy as a latched topic). How many frames there were.
 
     Raises:
         BagError: for a missing, empty or wrongly typed topic, a damaged bag, or an output that exists;
@@ -69,9 +69,9 @@ def infer_bag(
     count = 0
     with sink as out:
         for events, time in frames:
-            record = belief_record(running, running.update(events), top, seconds(time))
+            frame = record(events, seconds(time))
             if out is not None:
-                out.write(time, record)
-            emit(record)
+                out.write(time, frame)
+            emit(frame)
             count += 1
     return count

@@ -9,10 +9,11 @@ refuses — what kind of mistake it is:
 
 * ``unknown-step``: an action the task does not have;
 * ``repeated``: an action done again, already done as often as the task has it;
-* ``missing``: the step needs others that were due just before it and were not done: the person skipped
-  them (they are named as ``skipped``);
+* ``missing``: the step needs others that were due just before it and were not done, or it leaves a subtask
+  under way unfinished (subtasks are done without interruption): the person skipped them (named as
+  ``skipped``);
 * ``out-of-order``: the step needs others that were not yet due: it came too early (its unmet
-  ``prerequisites`` are named), or it breaks into a subtask under way.
+  ``prerequisites`` are named), or it comes where the hierarchy does not expect it for another reason.
 
 A step's prerequisites are the steps that come before it in every execution the hierarchy admits and that
 every execution performs (:func:`~supportive.learning.pair_orders.order_probabilities`). Decisions use only
@@ -40,7 +41,7 @@ from typing import Literal
 import numpy as np
 
 from supportive.errors import LearningError
-from supportive.inference.tracker import ProgressFilter, ProgressHMM
+from supportive.inference.tracker import ProgressBelief, ProgressFilter, ProgressHMM
 from supportive.learning.pair_orders import order_probabilities
 from supportive.tasks.htn import HTN, ActionNode, Leaf, Node
 
@@ -56,7 +57,8 @@ class StepVerdict:
     """What the detector says of one step.
 
     Attributes:
-        step: The step's index (0-based) among those observed; for the task's end, their number.
+        step: The step's number among those observed (1 for the first); for the task's end, one more than
+            their number.
         action: The action done (``"<end>"`` for the task's end).
         probability: Probability that the step was off-script, given only the steps so far.
         mistake: True when it is a mistake (``probability`` reached the threshold and the hierarchy refuses
@@ -100,15 +102,43 @@ class _Requirements:
     prerequisites: list[list[int]]
     required: list[bool]
     actions: frozenset[str] = field(default_factory=frozenset)
+    subtasks: list[frozenset[int]] = field(default_factory=list)
 
     @classmethod
     def of(cls, htn: HTN) -> _Requirements:
         leaves, before = order_probabilities(htn)
+        index = {leaf: i for i, leaf in enumerate(leaves)}
         required = _required_leaves(htn)
         need = [bool(required.get(leaf, False)) for leaf in leaves]
         always = before >= 1.0
         prerequisites = [[int(i) for i in np.flatnonzero(always[:, j]) if need[int(i)]] for j in range(len(leaves))]
-        return cls(leaves, prerequisites, need, frozenset(a for a, _ in leaves))
+        subtasks = sorted(
+            (frozenset(index[leaf] for leaf in node.leaves) for node in _subtasks(htn)), key=len
+        )
+        return cls(leaves, prerequisites, need, frozenset(a for a, _ in leaves), subtasks)
+
+    def interrupted(self, leaf: int, done: list[bool]) -> tuple[int, ...]:
+        """The required steps left undone in the smallest subtask that is under way (some of it done) and
+        that ``leaf`` does not belong to: a subtask is done without interruption, so leaving it skips them."""
+        for members in self.subtasks:
+            if leaf in members or not any(done[i] for i in members):
+                continue
+            left = tuple(sorted(i for i in members if self.required[i] and not done[i]))
+            if left:
+                return left
+        return ()
+
+
+def _subtasks(htn: HTN) -> list[Node]:
+    """Every chain and clique of the hierarchy, its roots included."""
+    out: list[Node] = []
+    stack: list[Node] = list(htn.roots)
+    while stack:
+        node = stack.pop()
+        if not isinstance(node, ActionNode):
+            out.append(node)
+            stack.extend(node.children)
+    return out
 
 
 def _required_leaves(htn: HTN) -> dict[Leaf, bool]:
@@ -159,7 +189,7 @@ class MistakeDetector:
     def reset(self) -> None:
         """Forget everything observed: the task has not started."""
         self.tracker: ProgressFilter = self.hmm.filter()
-        self._events: ProgressFilter | None = None
+        self.events: ProgressFilter = self.hmm.filter()
         self._current: int | None = None
         self.history: list[str] = []
         self._done: Counter[str] = Counter()
@@ -168,7 +198,7 @@ class MistakeDetector:
     # ------------------------------------------------------------------ evidence
     def observe(self, action: str) -> StepVerdict:
         """Take one completed action into account and judge it."""
-        before = dict(self.tracker.last.next_actions)
+        before = self.tracker.last  # what was expected is worked out only for a step judged a mistake
         belief = self.tracker.observe(action)
         verdict = self._judge(action, before, belief.off_script)
         self.history.append(action)
@@ -176,11 +206,10 @@ class MistakeDetector:
         return verdict
 
     def update(self, events: Iterable[str]) -> StepVerdict | None:
-        """Take one moment's contact events into account; when the most probable subgoal under way changes to
-        a new one, judge its action as the step just started (None otherwise)."""
-        if self._events is None:
-            self._events = self.hmm.filter()
-        belief = self._events.update(events)
+        """Take one moment's contact events into account (``events.last`` is then the belief); when the most
+        probable subgoal under way changes to a new one, judge its action as the step just started (None
+        otherwise)."""
+        belief = self.events.update(events)
         subgoal = int(np.argmax(belief.subgoals)) if belief.subgoals.size and belief.subgoals.max() > 0 else None
         if subgoal is None or subgoal == self._current:
             return None
@@ -193,11 +222,11 @@ class MistakeDetector:
         never = [i for i, need in enumerate(self._requirements.required) if need and not done[i]]
         skipped = tuple(self._requirements.leaves[i][0] for i in never if self._requirements.leaves[i][0] not in self._said)
         probability = 1.0 if skipped else 0.0
-        return StepVerdict(len(self.history), "<end>", probability, bool(skipped), "missing" if skipped else None, (), skipped)
+        return StepVerdict(len(self.history) + 1, "<end>", probability, bool(skipped), "missing" if skipped else None, (), skipped)
 
     # ------------------------------------------------------------------ judging
-    def _judge(self, action: str, before: dict[str, float], probability: float) -> StepVerdict:
-        step = len(self.history)
+    def _judge(self, action: str, before: ProgressBelief, probability: float) -> StepVerdict:
+        step = len(self.history) + 1
         if probability < self.threshold:
             return StepVerdict(step, action, probability)
         requirements = self._requirements
@@ -209,13 +238,26 @@ class MistakeDetector:
             return StepVerdict(step, action, probability, True, "repeated")
         done = self._done_leaves()
         unmet = [i for i in requirements.prerequisites[leaf] if not done[i]]
-        names = tuple(dict.fromkeys(requirements.leaves[i][0] for i in unmet))
+        names = self._names(unmet)
         if action in self._said and not names:  # done late after the robot named it: said once already
             return StepVerdict(step, action, probability)
-        self._said.update(names)
-        if names and all(before.get(name, 0.0) > 0.0 for name in names):
+        expected = before.next_actions
+        if names and all(expected.get(name, 0.0) > 0.0 for name in names):
+            self._said.update(names)
             return StepVerdict(step, action, probability, True, "missing", (), names)
-        return StepVerdict(step, action, probability, True, "out-of-order", names)
+        if names:
+            self._said.update(names)
+            return StepVerdict(step, action, probability, True, "out-of-order", names)
+        left = self._names(list(requirements.interrupted(leaf, done)))
+        self._said.update(left)
+        if left:
+            return StepVerdict(step, action, probability, True, "missing", (), left)
+        return StepVerdict(step, action, probability, True, "out-of-order")
+
+    def _names(self, leaves: list[int]) -> tuple[str, ...]:
+        """The actions of ``leaves``, each once, in task order, leaving out those already named."""
+        names = dict.fromkeys(self._requirements.leaves[i][0] for i in leaves)
+        return tuple(name for name in names if name not in self._said)
 
     def _done_leaves(self) -> list[bool]:
         """Whether each leaf is done, by how often its action was done so far."""

@@ -12,6 +12,8 @@ For every frame, at the frame's own time, under a namespace (default ``/supporti
 | ``next`` | ``std_msgs/msg/String`` | the most probable next subgoal |
 | ``next/probability`` | ``std_msgs/msg/Float64`` | its probability |
 | ``surprise`` | ``std_msgs/msg/Float64`` | how surprising the frame was, when the filter reports it |
+| ``mistake/probability`` | ``std_msgs/msg/Float64`` | at a frame where a new step began: the probability it is a mistake |
+| ``mistake`` | ``std_msgs/msg/String`` | at a frame where a step is judged a mistake: the verdict and the help the robot offers, as JSON |
 
 and once, at the first frame's time, ``hierarchy`` (``std_msgs/msg/String``, latched: transient local QoS): the
 learned hierarchy as ``supportive learn --format json`` writes it.
@@ -86,3 +88,8 @@ class BeliefBag:
         surprise = record.get("surprise")
         if surprise is not None:
             self._write("surprise", _FLOAT, time, float(surprise))
+        mistake = record.get("mistake")
+        if mistake is not None:
+            self._write("mistake/probability", _FLOAT, time, float(mistake["probability"]))
+            if mistake["mistake"]:
+                self._write("mistake", _STRING, time, json.dumps(mistake))

@@ -1,0 +1,282 @@
+"""Online mistake detection, scored: leave one labelled recording out, detect its mistakes step by step.
+
+Each held-out demonstration's steps are judged one by one by a :class:`~supportive.inference.mistakes.MistakeDetector`
+over the predictor learned from the other demonstrations (labels play no part in learning), and by two
+baselines learned from the same demonstrations:
+
+* **precondition**: a step is a mistake when a step that precedes it in every training demonstration that
+  performs both, and that every training demonstration performing it performs, has not been done;
+* **unseen bigram**: a step is a mistake when no training demonstration goes from the previous step (or the
+  start) to it.
+
+What counts (the labels of the task file, ``Step.mistake`` and ``Demonstration.skipped``):
+
+* a **positive** is a performed step labelled with one of ``positives`` (by default ``order``, ``repeated``,
+  ``unknown`` and ``true``: the kinds a step sequence can show), or a skipped step (``missing``, if among
+  ``positives``) at its place;
+* a flagged step is **right** when it is a positive, or when the detector names among the steps skipped or
+  not yet done one that the demonstration really skipped; a skipped step is **found** when a flag at its
+  place (the step done instead of it) or a later verdict names it — its **delay** is the number of steps from
+  its place to that verdict (the task's end counts as one more step);
+* labels a step sequence cannot show (technique, measurement, timing, temperature, preparation, other) are
+  counted apart: how many there were, and how many of them a method flagged.
+
+Precision, recall and F1 are reported for the mistake class overall and per kind (the detector's kinds
+``out-of-order`` ↔ ``order``, ``repeated``, ``unknown-step`` ↔ ``unknown``, ``missing``), with the share of
+steps flagged in demonstrations that carry no label at all.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+from supportive.errors import TaskFileError
+from supportive.inference.bigram import END, START
+from supportive.inference.mistakes import MistakeDetector, StepVerdict
+from supportive.inference.predictor import StepPredictor
+from supportive.tasks.spec import Demonstration, TaskSpec
+
+__all__ = [
+    "DETECTOR",
+    "METHODS",
+    "VISIBLE",
+    "MethodScores",
+    "MistakeEvaluation",
+    "evaluate_mistakes",
+]
+
+DETECTOR = "progress-aware"
+METHODS = (DETECTOR, "precondition", "unseen bigram")
+"""The methods compared, the detector first."""
+VISIBLE = ("order", "missing", "repeated", "unknown", "true")
+"""Labels a step sequence can show (``true``: a mistake of unknown kind)."""
+_KIND_OF_LABEL = {"out-of-order": "order", "missing": "missing", "repeated": "repeated", "unknown-step": "unknown"}
+
+Flag = tuple[bool, str | None, tuple[str, ...]]
+"""One method's judgement of a step: flagged, the label kind it claims (None: any), the steps it names."""
+
+
+@dataclass
+class MethodScores:
+    """One method's counts over all held-out demonstrations (see :meth:`as_dict` for the rates)."""
+
+    flagged: int = 0
+    right: int = 0
+    positives: int = 0
+    found: int = 0
+    kinds: dict[str, list[int]] = field(default_factory=dict)  # label -> [claimed, claimed right, positives, found]
+    delays: list[int] = field(default_factory=list)
+    clean_steps: int = 0
+    clean_flagged: int = 0
+    invisible: int = 0
+    invisible_flagged: int = 0
+
+    def _kind(self, label: str) -> list[int]:
+        return self.kinds.setdefault(label, [0, 0, 0, 0])
+
+    def as_dict(self) -> dict[str, object]:
+        """Precision, recall and F1 overall and per kind; missing-step delays; clean and invisible counts."""
+        kinds = {
+            label: _rates(claimed, right, positives, found)
+            for label, (claimed, right, positives, found) in sorted(self.kinds.items())
+        }
+        delays = sorted(self.delays)
+        return {
+            **_rates(self.flagged, self.right, self.positives, self.found),
+            "kinds": kinds,
+            "missing_delay": {
+                "found": len(delays),
+                "mean": round(sum(delays) / len(delays), 4) if delays else None,
+                "median": delays[len(delays) // 2] if delays else None,
+            },
+            "clean_steps": self.clean_steps,
+            "clean_flagged": round(self.clean_flagged / self.clean_steps, 6) if self.clean_steps else 0.0,
+            "not_visible": {"labels": self.invisible, "flagged": self.invisible_flagged},
+        }
+
+
+def _rates(claimed: int, right: int, positives: int, found: int) -> dict[str, float | int]:
+    precision = right / claimed if claimed else 0.0
+    recall = found / positives if positives else 0.0
+    f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+    return {
+        "claimed": claimed,
+        "positives": positives,
+        "precision": round(precision, 4),
+        "recall": round(recall, 4),
+        "f1": round(f1, 4),
+    }
+
+
+@dataclass
+class MistakeEvaluation:
+    """A task's leave-one-out mistake detection: held-out demonstrations, each method's scores (the detector
+    at the first threshold), and the detector at every threshold asked for."""
+
+    task: str
+    thresholds: tuple[float, ...]
+    held_out: int = 0
+    steps: int = 0
+    methods: dict[str, MethodScores] = field(default_factory=lambda: {m: MethodScores() for m in METHODS[1:]})
+    detector: dict[float, MethodScores] = field(default_factory=dict)
+
+    def method(self, name: str) -> MethodScores:
+        """A method's scores (the detector's at the first threshold)."""
+        return self.detector[self.thresholds[0]] if name == DETECTOR else self.methods[name]
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain data (``supportive evaluate --mistakes --json``)."""
+        return {
+            "task": self.task,
+            "threshold": self.thresholds[0],
+            "held_out": self.held_out,
+            "steps": self.steps,
+            "methods": {name: self.method(name).as_dict() for name in METHODS},
+            "thresholds": {str(t): scores.as_dict() for t, scores in self.detector.items()},
+        }
+
+
+def evaluate_mistakes(
+    spec: TaskSpec,
+    *,
+    thresholds: Sequence[float] = (0.5,),
+    positives: Sequence[str] = VISIBLE,
+    settings: dict[str, object] | None = None,
+    progress: Callable[[], None] | None = None,
+) -> MistakeEvaluation:
+    """Leave each demonstration out in turn and score every method's flags on it (see the module docstring).
+
+    Args:
+        spec: A task whose demonstrations carry mistake labels.
+        thresholds: The detector's thresholds (the first is the one :meth:`MistakeEvaluation.method` reports;
+            the others give a precision-recall curve without learning again).
+        positives: The labels that count as mistakes to find (the rest of :data:`VISIBLE` and the invisible
+            kinds are counted apart).
+        settings: :class:`~supportive.inference.predictor.StepPredictor` settings.
+        progress: Called once per held-out demonstration.
+
+    Raises:
+        TaskFileError: when no demonstration carries a label, or there are fewer than two.
+    """
+    demos = list(spec.demonstrations)
+    if len(demos) < 2:
+        raise TaskFileError("mistake detection is scored leaving one demonstration out: give at least two")
+    if not any(_labelled(d) for d in demos):
+        raise TaskFileError("no step carries a mistake label (see docs/task-files.md: 'mistake: order', …)")
+    if not thresholds:
+        raise TaskFileError("give at least one threshold")
+    result = MistakeEvaluation(spec.name, tuple(thresholds))
+    result.detector = {t: MethodScores() for t in result.thresholds}
+    wanted = frozenset(positives)
+    for held in range(len(demos)):
+        training = [d for i, d in enumerate(demos) if i != held]
+        predictor = StepPredictor(**(settings or {})).fit(spec.with_demonstrations(training))
+        demo = demos[held]
+        result.held_out += 1
+        result.steps += len(demo.steps)
+        for threshold, scores in result.detector.items():
+            _score(demo, _detector(MistakeDetector.from_predictor(predictor, threshold=threshold))(demo), scores, wanted)
+        _score(demo, _precondition([d.actions for d in training])(demo), result.methods["precondition"], wanted)
+        _score(demo, _unseen_bigram([d.actions for d in training])(demo), result.methods["unseen bigram"], wanted)
+        if progress is not None:
+            progress()
+    return result
+
+
+def _labelled(demo: Demonstration) -> bool:
+    return bool(demo.skipped) or any(step.mistake is not None for step in demo.steps)
+
+
+def _detector(detector: MistakeDetector) -> Callable[[Demonstration], list[Flag]]:
+    def judge(demo: Demonstration) -> list[Flag]:
+        detector.reset()
+        verdicts: list[StepVerdict] = [detector.observe(action) for action in demo.actions]
+        verdicts.append(detector.finish())
+        return [
+            (v.mistake, _KIND_OF_LABEL[v.kind] if v.kind is not None else None, v.skipped + v.prerequisites)
+            for v in verdicts
+        ]
+
+    return judge
+
+
+def _precondition(training: Sequence[Sequence[str]]) -> Callable[[Demonstration], list[Flag]]:
+    """Flag a step when a step that precedes it in every training demonstration doing both (and that every
+    training demonstration doing it does) is not done."""
+    actions = sorted({a for demo in training for a in demo})
+    needs: dict[str, list[str]] = {a: [] for a in actions}
+    for a, b in itertools.permutations(actions, 2):
+        doing_b = [d for d in training if b in d]
+        if doing_b and all(a in d and d.index(a) < d.index(b) for d in doing_b):
+            needs[b].append(a)
+
+    def judge(demo: Demonstration) -> list[Flag]:
+        done: set[str] = set()
+        flags: list[Flag] = []
+        for action in demo.actions:
+            unmet = tuple(a for a in needs.get(action, ()) if a not in done)
+            flags.append((bool(unmet), "order", unmet))
+            done.add(action)
+        flags.append((False, None, ()))
+        return flags
+
+    return judge
+
+
+def _unseen_bigram(training: Sequence[Sequence[str]]) -> Callable[[Demonstration], list[Flag]]:
+    """Flag a step when no training demonstration goes from the previous step to it."""
+    seen = {pair for demo in training for pair in itertools.pairwise((START, *demo, END))}
+
+    def judge(demo: Demonstration) -> list[Flag]:
+        sequence = (START, *demo.actions, END)
+        return [((sequence[i], sequence[i + 1]) not in seen, None, ()) for i in range(len(sequence) - 1)]
+
+    return judge
+
+
+def _score(demo: Demonstration, flags: list[Flag], scores: MethodScores, positives: frozenset[str]) -> None:
+    """Add one demonstration's flags (one per step and one for the end) to a method's counts."""
+    labels = [step.mistake for step in demo.steps]
+    skipped = [(place, action) for place, action in demo.skipped] if "missing" in positives else []
+    clean = not _labelled(demo)
+    pending = set(range(len(skipped)))
+    for step, (flagged, kind, named) in enumerate(flags):
+        label = labels[step] if step < len(labels) else None
+        is_positive = label is not None and label in positives
+        if label is not None and label not in VISIBLE:
+            scores.invisible += 1
+            scores.invisible_flagged += flagged
+        if clean and step < len(labels):
+            scores.clean_steps += 1
+            scores.clean_flagged += flagged
+        hits = [
+            i for i in sorted(pending)
+            if skipped[i][0] <= step and (skipped[i][1] in named or (not named and skipped[i][0] == step))
+        ] if flagged else []
+        if flagged:
+            scores.flagged += 1
+            scores.right += is_positive or bool(hits)
+            claim = kind or (label if is_positive else "missing" if hits else None)
+            if claim is not None:
+                record = scores._kind(claim)
+                record[0] += 1
+                record[1] += (claim == label and is_positive) or (claim == "missing" and bool(hits))
+        if is_positive:
+            assert label is not None
+            scores.positives += 1
+            scores.found += flagged
+            record = scores._kind(label)
+            record[2] += 1
+            record[3] += flagged
+        for i in hits:
+            pending.discard(i)
+            scores.delays.append(step - skipped[i][0])
+    missing = scores._kind("missing") if skipped else None
+    if missing is not None:
+        scores.positives += len(skipped)
+        scores.found += len(skipped) - len(pending)
+        missing[2] += len(skipped)
+        missing[3] += len(skipped) - len(pending)
+
