@@ -10,6 +10,16 @@ A text that occurs k times in a graph is one action performed k times; the k-th 
 the k-th node with that text in the graph's topological order (on this dataset such nodes are always ordered
 by the graph itself). Steps are kept in the order the annotation lists them, which is the order performed
 (annotated start times sometimes overlap and are not used for ordering).
+
+Mistake labels (:data:`~supportive.tasks.spec.MISTAKE_LABELS`) come from ``error_annotations.json``: each
+recording's ``step_annotations[k].errors[*].tag`` belongs to the k-th step of the recording. On the recordings
+with errors (``errors=True``), a step tagged "Missing Step" that was skipped (start time -1) becomes a
+placeholder in :attr:`~supportive.tasks.spec.Demonstration.skipped` at its place in the list; a performed step
+takes ``order`` when one of its tags is "Order Error" (the kind visible in the sequence of steps wins), else its
+first tag (``technique``, ``measurement``, ``timing``, ``temperature``, ``preparation``, ``other``). A few steps
+are tagged "Missing Step" yet have times: they stay performed steps, as every step with times does, the tag set
+aside (their other tags decide, ``other`` when there is none). A skipped step without the tag (an optional
+step, "if desired") is left out unlabelled.
 """
 
 from __future__ import annotations
@@ -36,6 +46,17 @@ _RELATIVE = Path("..") / "shared" / "data" / "captaincook4d"
 _STEPS_FILE = Path("annotation_json") / "complete_step_annotations.json"
 _ERRORS_FILE = Path("annotation_json") / "error_annotations.json"
 _GRAPHS_DIR = Path("task_graphs")
+_TAGS = {
+    "Order Error": "order",
+    "Missing Step": "missing",
+    "Technique Error": "technique",
+    "Measurement Error": "measurement",
+    "Timing Error": "timing",
+    "Temperature Error": "temperature",
+    "Preparation Error": "preparation",
+    "Other": "other",
+}
+"""The dataset's error tags as mistake labels."""
 _TERMINALS = frozenset({"START", "END"})
 _FILLERS = ("a", "an", "and", "at", "by", "for", "from", "in", "into", "of", "on", "onto", "or", "the", "to")
 _UNITS = ("cup", "cups", "inch", "min", "minute", "minutes", "oz", "sec", "seconds", "tbsp", "tsp")
@@ -105,7 +126,8 @@ def load_captaincook(root: Path | None = None, *, errors: bool = False) -> list[
     Args:
         root: The dataset directory (see :func:`default_root` when None).
         errors: Also take the recordings with errors as demonstrations (their skipped steps left out; every
-            other step, however badly performed, kept where it was performed). Their ids end in ``!``.
+            other step, however badly performed, kept where it was performed), labelled with their mistakes
+            (see the module's docstring). Their ids end in ``!``.
 
     Raises:
         DatasetError: when a file is missing or malformed (the message names it).
@@ -155,7 +177,8 @@ def _read_json(path: Path) -> Any:
 
 
 def _recordings(root: Path) -> list[dict[str, Any]]:
-    """The recordings with ``clean`` set: true when neither the recording nor any step has an error."""
+    """The recordings with ``clean`` set: true when neither the recording nor any step has an error; each
+    step with its ``tags``, the mistake labels of its annotated errors in order."""
     steps_path, errors_path = root / _STEPS_FILE, root / _ERRORS_FILE
     annotations = _read_json(steps_path)
     errors = _read_json(errors_path)
@@ -165,7 +188,8 @@ def _recordings(root: Path) -> list[dict[str, Any]]:
         raise DatasetError(f"{errors_path}: expected a list of recordings")
     try:
         is_error = {str(e["recording_id"]): bool(e["is_error"]) for e in errors}
-    except (KeyError, TypeError) as exc:
+        tagged = {str(e["recording_id"]): e.get("step_annotations", []) for e in errors}
+    except (KeyError, TypeError, AttributeError) as exc:
         raise DatasetError(f"{errors_path}: every entry needs recording_id and is_error ({exc})") from None
     out = []
     for key in sorted(annotations, key=_natural):
@@ -194,6 +218,30 @@ def _recordings(root: Path) -> list[dict[str, Any]]:
         if key not in is_error:
             raise DatasetError(f"{errors_path}: no entry for recording {key}")
         out[-1]["clean"] = not is_error[key] and not any(s["has_errors"] for s in steps)
+        for step, tags in zip(steps, _tags(tagged[key], steps, f"{errors_path}: recording {key}"), strict=True):
+            step["tags"] = tags
+    return out
+
+
+def _tags(annotated: Any, steps: Sequence[Mapping[str, Any]], where: str) -> list[tuple[str, ...]]:
+    """The mistake labels of each step, from the error file's ``step_annotations`` (one per step, in the same
+    order; none given: no labels)."""
+    if not annotated:
+        return [()] * len(steps)
+    if not isinstance(annotated, list) or len(annotated) != len(steps):
+        raise DatasetError(f"{where}: step_annotations must list the recording's {len(steps)} steps")
+    out = []
+    for index, (note, step) in enumerate(zip(annotated, steps, strict=True)):
+        try:
+            described, tags = str(note["description"]), [str(e["tag"]) for e in note.get("errors", [])]
+        except (KeyError, TypeError, AttributeError) as exc:
+            raise DatasetError(f"{where}: step {index + 1}: missing or bad field ({exc})") from None
+        if described != step["description"]:
+            raise DatasetError(f"{where}: step {index + 1} is {described!r} here but {step['description']!r} in {_STEPS_FILE}")
+        unknown = [tag for tag in tags if tag not in _TAGS]
+        if unknown:
+            raise DatasetError(f"{where}: step {index + 1}: unknown error tag {unknown[0]!r} (known: {', '.join(_TAGS)})")
+        out.append(tuple(_TAGS[tag] for tag in tags))
     return out
 
 
@@ -300,17 +348,32 @@ def _demonstration(
 
 
 def _erroneous(rec: Mapping[str, Any], ids: dict[str, str]) -> Demonstration:
-    """A recording with errors as it was performed: skipped steps left out, the rest in the order listed; a
-    step whose text is not in the graph gets an id of its own (``off_graph_…``, added to ``ids``)."""
-    steps = []
+    """A recording with errors as it was performed, labelled: skipped steps left out (those tagged missing as
+    placeholders), the rest in the order listed; a step whose text is not in the graph gets an id of its own
+    (``off_graph_…``, added to ``ids``)."""
+    entries = []
     for s in rec["steps"]:
-        if s["skipped"]:
+        if s["skipped"] and "missing" not in s["tags"]:
             continue
         text = s["description"]
         if text not in ids:
             ids[text] = "off_graph_" + "_".join(_words(text)[:_SLUG_WORDS])
-        steps.append(Step(ids[text], start=s["start"], end=s["end"]))
-    return Demonstration(steps=tuple(steps), id=f"{rec['recording_id']}!", agent=f"person_{rec['person_id']}")
+        if s["skipped"]:
+            entries.append(Step(ids[text], mistake="missing"))
+        else:
+            entries.append(Step(ids[text], start=s["start"], end=s["end"], mistake=_label(s["tags"])))
+    return Demonstration.from_entries(entries, id=f"{rec['recording_id']}!", agent=f"person_{rec['person_id']}")
+
+
+def _label(tags: Sequence[str]) -> str | None:
+    """A performed step's label: ``order`` when tagged so, else its first tag; a "Missing Step" tag on a
+    performed step is set aside (``other`` when it is the only one)."""
+    kinds = [tag for tag in tags if tag != "missing"]
+    if "order" in kinds:
+        return "order"
+    if kinds:
+        return kinds[0]
+    return "other" if tags else None
 
 
 def _action_ids(texts: Iterable[str]) -> dict[str, str]:

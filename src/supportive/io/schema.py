@@ -1,6 +1,7 @@
 """The task-file schema (pydantic), shared by the YAML and JSON readers.
 
-Shorthands: an action may be written as its id alone, a step as its action id alone, a structure leaf as an
+Shorthands: an action may be written as its id alone, a step as its action id alone (``mistake: true``
+labels a step with a mistake of unknown kind, ``false`` is no label), a structure leaf as an
 action id, a keyframe as its ``[x, y]`` pair. A structure node is ``{chain: [...]}`` or ``{clique: [...]}`` with an optional ``name``,
 or ``{optional: node}`` for a node that may be skipped.
 """
@@ -21,6 +22,7 @@ from pydantic import (
 
 from supportive.errors import InvalidValueError
 from supportive.io.values import ActionId, Coordinate, Ident, Seconds, Text
+from supportive.tasks.spec import mistake_label
 
 __all__ = [
     "DEFAULT_EVENT_PROBABILITY",
@@ -90,12 +92,15 @@ class ActionIn(_Strict):
 
 
 class StepIn(_Strict):
-    """``{action, start, end, state}``: timing in seconds; ``state`` lists the fluents true after the step."""
+    """``{action, start, end, state, mistake}``: timing in seconds; ``state`` lists the fluents true after the
+    step; ``mistake`` is a label (:data:`~supportive.tasks.spec.MISTAKE_LABELS`), ``true`` for a mistake of
+    unknown kind, ``false`` for none (``missing`` makes the step a placeholder for a skipped one)."""
 
     action: ActionId
     start: Seconds | None = None
     end: Seconds | None = None
     state: list[Name] | None = None
+    mistake: Annotated[str | None, BeforeValidator(mistake_label)] = None
 
     @model_validator(mode="after")
     def _timing(self) -> StepIn:

@@ -17,7 +17,7 @@ from typing import Any, Literal
 import yaml
 from pydantic import ValidationError
 
-from supportive.errors import FormulaError, TaskFileError
+from supportive.errors import FormulaError, TaskFileError, TaskModelError
 from supportive.io.atomic import atomic_write
 from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
 from supportive.io.safe_load import read_csv, read_text
@@ -33,7 +33,7 @@ from supportive.tasks.behaviors import (
 )
 from supportive.tasks.formula import parse_formula, split_atom
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, internal_nodes
-from supportive.tasks.spec import Action, Demonstration, Keyframe, Step, TaskSpec
+from supportive.tasks.spec import Action, Demonstration, Keyframe, Step, TaskSpec, mistake_label
 
 __all__ = [
     "CSV_COLUMNS",
@@ -48,7 +48,8 @@ __all__ = [
 
 Format = Literal["yaml", "json", "csv"]
 CSV_COLUMNS = ("demonstration", "step", "action")
-CSV_OPTIONAL = ("agent", "start", "end")
+CSV_OPTIONAL = ("agent", "start", "end", "mistake")
+_NOTHING_PERFORMED = "no step was performed: every step is labelled missing"
 _SUFFIXES: dict[str, Format] = {".yaml": "yaml", ".yml": "yaml", ".json": "json", ".csv": "csv"}
 
 
@@ -125,21 +126,25 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
         if demo_id in seen_ids:
             raise fail(f"duplicate demonstration id {demo_id!r}", ["demonstrations", i, "id"])
         seen_ids.add(demo_id)
-        with_state = [step.state is not None for step in demo.steps]
-        if any(with_state) and not all(with_state):
-            j = with_state.index(False)
-            raise fail("every step needs a 'state' when one step has it", ["demonstrations", i, "steps", j])
+        entries = []
         for j, step in enumerate(demo.steps):
             if declared and step.action not in declared:
                 raise fail(
                     f"action {step.action!r} is not declared in 'actions'", ["demonstrations", i, "steps", j]
                 )
-        steps = tuple(
-            Step(s.action, s.start, s.end, None if s.state is None else frozenset(s.state))
-            for s in demo.steps
-        )
+            try:
+                state = None if step.state is None else frozenset(step.state)
+                entries.append(Step(step.action, step.start, step.end, state, step.mistake))
+            except TaskModelError as exc:
+                raise fail(str(exc), ["demonstrations", i, "steps", j]) from None
+        with_state = [step.state is not None for step in entries if not step.placeholder]
+        if any(with_state) and not all(with_state):
+            j = [k for k, step in enumerate(entries) if not step.placeholder][with_state.index(False)]
+            raise fail("every step needs a 'state' when one step has it", ["demonstrations", i, "steps", j])
+        if not with_state:
+            raise fail(_NOTHING_PERFORMED, ["demonstrations", i, "steps"])
         initial = None if demo.initial_state is None else frozenset(demo.initial_state)
-        demos.append(Demonstration(steps, demo_id, demo.agent, initial))
+        demos.append(Demonstration.from_entries(entries, demo_id, demo.agent, initial))
     explicit = {d.has_states for d in demos}
     if len(explicit) > 1:
         index = next(i for i, d in enumerate(demos) if d.has_states != demos[0].has_states)
@@ -269,12 +274,16 @@ def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, se
 
 
 # ---------------------------------------------------------------------------------------------- CSV
+_CSV_FLAGS = {"true": True, "false": False}
+"""A ``mistake`` cell of ``true`` or ``false`` (any case) means what it does in YAML; empty is no label."""
+
+
 def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
     header, table = read_csv(text, path, TaskFileError)
     missing = [c for c in CSV_COLUMNS if c not in header]
     if missing:
         raise TaskFileError(
-            f"missing column(s) {', '.join(missing)}; expected header {','.join(CSV_COLUMNS)}[,agent,start,end]",
+            f"missing column(s) {', '.join(missing)}; expected header {','.join(CSV_COLUMNS)}[,agent,start,end,mistake]",
             path=path,
             line=1,
         )
@@ -304,7 +313,12 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
         start, end = (_seconds(values.get(k, ""), k, path, line) for k in ("start", "end"))
         if start is not None and end is not None and start > end:
             raise TaskFileError(f"start {start} is after end {end}", path=path, line=line)
-        rows.setdefault(demo, []).append((int(step), Step(action, start, end), values.get("agent") or None))
+        label = values.get("mistake", "")
+        try:
+            entry = Step(action, start, end, mistake=mistake_label(_CSV_FLAGS.get(label.lower(), label or None)))
+        except TaskModelError as exc:
+            raise TaskFileError(str(exc), path=path, place="mistake", line=line) from None
+        rows.setdefault(demo, []).append((int(step), entry, values.get("agent") or None))
     if not rows:
         raise TaskFileError("no demonstration rows after the header", path=path, line=2)
     demos = []
@@ -317,8 +331,10 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
             raise TaskFileError(
                 f"demonstration {demo_id!r} names several agents: {sorted(agents)}", path=path
             )
-        ordered = tuple(step for _, step, _ in sorted(steps, key=lambda item: item[0]))
-        demos.append(Demonstration(ordered, demo_id, agents.pop() if agents else None))
+        ordered = [step for _, step, _ in sorted(steps, key=lambda item: item[0])]
+        if all(step.placeholder for step in ordered):
+            raise TaskFileError(f"demonstration {demo_id!r}: {_NOTHING_PERFORMED}", path=path)
+        demos.append(Demonstration.from_entries(ordered, demo_id, agents.pop() if agents else None))
     return TaskSpec(name, (), None, tuple(demos))
 
 
@@ -387,7 +403,7 @@ def _keyframe_to_data(keyframe: Keyframe) -> object:
 
 
 def _step_to_data(step: Step) -> object:
-    if step.start is None and step.end is None and step.state is None:
+    if step.start is None and step.end is None and step.state is None and step.mistake is None:
         return step.action
     data: dict[str, object] = {"action": step.action}
     if step.start is not None:
@@ -396,6 +412,8 @@ def _step_to_data(step: Step) -> object:
         data["end"] = step.end
     if step.state is not None:
         data["state"] = sorted(step.state)
+    if step.mistake is not None:
+        data["mistake"] = True if step.mistake == "true" else step.mistake
     return data
 
 
@@ -419,7 +437,7 @@ def task_to_dict(spec: TaskSpec) -> dict[str, Any]:
                 item["agent"] = demo.agent
             if demo.initial_state is not None:
                 item["initial_state"] = sorted(demo.initial_state)
-            item["steps"] = [_step_to_data(s) for s in demo.steps]
+            item["steps"] = [_step_to_data(s) for s in demo.entries]
             demos.append(item)
         data["demonstrations"] = demos
     if spec.objects:
@@ -454,12 +472,15 @@ def dump_task(spec: TaskSpec, format: Format) -> str:
             columns.append("agent")
         if any(s.start is not None or s.end is not None for d in spec.demonstrations for s in d.steps):
             columns += ["start", "end"]
+        if any(d.labelled for d in spec.demonstrations):
+            columns.append("mistake")
         writer = csv.writer(out, lineterminator="\n")
         writer.writerow(columns)
         for demo in spec.demonstrations:
-            for number, step in enumerate(demo.steps, start=1):
+            for number, step in enumerate(demo.entries, start=1):
                 row: dict[str, object] = {"demonstration": demo.id, "step": number, "action": step.action}
                 row |= {"agent": demo.agent or "", "start": _blank(step.start), "end": _blank(step.end)}
+                row["mistake"] = step.mistake or ""
                 writer.writerow([row[c] for c in columns])
         return out.getvalue()
     data = task_to_dict(spec)

@@ -15,11 +15,12 @@ from supportive.tasks.htn import (
     sample_ordering,
     to_leaves,
 )
-from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
+from supportive.tasks.spec import MISTAKE_LABELS, Action, Demonstration, Step, TaskSpec
 from supportive.tasks.task_graph import GraphUpdate, TaskGraph
 
 __all__ = [
     "HTN",
+    "MISTAKE_LABELS",
     "ORIGIN",
     "TERMINAL",
     "Action",
