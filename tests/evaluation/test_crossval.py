@@ -54,8 +54,8 @@ def test_the_progress_aware_predictor_beats_the_baselines_on_the_chair() -> None
     masked, bigram = scores["masked bigram"], scores["bigram"]
     assert None not in (ours["top1"], ours["log2"], masked["top1"], bigram["top1"], bigram["log2"])
     assert ours["zero"] == 0.0 and ours["done_top1"] == 0.0
-    assert float(ours["top1"] or 0) > float(masked["top1"] or 0) > float(bigram["top1"] or 0)
-    assert float(ours["log2"] or 0) > float(bigram["log2"] or 0)
+    assert _number(ours["top1"]) > _number(masked["top1"]) > _number(bigram["top1"])
+    assert _number(ours["log2"]) > _number(bigram["log2"])
     assert result.held_out == 6 and result.recall is not None and result.precision == 1.0
 
 
@@ -73,3 +73,8 @@ def test_evaluate_cli(cli: CliRunner) -> None:
     assert code == 0 and "progress-aware" in out and "held-out demonstrations admitted" in out
     code, _, err = cli(["evaluate", "ikea-chair", "--folds", "one"])
     assert code == 2 and "--folds" in err and len(err.strip().splitlines()) == 1
+
+
+def _number(value: object) -> float:
+    assert isinstance(value, int | float)
+    return float(value)

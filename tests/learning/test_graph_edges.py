@@ -7,7 +7,7 @@ import pytest
 
 from supportive.errors import LearningError
 from supportive.io.captaincook import load_captaincook
-from supportive.learning.graph_edges import END_NODE, START_NODE, edge_scores, reduced_edges
+from supportive.learning.graph_edges import END_NODE, START_NODE, GraphEdge, edge_scores, reduced_edges
 
 A, B, C, D = ("a", 1), ("b", 1), ("c", 1), ("d", 1)
 
@@ -24,7 +24,7 @@ def test_the_published_graphs_scored_against_themselves_are_perfect_when_already
 
 
 def test_a_redundant_published_edge_costs_recall_only() -> None:
-    truth = {(START_NODE, A), (A, B), (B, C), (A, C), (C, END_NODE)}  # a -> c is implied by a -> b -> c
+    truth: set[GraphEdge] = {(START_NODE, A), (A, B), (B, C), (A, C), (C, END_NODE)}  # a -> c: implied by a -> b -> c
     score = edge_scores({(A, B), (B, C), (A, C)}, [A, B, C], truth)
     assert (score.precision, score.recall) == (1.0, 0.8)
 

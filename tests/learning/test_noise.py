@@ -10,6 +10,8 @@ defaults keep clean data clean on a fixed, varied sample of tasks and sizes.
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -67,15 +69,21 @@ def test_two_interleaved_chains_the_issue_case(n: int) -> None:
 
 
 @pytest.mark.parametrize("kind", ["moved", "repeated", "dropped"])
-@pytest.mark.parametrize("profile", ["ikea", "partial order"])
-def test_a_mistake_put_in_is_found_as_its_kind(kind: str, profile: str) -> None:
-    task = random_known_task(profile, 8, seed=3)  # type: ignore[arg-type]
-    rng = np.random.default_rng(11)
-    demos, injected = inject([task.sample(rng) for _ in range(60)], kind, 0.05, task.admits, rng)  # type: ignore[arg-type]
-    learner = HTNLearner().fit(demos)
-    found = {(d.demonstration, d.kind) for d in learner.deviations_}
-    assert {(i.demonstration, KIND_OF_SLIP[kind]) for i in injected} <= found
-    assert {d for d, _ in found} <= {i.demonstration for i in injected}, "no slip where none was put in"
-    assert learner.noise_ is not None and learner.noise_.rates[KIND_OF_SLIP[kind]] > 0
-    cleaned = [d for i, d in enumerate(demos) if i not in {s.demonstration for s in injected}]
-    assert all(learner.htn_.admits(d) for d in cleaned)
+def test_mistakes_put_in_are_found_as_their_kind(kind: str) -> None:
+    # Six generated tasks (three profiles, two seeds), 60 demonstrations, one in twenty with a mistake: every
+    # slip reported is one put in, of its kind, and most of those put in are found (the rates over many tasks
+    # are measured by `supportive reproduce learner-settings`).
+    put_in = found = 0
+    for profile, seed in itertools.product(["ikea", "uniform", "partial order"], [3, 4]):
+        task = random_known_task(profile, 8, seed=seed)  # type: ignore[arg-type]
+        rng = np.random.default_rng(seed)
+        demos, injected = inject([task.sample(rng) for _ in range(60)], kind, 0.05, task.admits, rng)  # type: ignore[arg-type]
+        learner = HTNLearner().fit(demos)
+        reported = {(d.demonstration, d.kind) for d in learner.deviations_}
+        truth = {(i.demonstration, KIND_OF_SLIP[kind]) for i in injected}
+        assert reported <= truth, f"{profile} {seed}: a slip reported where none was put in"
+        put_in += len(truth)
+        found += len(reported)
+        cleaned = [d for i, d in enumerate(demos) if i not in {s.demonstration for s in learner.deviations_}]
+        assert all(learner.htn_.admits(d) for d in cleaned)
+    assert found >= 0.7 * put_in, (found, put_in)

@@ -12,14 +12,14 @@ from hypothesis import strategies as st
 from supportive.generate import random_partial_order, random_structure
 from supportive.learning import HTNLearner
 from supportive.learning.pair_orders import order_probabilities
-from supportive.tasks.executions import Executions
+from supportive.tasks.executions import Executions, Progress
 from supportive.tasks.htn import HTN, Leaf, sample_ordering
 
 
 def _executions(htn: HTN) -> list[tuple[Leaf, ...]]:
     machine = Executions(htn)
     out: list[tuple[Leaf, ...]] = []
-    stack = [(state, ()) for state in machine.initial()]
+    stack: list[tuple[Progress, tuple[Leaf, ...]]] = [(state, ()) for state in machine.initial()]
     seen: set[tuple[Leaf, ...]] = set()
     while stack:
         state, prefix = stack.pop()

@@ -65,22 +65,26 @@ class HTNLearner(Estimator):
     Args:
         mode: ``"auto"`` (default): learn the ``general``, ``strict`` and ``partial order`` readings (the
             first and last also with every consistent order established) and keep the one that best predicts
-            held-out demonstrations (:mod:`~supportive.learning.selection`); or one of the three by name. Demonstrations with explicit states are always learned strictly.
+            held-out demonstrations (:mod:`~supportive.learning.selection`); or one of the three by name.
+            Demonstrations with explicit states are always learned strictly.
         slips: ``general``: look for slips (steps out of order, repeated, missing or unknown) and learn
             without them (:mod:`~supportive.learning.noise`); False learns from every step as it is.
-        slip_margin: ``general``: a set of slips is kept only when it makes the demonstrations more probable
-            by more than this many nats (its natural log-likelihood ratio against the explanation without
-            it, after the noise it claims has been paid for); 0 or more.
-        slip_rate: ``general``: the prior mean of how often a step slips, per step and kind; in (0, 0.5).
+        slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
+            more than this many nats (natural log-likelihood ratio against the explanation without it, after
+            the noise it claims has been paid for); 0 or more. Default 2, with ``slip_rate`` 0.2: the setting
+            ``supportive reproduce learner-settings`` picks on generated tasks (docs/learning.md).
+        slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
+            (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
         slip_rate_weight: ``general``: how many observed steps that prior is worth (each kind's rate is
             integrated out under a beta prior with this mean and weight, so demonstrations with many more
-            steps outweigh it); above 0.
+            steps outweigh it); above 0. Not swept: 1,000 steps is the size of the generated tasks' data
+            (50–100 demonstrations of 6–12 steps), so the data and the prior weigh alike there.
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
-            (the candidates that reverse the most agreed orders); at least 1.
+            (the most telling first); at least 1. A bound on the work, not a model setting.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
-            this (:func:`~supportive.learning.evidence.contiguity_chance`), and an order despite a few
-            demonstrations reversing it when a free pair would split so unevenly with chance below this
-            (:func:`~supportive.learning.evidence.agreed_orders`).
+            this (:func:`~supportive.learning.evidence.contiguity_chance`, a likelihood-ratio test), and take
+            an order the demonstrations reverse far less often than the hierarchy predicts as agreed (the
+            slip search's candidates, :mod:`~supportive.learning.noise`). The conventional 5 % level.
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
             even when no step is between them (:func:`~supportive.learning.evidence.established_precedences`);
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).
@@ -124,8 +128,8 @@ class HTNLearner(Estimator):
         *,
         mode: Mode = "auto",
         slips: bool = True,
-        slip_margin: float = 0.0,
-        slip_rate: float = 0.03,
+        slip_margin: float = 2.0,
+        slip_rate: float = 0.2,
         slip_rate_weight: float = 1000.0,
         max_slip_candidates: int = 48,
         evidence: float = 0.05,

@@ -78,12 +78,13 @@ class Deviation:
 
 @dataclass(frozen=True)
 class NoiseSettings:
-    """The slip search's settings (see :class:`~supportive.learning.learner.HTNLearner`)."""
+    """The slip search's settings (see :class:`~supportive.learning.learner.HTNLearner`, which holds their
+    defaults and says how they were chosen)."""
 
-    margin: float = 0.0
-    rate: float = 0.03
-    weight: float = 1000.0
-    max_candidates: int = 48
+    margin: float
+    rate: float
+    weight: float
+    max_candidates: int
 
 
 @dataclass(frozen=True)
@@ -275,7 +276,11 @@ class _Search:
                 if skippers:
                     out.append(frozenset(Deviation(d, -1, leaf, "missing") for d in skippers))
         reversing = self._moved(cleaned, slips)
-        repairs = self._repairs(cleaned, {d.demonstration for c in reversing for d in c})
+        reversal = [0.0] * n
+        for rank, candidate in enumerate(reversing):  # the most telling step of each demonstration first
+            (slip,) = candidate
+            reversal[slip.demonstration] = max(reversal[slip.demonstration], float(len(reversing) - rank))
+        repairs = self._repairs(cleaned, _outliers(reversal) | _surprising(cleaned))
         moved = list(dict.fromkeys(_interleave(repairs, reversing, self._inserted(cleaned))))
         out.extend(moved[: self.settings.max_candidates])
         by_leaf: dict[Leaf, set[Deviation]] = {}  # the same step out of order in several demonstrations
@@ -289,8 +294,10 @@ class _Search:
         return out
 
     def _repairs(self, cleaned: list[list[tuple[int, Leaf]]], odd: set[int]) -> list[frozenset[Deviation]]:
-        """Steps whose move would make a demonstration that reverses agreed orders an execution of the
-        hierarchy learned from the demonstrations that reverse none (when there are enough of those)."""
+        """Steps whose move would make an odd demonstration (one that reverses agreed orders, or whose steps
+        follow one another unusually, :func:`_surprising`) an execution of the hierarchy learned from the
+        others (when there are enough of those): a step moved into a subtask breaks it without reversing any
+        order, and the hierarchy learned with it is loosened where the others' is not."""
         core = [tuple(leaf for _, leaf in demo) for d, demo in enumerate(cleaned) if d not in odd]
         if len(core) <= self.structure_settings.support_needed or not odd:
             return []
@@ -348,28 +355,28 @@ class _Search:
         return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
 
     def _inserted(self, cleaned: list[list[tuple[int, Leaf]]]) -> list[frozenset[Deviation]]:
-        """Single steps put where they never are otherwise: the step before and the step after follow one
-        another directly in at least the support an order needs of the other demonstrations, and no other
-        demonstration has the step right after the one or right before the other (a step moved into a
-        subtask reverses no order but breaks it). Most telling first."""
-        pairs: Counter[tuple[Leaf | None, Leaf | None]] = Counter()
-        for demo in cleaned:
-            labels: list[Leaf | None] = [None, *(leaf for _, leaf in demo), None]
-            pairs.update(itertools.pairwise(labels))
+        """Single steps that break a subtask the other demonstrations keep together (a step moved into a
+        subtask reverses no order but breaks it), largest subtask first.
+
+        From each pair of steps done one right after the other by at least the support an order needs, a
+        would-be subtask grows as the decomposition's closures do (every step done inside its span joins it),
+        except that a step found inside it in one demonstration only does not join: that demonstration's
+        step is the candidate, when the subtask is then kept together by at least that support of the
+        others and the step is done outside it by as many."""
+        arrays = [[leaf for _, leaf in demo] for demo in cleaned]
         need = self.structure_settings.support_needed
-        ranked: list[tuple[int, int, int, Leaf]] = []
-        for d, demo in enumerate(cleaned):
-            labels = [None, *(leaf for _, leaf in demo), None]
-            mine = Counter(itertools.pairwise(labels))
-            for i in range(1, len(labels) - 1):
-                before, leaf, after = labels[i - 1], labels[i], labels[i + 1]
-                assert leaf is not None
-                through = pairs[(before, leaf)] - mine[(before, leaf)] + pairs[(leaf, after)] - mine[(leaf, after)]
-                direct = pairs[(before, after)] - mine[(before, after)]
-                if through == 0 and direct >= need:
-                    ranked.append((-direct, d, demo[i - 1][0], leaf))
-        ranked.sort()
-        return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
+        adjacent = Counter(pair for demo in arrays for pair in itertools.pairwise(demo))
+        found: dict[tuple[int, int], tuple[int, Leaf]] = {}
+        for pair in (p for p, count in adjacent.items() if count >= need):
+            members, intruders = _robust_closure(frozenset(pair), arrays)
+            kept = sum(1 for demo in arrays if sum(leaf in members for leaf in demo) >= 2)
+            for d, leaf in intruders:
+                outside = sum(1 for demo in arrays if leaf in demo) - 1
+                if kept - 1 >= need and outside >= need:
+                    position = cleaned[d][arrays[d].index(leaf)][0]
+                    found[(d, position)] = max(found.get((d, position), (0, leaf)), (len(members), leaf))
+        ranked = sorted(found.items(), key=lambda item: (-item[1][0], item[0]))
+        return [frozenset({Deviation(d, p, leaf, "out of order")}) for (d, p), (_, leaf) in ranked]
 
     # ------------------------------------------------------------------ scoring
     def _cleaned_positions(self, slips: frozenset[Deviation]) -> list[list[tuple[int, Leaf]]]:
@@ -476,6 +483,57 @@ class _Search:
         return self.settings.rate * self.settings.weight, (1.0 - self.settings.rate) * self.settings.weight
 
 
+
+
+def _surprising(demos: Sequence[Sequence[tuple[int, Leaf]]]) -> set[int]:
+    """The demonstrations whose steps follow one another unusually: the mean surprisal of their transitions
+    (``-log`` of how often the others go from each step to the next, add-one smoothed) is an outlier
+    (:func:`_outliers`) among all demonstrations'."""
+    labels = [[None, *(leaf for _, leaf in demo), None] for demo in demos]
+    pairs: Counter[tuple[Leaf | None, Leaf | None]] = Counter(p for demo in labels for p in itertools.pairwise(demo))
+    starts: Counter[Leaf | None] = Counter(leaf for demo in labels for leaf in demo[:-1])
+    vocabulary = len(starts) + 1
+    scores = []
+    for demo in labels:
+        mine = Counter(itertools.pairwise(demo))
+        own = Counter(demo[:-1])
+        scores.append(
+            float(np.mean([
+                -math.log((pairs[p] - mine[p] + 1) / (starts[p[0]] - own[p[0]] + vocabulary))
+                for p in itertools.pairwise(demo)
+            ]))
+        )
+    return _outliers(scores)
+
+
+def _outliers(scores: Sequence[float]) -> set[int]:
+    """The indices of the scores beyond Tukey's outer fence (the third quartile plus three interquartile
+    ranges); none among fewer than four."""
+    if len(scores) < 4:
+        return set()
+    low, high = np.percentile(scores, [25, 75])
+    fence = high + 3.0 * (high - low)
+    return {d for d, score in enumerate(scores) if score > fence}
+
+
+def _robust_closure(
+    start: frozenset[Leaf], demos: Sequence[Sequence[Leaf]]
+) -> tuple[frozenset[Leaf], list[tuple[int, Leaf]]]:
+    """The smallest set holding ``start`` whose members are contiguous in every demonstration but for steps
+    found inside its span in one demonstration only; those ``(demonstration, step)`` are returned apart."""
+    members = set(start)
+    while True:
+        inside: dict[Leaf, list[int]] = {}
+        for d, demo in enumerate(demos):
+            places = [i for i, leaf in enumerate(demo) if leaf in members]
+            if len(places) >= 2:
+                for leaf in demo[places[0] : places[-1] + 1]:
+                    if leaf not in members:
+                        inside.setdefault(leaf, []).append(d)
+        joining = {leaf for leaf, where in inside.items() if len(where) > 1}
+        if not joining:
+            return frozenset(members), [(where[0], leaf) for leaf, where in sorted(inside.items())]
+        members |= joining
 
 
 def _interleave(*ranked: list[frozenset[Deviation]]) -> list[frozenset[Deviation]]:
