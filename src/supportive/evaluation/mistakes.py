@@ -1,8 +1,9 @@
 """Online mistake detection, scored: leave one labelled recording out, detect its mistakes step by step.
 
 Each held-out demonstration's steps are judged one by one by a :class:`~supportive.inference.mistakes.MistakeDetector`
-over the predictor learned from the other demonstrations (labels play no part in learning), and by two
-baselines learned from the same demonstrations:
+over the progress-aware model of the hierarchy learned from the other demonstrations (labels play no part in
+learning; by default the ``general`` reading, whose orders all rest on evidence: a robot must not call a
+habit it has seen a rule), and by two baselines learned from the same demonstrations:
 
 * **precondition**: a step is a mistake when a step that precedes it in every training demonstration that
   performs both, and that every training demonstration performing it performs, has not been done;
@@ -14,10 +15,12 @@ What counts (the labels of the task file, ``Step.mistake`` and ``Demonstration.s
 * a **positive** is a performed step labelled with one of ``positives`` (by default ``order``, ``repeated``,
   ``unknown`` and ``true``: the kinds a step sequence can show), or a skipped step (``missing``, if among
   ``positives``) at its place;
-* a flagged step is **right** when it is a positive, or when the detector names among the steps skipped or
-  not yet done one that the demonstration really skipped; a skipped step is **found** when a flag at its
-  place (the step done instead of it) or a later verdict names it — its **delay** is the number of steps from
-  its place to that verdict (the task's end counts as one more step);
+* a flagged step is **right** when it is a positive, or when a step it names (as skipped, or as needed
+  first) is a positive of the demonstration: a step done later and labelled out of order, or a skipped one
+  ("this needs that first" says which step is out of place as well as a flag on it would); a positive step is
+  **found** when it is flagged or named by a flag before it is done; a skipped step is **found** when a flag
+  at its place (the step done instead of it) or a later verdict names it — its **delay** is the number of
+  steps from its place to that verdict (the task's end counts as one more step);
 * labels a step sequence cannot show (technique, measurement, timing, temperature, preparation, other) are
   counted apart: how many there were, and how many of them a method flagged.
 
@@ -29,13 +32,15 @@ steps flagged in demonstrations that carry no label at all.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from supportive.errors import TaskFileError
 from supportive.inference.bigram import END, START
 from supportive.inference.mistakes import MistakeDetector, StepVerdict
-from supportive.inference.predictor import StepPredictor
+from supportive.inference.tracker import ProgressHMM
+from supportive.learning.learner import HTNLearner
 from supportive.tasks.spec import Demonstration, TaskSpec
 
 __all__ = [
@@ -44,6 +49,7 @@ __all__ = [
     "VISIBLE",
     "MethodScores",
     "MistakeEvaluation",
+    "detection_model",
     "evaluate_mistakes",
 ]
 
@@ -143,7 +149,7 @@ def evaluate_mistakes(
     *,
     thresholds: Sequence[float] = (0.5,),
     positives: Sequence[str] = VISIBLE,
-    settings: dict[str, object] | None = None,
+    settings: Mapping[str, Any] | None = None,
     progress: Callable[[], None] | None = None,
 ) -> MistakeEvaluation:
     """Leave each demonstration out in turn and score every method's flags on it (see the module docstring).
@@ -154,7 +160,8 @@ def evaluate_mistakes(
             the others give a precision-recall curve without learning again).
         positives: The labels that count as mistakes to find (the rest of :data:`VISIBLE` and the invisible
             kinds are counted apart).
-        settings: :class:`~supportive.inference.predictor.StepPredictor` settings.
+        settings: :class:`~supportive.learning.learner.HTNLearner` settings (default: the ``general``
+            reading) and :class:`~supportive.inference.tracker.ProgressHMM` ones (``smoothing``, ``slip``).
         progress: Called once per held-out demonstration.
 
     Raises:
@@ -172,17 +179,29 @@ def evaluate_mistakes(
     wanted = frozenset(positives)
     for held in range(len(demos)):
         training = [d for i, d in enumerate(demos) if i != held]
-        predictor = StepPredictor(**(settings or {})).fit(spec.with_demonstrations(training))
+        hmm = detection_model(spec.with_demonstrations(training), settings)
         demo = demos[held]
         result.held_out += 1
         result.steps += len(demo.steps)
         for threshold, scores in result.detector.items():
-            _score(demo, _detector(MistakeDetector.from_predictor(predictor, threshold=threshold))(demo), scores, wanted)
+            _score(demo, _detector(MistakeDetector(hmm, threshold=threshold))(demo), scores, wanted)
         _score(demo, _precondition([d.actions for d in training])(demo), result.methods["precondition"], wanted)
         _score(demo, _unseen_bigram([d.actions for d in training])(demo), result.methods["unseen bigram"], wanted)
         if progress is not None:
             progress()
     return result
+
+
+_TRACKER = ("smoothing", "slip")
+
+
+def detection_model(training: TaskSpec | Sequence[Sequence[str]], settings: Mapping[str, Any] | None = None) -> ProgressHMM:
+    """The progress-aware model a detector runs on: the hierarchy learned from ``training`` (the ``general``
+    reading unless ``settings`` say otherwise; see :func:`evaluate_mistakes`)."""
+    settings = settings or {}
+    learner = {"mode": "general", **{k: v for k, v in settings.items() if k not in _TRACKER}}
+    htn = HTNLearner(alternatives=0, **learner).fit(training).htn_
+    return ProgressHMM(htn, **{k: v for k, v in settings.items() if k in _TRACKER}).fit()
 
 
 def _labelled(demo: Demonstration) -> bool:
@@ -239,44 +258,53 @@ def _unseen_bigram(training: Sequence[Sequence[str]]) -> Callable[[Demonstration
 def _score(demo: Demonstration, flags: list[Flag], scores: MethodScores, positives: frozenset[str]) -> None:
     """Add one demonstration's flags (one per step and one for the end) to a method's counts."""
     labels = [step.mistake for step in demo.steps]
-    skipped = [(place, action) for place, action in demo.skipped] if "missing" in positives else []
+    positive = [label is not None and label in positives for label in labels]
+    skipped = list(demo.skipped) if "missing" in positives else []
     clean = not _labelled(demo)
     pending = set(range(len(skipped)))
+    found = [False] * len(labels)
+    named_before: set[str] = set()
     for step, (flagged, kind, named) in enumerate(flags):
-        label = labels[step] if step < len(labels) else None
-        is_positive = label is not None and label in positives
+        performed = step < len(labels)
+        label = labels[step] if performed else None
+        if performed:
+            found[step] = positive[step] and (flagged or demo.actions[step] in named_before)
         if label is not None and label not in VISIBLE:
             scores.invisible += 1
             scores.invisible_flagged += flagged
-        if clean and step < len(labels):
+        if clean and performed:
             scores.clean_steps += 1
             scores.clean_flagged += flagged
+        if not flagged:
+            continue
         hits = [
             i for i in sorted(pending)
             if skipped[i][0] <= step and (skipped[i][1] in named or (not named and skipped[i][0] == step))
-        ] if flagged else []
-        if flagged:
-            scores.flagged += 1
-            scores.right += is_positive or bool(hits)
-            claim = kind or (label if is_positive else "missing" if hits else None)
-            if claim is not None:
-                record = scores._kind(claim)
-                record[0] += 1
-                record[1] += (claim == label and is_positive) or (claim == "missing" and bool(hits))
-        if is_positive:
-            assert label is not None
-            scores.positives += 1
-            scores.found += flagged
-            record = scores._kind(label)
-            record[2] += 1
-            record[3] += flagged
+        ]
+        late = {demo.actions[j] for j in range(step + 1, len(labels)) if positive[j]}
+        right = (performed and positive[step]) or bool(hits) or bool(late & set(named))
+        scores.flagged += 1
+        scores.right += right
+        claim = kind or (label if performed and positive[step] else "missing" if hits else None)
+        if claim is not None:
+            record = scores._kind(claim)
+            record[0] += 1
+            record[1] += right
+        named_before.update(named)
         for i in hits:
             pending.discard(i)
             scores.delays.append(step - skipped[i][0])
-    missing = scores._kind("missing") if skipped else None
-    if missing is not None:
+    for step, label in enumerate(labels):
+        if positive[step]:
+            assert label is not None
+            scores.positives += 1
+            scores.found += found[step]
+            record = scores._kind(label)
+            record[2] += 1
+            record[3] += found[step]
+    if skipped:
+        missing = scores._kind("missing")
         scores.positives += len(skipped)
         scores.found += len(skipped) - len(pending)
         missing[2] += len(skipped)
         missing[3] += len(skipped) - len(pending)
-

@@ -13,7 +13,10 @@ refuses — what kind of mistake it is:
   under way unfinished (subtasks are done without interruption): the person skipped them (named as
   ``skipped``);
 * ``out-of-order``: the step needs others that were not yet due: it came too early (its unmet
-  ``prerequisites`` are named), or it comes where the hierarchy does not expect it for another reason.
+  ``prerequisites`` are named).
+
+A step the tracker finds unlikely but that misses nothing it needs (an order nobody showed among steps that
+may come in any order) is not a mistake: a robot that names no reason would only nag.
 
 A step's prerequisites are the steps that come before it in every execution the hierarchy admits and that
 every execution performs (:func:`~supportive.learning.pair_orders.order_probabilities`). Decisions use only
@@ -61,8 +64,8 @@ class StepVerdict:
             their number.
         action: The action done (``"<end>"`` for the task's end).
         probability: Probability that the step was off-script, given only the steps so far.
-        mistake: True when it is a mistake (``probability`` reached the threshold and the hierarchy refuses
-            the step, or the task ended with ``skipped`` steps never done).
+        mistake: True when it is a mistake (``probability`` reached the threshold and the step is unknown,
+            repeated or misses steps it needs, or the task ended with ``skipped`` steps never done).
         kind: The kind of mistake (None when it is not one).
         prerequisites: ``out-of-order``: the steps it needs that are not done, in task order.
         skipped: ``missing``: the steps skipped, in task order.
@@ -252,7 +255,7 @@ class MistakeDetector:
         self._said.update(left)
         if left:
             return StepVerdict(step, action, probability, True, "missing", (), left)
-        return StepVerdict(step, action, probability, True, "out-of-order")
+        return StepVerdict(step, action, probability)  # unusual, but nothing it needs is missing: no nagging
 
     def _names(self, leaves: list[int]) -> tuple[str, ...]:
         """The actions of ``leaves``, each once, in task order, leaving out those already named."""

@@ -7,11 +7,10 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from supportive.errors import ExperimentError
-from supportive.evaluation.mistakes import DETECTOR, METHODS, MethodScores, evaluate_mistakes
+from supportive.evaluation.mistakes import DETECTOR, METHODS, MethodScores, detection_model, evaluate_mistakes
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import PROFILES, MistakeKind, inject, random_known_task
 from supportive.inference.mistakes import MistakeDetector
-from supportive.inference.predictor import StepPredictor
 from supportive.io.captaincook import load_captaincook
 
 __all__ = [
@@ -73,12 +72,12 @@ def _generated(trial: Trial) -> dict[str, Any]:
     rng = trial.rng()
     profile = trial.params["profile"]
     task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
-    predictor = StepPredictor().fit([task.sample(rng) for _ in range(TRAIN)])
+    model = detection_model([task.sample(rng) for _ in range(TRAIN)])
     clean = [task.sample(rng) for _ in range(TEST)]
     mistaken = {kind: inject([task.sample(rng) for _ in range(TEST)], kind, 1.0, task.admits, rng) for kind in KINDS}
     out: dict[str, Any] = {"profile": profile, "thresholds": {}}
     for threshold in THRESHOLDS:
-        detector = MistakeDetector.from_predictor(predictor, threshold=threshold)
+        detector = MistakeDetector(model, threshold=threshold)
         flagged = steps = 0
         for demo in clean:
             detector.reset()
