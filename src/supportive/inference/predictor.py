@@ -147,8 +147,13 @@ class StepPredictor(Estimator):
         return running.next_step()
 
     # ------------------------------------------------------------------ fitting
-    def _learner(self) -> HTNLearner:
-        return HTNLearner(alternatives=0, **{k: v for k, v in self.settings.items() if k in _LEARNER})
+    def _learner(self, reading: str | None = None) -> HTNLearner:
+        """The hierarchy learner; ``reading`` fixes its mode (the folds of the calibration keep the reading
+        chosen on all the demonstrations rather than choosing again)."""
+        settings = {k: v for k, v in self.settings.items() if k in _LEARNER}
+        if reading is not None:
+            settings["mode"] = reading
+        return HTNLearner(alternatives=0, **settings)
 
     def _hmm(self, htn: HTN, smoothing: float) -> ProgressHMM:
         tracker = {k: v for k, v in self.settings.items() if k in _TRACKER}
@@ -167,7 +172,7 @@ class StepPredictor(Estimator):
         for fold in range(k):
             train = [d for i, d in enumerate(demos) if i % k != fold]
             held = [_actions(d) for i, d in enumerate(demos) if i % k == fold]
-            htn = self._learner().fit(train).htn_
+            htn = self._learner(self.learner_.reading_).fit(train).htn_
             bigram = Bigram().fit(train)
             for row, smoothing in enumerate(smoothings):
                 hmm = self._hmm(htn, float(smoothing))

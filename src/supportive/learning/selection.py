@@ -17,9 +17,9 @@ it admits, the instances of a repeated subtask counted once; no frequency is fit
 favoured for its parameters). A held-out demonstration the reading does
 not admit is explained as noise, as the slip model reads it: each step out of place costs ``slip_rate`` times
 the place it landed among the demonstration's, on top of the probability of the execution it came from. The
-steps out of place are one when moving one step makes the demonstration admitted, else those a greedy cover
-takes out so that no order the reading requires is reversed and no subtask interleaved (at least two; an
-upper bound on the fewest). So a reading too tight to
+steps out of place are those a greedy cover takes out so that no order the reading requires is reversed and
+no subtask interleaved (an upper bound on the fewest): one when moving one step makes the demonstration
+admitted, else at least two. So a reading too tight to
 generalise pays for every demonstration it refuses, and one too loose for every one it admits. The reading
 with the highest mean held-out log-likelihood per demonstration is kept (the first of :data:`CANDIDATES` on a
 tie), unless, learned from all the demonstrations, it admits exactly the executions the ``general`` reading
@@ -114,20 +114,28 @@ def held_out_log_likelihood(htn: HTN, actions: Sequence[str], slip_rate: float) 
 
 
 def _moves_needed(htn: HTN, actions: Sequence[str]) -> int:
-    """How many steps of ``actions`` were done out of place, for a demonstration ``htn`` refuses: 1 when
-    moving one step makes it admitted; else the steps a greedy cover takes out so that no order ``htn``
-    requires is reversed and no subtask is interleaved, and at least 2."""
+    """How many steps of ``actions`` were done out of place, for a demonstration ``htn`` refuses: the steps a
+    greedy cover takes out so that no order ``htn`` requires is reversed and no subtask is interleaved (an
+    upper bound on the fewest), and at least one; exactly one when moving a single step — the cover's, or
+    any when the cover is empty — makes it admitted, else at least two."""
     steps = list(actions)
-    for i, step in enumerate(steps):
+    cover = _cover(htn, steps)
+    for i in cover if len(cover) == 1 else range(len(steps)) if not cover else ():
         rest = steps[:i] + steps[i + 1 :]
-        if any(htn.admits([*rest[:j], step, *rest[j:]]) for j in range(len(rest) + 1) if j != i):
+        if any(htn.admits([*rest[:j], steps[i], *rest[j:]]) for j in range(len(rest) + 1) if j != i):
             return 1
+    return max(len(cover), 2)
+
+
+def _cover(htn: HTN, steps: Sequence[str]) -> list[int]:
+    """Positions a greedy cover takes out of ``steps`` so that no order ``htn`` requires is reversed and no
+    subtask is interleaved (a step the reading lacks conflicts with every other)."""
     leaves = to_leaves(steps)
     model_leaves, before = order_probabilities(htn)
     index = {leaf: i for i, leaf in enumerate(model_leaves)}
     conflicts: dict[int, set[int]] = {p: set() for p in range(len(leaves))}
     for p, q in itertools.combinations(range(len(leaves)), 2):  # p done before q: reversed when q must precede
-        first, second = index.get(leaves[p]), index.get(leaves[q])  # a step the reading lacks is out of place
+        first, second = index.get(leaves[p]), index.get(leaves[q])
         if first is None or second is None or before[second, first] == 1.0:
             conflicts[p].add(q)
             conflicts[q].add(p)
@@ -138,13 +146,13 @@ def _moves_needed(htn: HTN, actions: Sequence[str]) -> int:
                 for q in inside:
                     conflicts[p].add(q)
                     conflicts[q].add(p)
-    moved = 0
+    taken: list[int] = []
     while any(conflicts.values()):
         worst = max(conflicts, key=lambda p: (len(conflicts[p]), -p))
         for other in conflicts.pop(worst):
             conflicts[other].discard(worst)
-        moved += 1
-    return max(moved, 2)
+        taken.append(worst)
+    return taken
 
 
 def _log_symmetry(htn: HTN) -> float:
