@@ -12,7 +12,7 @@ from typing import Annotated, Any
 
 import typer
 
-from supportive.cli.output import about, out, say, write_text
+from supportive.cli.output import about, finite, out, say, write_text
 from supportive.errors import OptionError, TaskFileError
 from supportive.extras import require_extra
 from supportive.render.terminal import printable
@@ -165,11 +165,23 @@ def evaluate(
         Path | None,
         typer.Option("--plot", help="Draw the predictors' reliability diagram as a PNG (needs matplotlib)."),
     ] = None,
+    mistakes: Annotated[
+        bool,
+        typer.Option("--mistakes", help="Score online mistake detection on the file's labelled steps instead."),
+    ] = False,
+    threshold: Annotated[
+        float | None,
+        typer.Option(
+            "--threshold", min=0.0, max=1.0, callback=finite, help="The detector's threshold (--mistakes; default: its own)."
+        ),
+    ] = None,
 ) -> None:
     """Cross-validate your demonstrations: does the hierarchy learned from the others admit the one held out
     (with a ground-truth structure: recall and precision of its orderings), and how well the progress-aware
     next-step predictor and three simple baselines predict each step, and how well calibrated their
-    probabilities are (expected calibration error and the reliability table of the top-1 probability)."""
+    probabilities are (expected calibration error and the reliability table of the top-1 probability).
+    With --mistakes: leave each demonstration out and detect its labelled mistakes step by step, beside a
+    precondition check and an unseen-bigram rule."""
     from supportive.evaluation import evaluate_task
     from supportive.examples import task_path
     from supportive.experiments.progress import progress_bar
@@ -183,6 +195,16 @@ def evaluate(
     spec = parse_task_file(task_path(file))
     if len(spec.demonstrations) < 2:
         raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")
+    if mistakes:
+        from supportive.cli.mistakes import print_mistakes
+        from supportive.evaluation.mistakes import evaluate_mistakes
+
+        if folds != "loo" or plot is not None:
+            raise OptionError("--mistakes leaves one demonstration out and draws nothing: drop --folds and --plot")
+        with progress_bar(f"mistakes {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
+            found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), progress=advance)
+        print_mistakes(found, printable(spec.name), as_json=as_json)
+        return
     k = None if folds == "loo" else int(folds)
     with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
         result = evaluate_task(spec, k=k, seed=seed, progress=advance)
@@ -233,13 +255,31 @@ def captaincook(
         typer.Option("--data", help="CaptainCook4D directory (default: ../shared/data/captaincook4d)."),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
+    mistakes: Annotated[
+        bool,
+        typer.Option(
+            "--mistakes", help="Score online mistake detection on every recording's labels instead (slow: minutes)."
+        ),
+    ] = False,
+    threshold: Annotated[
+        float | None,
+        typer.Option(
+            "--threshold", min=0.0, max=1.0, callback=finite, help="The detector's threshold (--mistakes; default: its own)."
+        ),
+    ] = None,
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
-    the learned model implies against the recipe's published task graph."""
+    the learned model implies against the recipe's published task graph. With --mistakes: leave each
+    recording out and detect its order errors and missing steps step by step (the other labels, which a step
+    sequence cannot show, are counted apart), beside a precondition check and an unseen-bigram rule."""
     from supportive.experiments.captaincook.recipes import captaincook_report, recipe_means
     from supportive.io.captaincook import load_captaincook
     from supportive.learning.graph_edges import PEERS
     from supportive.render.tables import fitted_table
+
+    if mistakes:
+        _captaincook_mistakes(data, threshold, as_json)
+        return
 
     reports = captaincook_report(load_captaincook(data))
     if as_json:
@@ -275,3 +315,32 @@ def captaincook(
             f"task-graph edges ({setting}, the protocol of Differentiable Task Graph Learning): precision "
             f"{scores['precision']:.3f}, recall {scores['recall']:.3f}, F1 {scores['f1']:.3f}; published: {peers}"
         )
+
+
+def _threshold(given: float | None) -> float:
+    """The detector's threshold: ``--threshold``, or the detector's default."""
+    from supportive.inference.mistakes import DEFAULT_THRESHOLD
+
+    if given is None:
+        return DEFAULT_THRESHOLD
+    if given <= 0.0:
+        raise OptionError(f"the threshold must be above 0, got {given}", "--threshold")
+    return given
+
+
+def _captaincook_mistakes(data: Path | None, given: float | None, as_json: bool) -> None:
+    """``captaincook --mistakes``: every recipe left one recording out, summed."""
+    from supportive.cli.mistakes import print_mistakes
+    from supportive.evaluation.mistakes import MistakeEvaluation, evaluate_mistakes
+    from supportive.experiments.mistake_detection.measure import POSITIVES
+    from supportive.experiments.progress import progress_bar
+    from supportive.io.captaincook import load_captaincook
+
+    threshold = _threshold(given)
+    recipes = load_captaincook(data, errors=True)
+    total = MistakeEvaluation("captaincook4d", (threshold,))
+    with progress_bar("captaincook mistakes", sum(len(r.spec.demonstrations) for r in recipes)) as advance:
+        for recipe in recipes:
+            total.merge(evaluate_mistakes(recipe.spec, thresholds=(threshold,), positives=POSITIVES, progress=advance))
+    extra = {"positives": list(POSITIVES), "recipes": len(recipes)}
+    print_mistakes(total, f"CaptainCook4D, {len(recipes)} recipes ({' and '.join(POSITIVES)} as mistakes)", as_json=as_json, extra=extra)

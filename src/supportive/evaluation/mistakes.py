@@ -82,6 +82,16 @@ class MethodScores:
     def _kind(self, label: str) -> list[int]:
         return self.kinds.setdefault(label, [0, 0, 0, 0])
 
+    def merge(self, other: MethodScores) -> None:
+        """Add another's counts to these (scores over several tasks)."""
+        for name in ("flagged", "right", "positives", "found", "clean_steps", "clean_flagged", "invisible", "invisible_flagged"):
+            setattr(self, name, getattr(self, name) + getattr(other, name))
+        self.delays += other.delays
+        for label, counts in other.kinds.items():
+            mine = self._kind(label)
+            for i, value in enumerate(counts):
+                mine[i] += value
+
     def as_dict(self) -> dict[str, object]:
         """Precision, recall and F1 overall and per kind; missing-step delays; clean and invisible counts."""
         kinds = {
@@ -127,6 +137,21 @@ class MistakeEvaluation:
     steps: int = 0
     methods: dict[str, MethodScores] = field(default_factory=lambda: {m: MethodScores() for m in METHODS[1:]})
     detector: dict[float, MethodScores] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        for threshold in self.thresholds:
+            self.detector.setdefault(threshold, MethodScores())
+
+    def merge(self, other: MistakeEvaluation) -> None:
+        """Add another task's held-out demonstrations and counts (same thresholds) to these."""
+        if other.thresholds != self.thresholds:
+            raise TaskFileError("evaluations at different thresholds cannot be merged")
+        self.held_out += other.held_out
+        self.steps += other.steps
+        for name, scores in other.methods.items():
+            self.methods[name].merge(scores)
+        for threshold, scores in other.detector.items():
+            self.detector[threshold].merge(scores)
 
     def method(self, name: str) -> MethodScores:
         """A method's scores (the detector's at the first threshold)."""
@@ -175,7 +200,6 @@ def evaluate_mistakes(
     if not thresholds:
         raise TaskFileError("give at least one threshold")
     result = MistakeEvaluation(spec.name, tuple(thresholds))
-    result.detector = {t: MethodScores() for t in result.thresholds}
     wanted = frozenset(positives)
     for held in range(len(demos)):
         training = [d for i, d in enumerate(demos) if i != held]

@@ -48,11 +48,15 @@ from supportive.inference.tracker import ProgressBelief, ProgressFilter, Progres
 from supportive.learning.pair_orders import order_probabilities
 from supportive.tasks.htn import HTN, ActionNode, Leaf, Node
 
-__all__ = ["MISTAKE_KINDS", "MistakeDetector", "MistakeKind", "StepVerdict"]
+__all__ = ["DEFAULT_THRESHOLD", "MISTAKE_KINDS", "MistakeDetector", "MistakeKind", "StepVerdict"]
 
 MistakeKind = Literal["out-of-order", "missing", "repeated", "unknown-step"]
 MISTAKE_KINDS: tuple[MistakeKind, ...] = ("out-of-order", "missing", "repeated", "unknown-step")
 """The kinds of mistake a verdict names, in the order reports list them."""
+
+DEFAULT_THRESHOLD = 0.5
+"""The detector's default threshold: the one ``supportive reproduce mistake-detection`` chooses on generated
+tasks (docs/inference.md)."""
 
 
 @dataclass(frozen=True)
@@ -172,7 +176,7 @@ class MistakeDetector:
             recall at no more than 1 % false alarms on clean executions; docs/inference.md).
     """
 
-    def __init__(self, hmm: ProgressHMM, *, threshold: float = 0.5) -> None:
+    def __init__(self, hmm: ProgressHMM, *, threshold: float = DEFAULT_THRESHOLD) -> None:
         if not 0.0 < threshold <= 1.0:
             raise LearningError(f"threshold must be in (0, 1], got {threshold}")
         self.hmm = hmm
@@ -182,7 +186,7 @@ class MistakeDetector:
         self.reset()
 
     @classmethod
-    def from_predictor(cls, predictor: object, *, threshold: float = 0.5) -> MistakeDetector:
+    def from_predictor(cls, predictor: object, *, threshold: float = DEFAULT_THRESHOLD) -> MistakeDetector:
         """A detector over a fitted :class:`~supportive.inference.predictor.StepPredictor`'s model."""
         model = getattr(predictor, "model_", None)
         if not isinstance(model, ProgressHMM):

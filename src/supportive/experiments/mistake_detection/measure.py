@@ -167,11 +167,5 @@ def _share(part: int, whole: int) -> float:
 def _summed(rows: Sequence[Mapping[str, Any]]) -> MethodScores:
     total = MethodScores()
     for row in rows:
-        for name in ("flagged", "right", "positives", "found", "clean_steps", "clean_flagged", "invisible", "invisible_flagged"):
-            setattr(total, name, getattr(total, name) + int(row[name]))
-        total.delays += list(row["delays"])
-        for label, counts in row["kinds"].items():
-            mine = total.kinds.setdefault(label, [0, 0, 0, 0])
-            for i, value in enumerate(counts):
-                mine[i] += int(value)
+        total.merge(MethodScores(**row))
     return total
