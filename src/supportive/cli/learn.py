@@ -201,6 +201,12 @@ def evaluate(
 
         if folds != "loo" or plot is not None:
             raise OptionError("--mistakes leaves one demonstration out and draws nothing: drop --folds and --plot")
+        if not any(demo.labelled for demo in spec.demonstrations):
+            raise TaskFileError(
+                "no step carries a mistake label (see docs/task-files.md: 'mistake: order', …)",
+                path=file,
+                place="demonstrations",
+            )
         with progress_bar(f"mistakes {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
             found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), progress=advance)
         print_mistakes(found, printable(spec.name), as_json=as_json)
