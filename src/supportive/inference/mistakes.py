@@ -37,15 +37,17 @@ ends (``missing``, raised at the end).
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
 
 from supportive.errors import LearningError
-from supportive.inference.tracker import ProgressBelief, ProgressFilter, ProgressHMM
+from supportive.inference.tracker import ProgressFilter, ProgressHMM
+from supportive.learning.distribution import END
 from supportive.learning.pair_orders import order_probabilities
+from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, Leaf, Node
 
 __all__ = ["DEFAULT_THRESHOLD", "MISTAKE_KINDS", "MistakeDetector", "MistakeKind", "StepVerdict"]
@@ -205,7 +207,7 @@ class MistakeDetector:
     # ------------------------------------------------------------------ evidence
     def observe(self, action: str) -> StepVerdict:
         """Take one completed action into account and judge it."""
-        before = self.tracker.last  # what was expected is worked out only for a step judged a mistake
+        before = self.tracker.belief  # what was due is worked out only for a step judged a mistake
         belief = self.tracker.observe(action)
         verdict = self._judge(action, before, belief.off_script)
         self.history.append(action)
@@ -232,7 +234,7 @@ class MistakeDetector:
         return StepVerdict(len(self.history) + 1, "<end>", probability, bool(skipped), "missing" if skipped else None, (), skipped)
 
     # ------------------------------------------------------------------ judging
-    def _judge(self, action: str, before: ProgressBelief, probability: float) -> StepVerdict:
+    def _judge(self, action: str, before: Mapping[Progress | None, float], probability: float) -> StepVerdict:
         step = len(self.history) + 1
         if probability < self.threshold:
             return StepVerdict(step, action, probability)
@@ -248,8 +250,7 @@ class MistakeDetector:
         names = self._names(unmet)
         if action in self._said and not names:  # done late after the robot named it: said once already
             return StepVerdict(step, action, probability)
-        expected = before.next_actions
-        if names and all(expected.get(name, 0.0) > 0.0 for name in names):
+        if names and set(names) <= self._due(before):
             self._said.update(names)
             return StepVerdict(step, action, probability, True, "missing", (), names)
         if names:
@@ -260,6 +261,14 @@ class MistakeDetector:
         if left:
             return StepVerdict(step, action, probability, True, "missing", (), left)
         return StepVerdict(step, action, probability)  # unusual, but nothing it needs is missing: no nagging
+
+    def _due(self, belief: Mapping[Progress | None, float]) -> set[str]:
+        """The actions the hierarchy allows next in the most probable state of ``belief``."""
+        state = max(belief, key=lambda s: belief[s]) if belief else None
+        if state is None:
+            return set()
+        leaves = self.tracker.model.leaves
+        return {leaves[i][0] for i in self.tracker.model.outcomes(state) if i != END}
 
     def _names(self, leaves: list[int]) -> tuple[str, ...]:
         """The actions of ``leaves``, each once, in task order, leaving out those already named."""
