@@ -171,6 +171,20 @@ def test_infer_prints_one_json_line_per_observation(tmp_path: Path, cli: CliRunn
     assert code == 0 and len(flat.splitlines()) == 3
 
 
+def test_infer_says_each_mistake_and_the_help_it_calls_for(tmp_path: Path, cli: CliRunner) -> None:
+    shipped = examples.path("ikea-chair").with_name("ikea-chair-actions.txt")
+    steps = [line for line in shipped.read_text().splitlines() if line != "peg_left_rear"]
+    actions = tmp_path / "actions.txt"
+    actions.write_text("\n".join(steps) + "\n")
+    code, out, _ = cli(["infer", str(examples.path("ikea-chair")), "--actions", str(actions)])
+    assert code == 0
+    records = [json.loads(line) for line in out.splitlines()]
+    assert len(records) == len(steps) and all("mistake" in r for r in records)
+    flagged = [r["mistake"] for r in records if r["mistake"]["mistake"]]
+    assert [(m["action"], m["kind"], m["skipped"]) for m in flagged] == [("get_right_frame", "missing", ["peg_left_rear"])]
+    assert flagged[0]["help"]["say"].startswith("You skipped pushing a wooden peg into the left frame's rear hole")
+
+
 def test_infer_bad_inputs_exit_2(tmp_path: Path, cli: CliRunner) -> None:
     bad = tmp_path / "bad.jsonl"
     bad.write_text('["a"]\n[1]\n')

@@ -165,8 +165,9 @@ def test_every_failure_is_one_line_and_writes_nothing(tmp_path: Path, cli: CliRu
         assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == before, args
 
 
-def frames_of_chair(seed: int) -> list[tuple[frozenset[str], int]]:
-    """Ten frames a second through the chair's d2, events drawn from its observation model."""
+def frames_of_chair(seed: int, skip: str | None = None) -> list[tuple[frozenset[str], int]]:
+    """Ten frames a second through the chair's d2 (without the step ``skip``), events drawn from its
+    observation model."""
     from supportive.inference import ObservationModel
 
     spec = examples.load("ikea-chair")
@@ -175,7 +176,7 @@ def frames_of_chair(seed: int) -> list[tuple[frozenset[str], int]]:
 
     rng = np.random.default_rng(seed)
     frames = []
-    for k, step in enumerate(spec.demonstrations[1].steps):
+    for k, step in enumerate(s for s in spec.demonstrations[1].steps if s.action != skip):
         for j in range(int(rng.integers(3, 9))):
             frames.append(
                 (model.sample(step.action, rng), T0 + k * 10**9 + j * 10**8 + int(rng.integers(0, 999)))
@@ -231,6 +232,24 @@ def test_beliefs_written_back_equal_infer_on_the_same_events(
     assert latched["/supportive/hierarchy"] == [LATCHED] and latched["/supportive/belief"] == []
     assert "/supportive/surprise" in topics  # the progress-aware tracker says how surprising each frame was
     assert next(out.glob("*.mcap"))
+
+
+def test_a_skipped_step_is_a_mistake_in_the_printed_lines_and_the_belief_bag(tmp_path: Path, cli: CliRunner) -> None:
+    frames = frames_of_chair(seed=7, skip="peg_left_rear")
+    bag = tmp_path / "rec"
+    with BagWriter(bag, "mcap") as writer:
+        write_contact_frames(writer, frames)
+    out = tmp_path / "beliefs"
+    code, printed, _ = cli(["infer", str(examples.path("ikea-chair")), "--bag", str(bag), "--write-bag", str(out)])
+    assert code == 0
+    records = [json.loads(line) for line in printed.splitlines()]
+    judged = [r["mistake"] for r in records if "mistake" in r]
+    flagged = [m for m in judged if m["mistake"]]
+    assert flagged and flagged[0]["kind"] == "missing" and "peg_left_rear" in flagged[0]["skipped"]
+    assert flagged[0]["help"]["category"] == "enhancing awareness" and "left frame's rear hole" in flagged[0]["help"]["say"]
+    topics = read_topics(out)
+    assert [m.data for _, m in topics["/supportive/mistake/probability"]] == [m["probability"] for m in judged]
+    assert [json.loads(m.data) for _, m in topics["/supportive/mistake"]] == flagged
 
 
 def test_the_shipped_example_bags_are_what_the_script_makes(tmp_path: Path) -> None:

@@ -1,0 +1,53 @@
+"""The mistake-detection experiment: trials, the procedure that picks the threshold, the summary, the plot."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from tests.evaluation.test_mistake_scores import _tea
+
+from supportive.evaluation.mistakes import DETECTOR, METHODS, evaluate_mistakes
+from supportive.experiments import get
+from supportive.experiments.mistake_detection import choose, make_trials, plots, report, run_trial, summarize
+from supportive.experiments.mistake_detection.measure import GENERATED, KINDS, RECIPES, THRESHOLDS
+from supportive.inference.mistakes import DEFAULT_THRESHOLD
+
+
+def test_a_full_run_has_the_generated_tasks_then_every_recipe() -> None:
+    trials = make_trials(get("mistake-detection").default_trials, 0)
+    assert [t.params["kind"] for t in trials] == ["generated"] * GENERATED + ["recipe"] * RECIPES
+    assert [t.params["recipe"] for t in trials[GENERATED:]] == list(range(RECIPES))
+
+
+def _row(recall: float, alarms: float) -> dict[str, Any]:
+    return {"false_alarms": alarms, "worst_recall": recall}
+
+
+def test_choose_is_the_best_worst_recall_among_quiet_thresholds_nearest_a_half() -> None:
+    table = {"0.1": _row(1.0, 0.02), "0.3": _row(0.95, 0.0), "0.5": _row(0.95, 0.0), "0.9": _row(0.9, 0.0)}
+    assert choose(table) == 0.5
+    assert choose({"0.1": _row(1.0, 0.02)}) is None
+
+
+def test_the_default_threshold_is_among_those_tried() -> None:
+    assert DEFAULT_THRESHOLD in THRESHOLDS
+
+
+def test_a_generated_trial_and_a_recipe_summarise_and_plot(tmp_path: Path) -> None:
+    generated = run_trial(make_trials(get("mistake-detection").default_trials, 0)[0])
+    assert set(generated["thresholds"]) == {str(t) for t in THRESHOLDS}
+    for row in generated["thresholds"].values():
+        assert set(row["kinds"]) == set(KINDS) and row["clean"][1] > 0
+    tea = evaluate_mistakes(_tea(), thresholds=THRESHOLDS, positives=("order", "missing"))
+    sums = {str(t): vars(s) for t, s in tea.detector.items()} | {n: vars(tea.methods[n]) for n in METHODS[1:]}
+    recipe = {"index": 1, "kind": "recipe", "recipe": "tea", "held_out": tea.held_out, "sums": sums}
+    metrics = summarize([generated, recipe])
+    assert metrics["chosen"] in THRESHOLDS
+    cc = metrics["captaincook"]
+    assert cc["held_out"] == 12 and set(cc["methods"]) == set(METHODS) and set(cc["curve"]) == {str(t) for t in THRESHOLDS}
+    assert cc["methods"][DETECTOR]["positives"] == 2  # the early pour and the skipped steep
+    text = report(metrics)
+    assert "Chosen: **" in text and "precondition" in text
+    (picture,) = plots(metrics, tmp_path)
+    assert picture.name == "precision-recall.png" and picture.stat().st_size > 0
