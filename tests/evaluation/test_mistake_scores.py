@@ -57,7 +57,7 @@ def test_the_baselines_are_scored_alike(scored: MistakeEvaluation) -> None:
     assert pre.positives == bigram.positives == 3
     assert pre.found == 2  # the repeat is not a missing precondition
     assert bigram.found == 3  # pour after cup, serve after pour, steep after steep: none seen in training
-    assert set(scored.as_dict()["methods"]) == set(METHODS)  # type: ignore[arg-type]
+    assert set(scored.as_dict()["methods"]) == set(METHODS)  # type: ignore[call-overload]
 
 
 def test_scores_merge_across_tasks(scored: MistakeEvaluation) -> None:

@@ -25,7 +25,7 @@ def detector() -> MistakeDetector:
 
 def _judge(detector: MistakeDetector, steps: list[str]) -> list[tuple[str, bool, str | None, tuple[str, ...]]]:
     detector.reset()
-    out = []
+    out: list[tuple[str, bool, str | None, tuple[str, ...]]] = []
     for step in steps:
         verdict = detector.observe(step)
         out.append((step, verdict.mistake, verdict.kind, verdict.prerequisites + verdict.skipped))
