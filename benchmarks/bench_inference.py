@@ -29,6 +29,8 @@ from supportive.inference.synthetic import synthetic_model, synthetic_stream
 from supportive.tasks.htn import HTN
 
 GOALS_SECONDS = {100: 50e-6, 1000: 1e-3}
+DETECTION_GOAL_SECONDS = 20e-6
+"""Issue #24: online mistake detection adds at most this per update at 100 subgoals."""
 PROGRESS_GOALS = {100: 50e-6, 1000: 1e-3}
 STEPS = 10_000
 
@@ -66,6 +68,48 @@ def peer(model: FlatHMM, observations: list[frozenset[str]], prefixes: list[int]
     out["predict_proba_full_seconds"] = time.perf_counter() - started
     out["steps"] = len(coded)
     return out
+
+
+def detection_overhead(seed: int, size: int = 100, executions: int = 30) -> dict[str, object]:
+    """Per known action, the progress-aware tracker alone and with the mistake detector on it, alternating in
+    one run over the same executions (a tenth with a step moved early, so mistakes are judged too)."""
+    from supportive.generate.mistakes import inject
+    from supportive.inference.mistakes import MistakeDetector
+    from supportive.tasks.htn import admits, sample_ordering, to_leaves
+
+    spec = generate_task(size, seed)
+    assert spec.structure is not None
+    structure = spec.structure
+    rng = np.random.default_rng(seed)
+    demos = [[a for a, _ in sample_ordering(structure, rng)] for _ in range(executions)]
+    demos, _ = inject(demos, "early", 0.1, lambda d: admits(structure, to_leaves(d)), rng)
+    hmm = ProgressHMM(HTN(spec.name, (structure,))).fit()
+    detector = MistakeDetector(hmm)
+    alone: list[float] = []
+    judged: list[float] = []
+    flagged = 0
+    for demo in demos:
+        running = hmm.filter()
+        started = time.perf_counter()
+        for action in demo:
+            running.observe(action)
+        alone.append((time.perf_counter() - started) / len(demo))
+        detector.reset()
+        started = time.perf_counter()
+        for action in demo:
+            flagged += detector.observe(action).mistake
+        judged.append((time.perf_counter() - started) / len(demo))
+    tracker, with_detector = float(np.median(alone)), float(np.median(judged))
+    return {
+        "subgoals": size,
+        "executions": len(demos),
+        "steps_flagged": flagged,
+        "tracker_update_seconds": tracker,
+        "with_detector_update_seconds": with_detector,
+        "detection_added_seconds": with_detector - tracker,
+        "goal_added_seconds": DETECTION_GOAL_SECONDS,
+        "meets_goal": with_detector - tracker <= DETECTION_GOAL_SECONDS,
+    }
 
 
 def beam_agreement(seed: int, size: int = 30, steps: int = 2000) -> dict[str, object]:
@@ -150,6 +194,12 @@ def main() -> None:
             f"{theirs[f'rescore_prefix_{max(p for p in (100, 1000, 10_000) if p <= len(peer_steps))}_seconds'] * 1e3:8.2f} ms"
         )
     cases["beam-vs-exact"] = beam_agreement(args.seed)
+    cases["mistake-detection-100-subgoals"] = detection = detection_overhead(args.seed)
+    print(
+        f"mistake detection at 100 subgoals: tracker {detection['tracker_update_seconds'] * 1e6:.1f} us, with the "
+        f"detector {detection['with_detector_update_seconds'] * 1e6:.1f} us per action "
+        f"(added {detection['detection_added_seconds'] * 1e6:.1f} us; goal {DETECTION_GOAL_SECONDS * 1e6:.0f} us)"
+    )
     result = {
         "benchmark": "inference",
         "machine": {"python": platform.python_version(), "processor": platform.machine()},
