@@ -24,9 +24,9 @@ would then look like a slip.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, to_leaves
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, nullable, to_leaves
 
 __all__ = ["OrderLikelihood"]
 
@@ -76,29 +76,42 @@ class OrderLikelihood:
         )
 
     def _count(self, done: frozenset[Leaf]) -> int:
-        """Valid orders of exactly the leaves ``done``."""
+        """Valid orders of exactly the leaves ``done``. On a partial hierarchy's top level, the roots that
+        perform none of them and may be performed as nothing are skipped, as the executions skip them; the
+        top level is walked as sets of states, so each order is counted once however many ways lead to it."""
         counts = [_orders(root, done) for root in self.htn.roots]
         top = self.htn.top_level
         if top is None:
             return math.prod(c for c in counts if c)
         performed = {i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves)}
+        skippable = {i for i, root in enumerate(self.htn.roots) if i not in performed and nullable(root)}
         successors = top.successors()
-        memo: dict[tuple[int, int], int] = {}
+        terminal = set(top.terminal)
 
-        def paths(state: int, left: int) -> int:
-            key = (state, left)
+        def closed(states: Iterable[int]) -> frozenset[int]:
+            seen, stack = set(states), list(states)
+            while stack:
+                for root, nxt in successors.get(stack.pop(), {}).items():
+                    if root in skippable and nxt not in seen:
+                        seen.add(nxt)
+                        stack.append(nxt)
+            return frozenset(seen)
+
+        memo: dict[tuple[frozenset[int], int], int] = {}
+
+        def paths(states: frozenset[int], left: int) -> int:
+            key = (states, left)
             if key not in memo:
-                total = int(left == 0 and state in top.terminal)
+                total = int(left == 0 and not terminal.isdisjoint(states))
                 if left:
-                    total += sum(
-                        counts[root] * paths(nxt, left - 1)
-                        for root, nxt in successors.get(state, {}).items()
-                        if root in performed
-                    )
+                    for root in performed:
+                        after = [nxt for state in states for r, nxt in successors.get(state, {}).items() if r == root]
+                        if after:
+                            total += counts[root] * paths(closed(after), left - 1)
                 memo[key] = total
             return memo[key]
 
-        return sum(paths(state, len(performed)) for state in top.initial)
+        return paths(closed(top.initial), len(performed))
 
 
 def _nodes(node: Node) -> list[Node]:
