@@ -16,7 +16,10 @@ import math
 from collections import Counter, defaultdict
 from collections.abc import Mapping, Sequence
 
-from supportive.learning.decomposition import Decomposition
+import numpy as np
+
+from supportive.learning.decomposition import Decomposition, Group, Shapes
+from supportive.learning.evidence import IntMatrix, as_matrix
 from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
@@ -30,6 +33,9 @@ from supportive.tasks.htn import (
 )
 
 __all__ = ["Annotated", "annotate"]
+
+_ABSENT = np.iinfo(np.int64).max
+"""The first position of a node a demonstration does not perform (after any other)."""
 
 
 class Annotated:
@@ -48,9 +54,10 @@ class Annotated:
         self.decomposition = decomposition
         self.demonstrations = demonstrations
         self._performed = self._performances(excused)
-        self._orders = self._child_orders()
+        self._orders = _ChildOrders(decomposition)
+        self._shape = Shapes(decomposition.leaves, decomposition.groups)
+        self._admitted: dict[tuple[bool, tuple[bool, ...]], int] = {}
         self.nodes: dict[int, Node] = {}
-        self._shapes: dict[int, object] = {}
         for root in decomposition.roots:
             self._node(root, frozenset(range(demonstrations)))
 
@@ -85,45 +92,32 @@ class Annotated:
             visit(root)
         return performed
 
-    def _child_orders(self) -> dict[int, list[list[int]]]:
-        """Internal node id -> per demonstration, the indices of its children in the order performed."""
-        groups = self.decomposition.groups
-        parent: dict[int, tuple[int, int]] = {}
-        for node, group in groups.items():
-            for i, child in enumerate(group.children):
-                parent[child] = (node, i)
-        orders: dict[int, list[list[int]]] = {node: [] for node in groups}
-        for sequence in self.decomposition.leaf_sequences:
-            current: dict[int, list[int]] = {}
-            for leaf in sequence:
-                node = leaf
-                while node in parent:
-                    up, position = parent[node]
-                    seen = current.setdefault(up, [])
-                    if not seen or seen[-1] != position:
-                        seen.append(position)
-                    node = up
-            for node, seen in current.items():
-                orders[node].append(seen)
-        return orders
-
-    def _shape(self, node: int) -> object:
-        """A node's shape by its actions, occurrences and optional flags left out (cached by id)."""
-        cached = self._shapes.get(node)
-        if cached is None:
-            group = self.decomposition.groups.get(node)
-            if group is None:
-                cached = ("action", self.decomposition.leaves[node][0])
-            else:
-                parts = [self._shape(c) for c in group.children]
-                cached = ("chain", tuple(parts)) if group.chain else ("clique", tuple(sorted(parts, key=repr)))
-            self._shapes[node] = cached
-        return cached
-
     def _classes(self, children: Sequence[int]) -> list[int]:
         """For each child, the index of the first child of its shape (instances of one subtask share it)."""
-        first: dict[object, int] = {}
+        first: dict[int, int] = {}
         return [first.setdefault(self._shape(child), i) for i, child in enumerate(children)]
+
+    def _orders_seen(self, node: int, group: Group, kinds: list[int]) -> int:
+        """How many orders of its children (instances of one subtask alike) the demonstrations show; a chain
+        whose every child is performed wherever it is shows its one order."""
+        presence = self.decomposition.presence
+        if (
+            group.chain
+            and self._orders.whole(node)
+            and all(presence[child] == presence[node] for child in group.children)
+        ):
+            return 1
+        classes = [*kinds, -1]  # -1 (not performed) stays -1
+        return len({tuple(classes[i] for i in order) for order in self._orders(node).tolist()})
+
+    def _admitted_orders(self, chain: bool, optional: tuple[bool, ...]) -> int:
+        """Orders of children with these optional flags a chain (or clique) admits, performing any."""
+        key = (chain, optional)
+        if key not in self._admitted:
+            children = tuple(ActionNode(str(i), optional=flag) for i, flag in enumerate(optional))
+            level: Node = ChainNode(children) if chain else CliqueNode(children)
+            self._admitted[key] = count_orderings(level) - int(all(optional))
+        return self._admitted[key]
 
     def _node(self, node: int, parent_performed: frozenset[int]) -> Node:
         performed = self._performed[node]
@@ -144,15 +138,12 @@ class Annotated:
             children = tuple(self._node(child, performed) for child in group.children)
             if len(set(kinds)) < len(kinds):
                 children = _instances_alike(children)
-            orders = self._orders.get(node, [])
-            seen = len({tuple(kinds[i] for i in o) for o in orders})
+            seen = self._orders_seen(node, group, kinds)
             if group.chain:
                 counts = Counts(performed=len(performed), skipped=skipped)
-                level: Node = ChainNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
             else:
-                counts = _choice_counts(orders, len(children), len(performed), skipped)
-                level = CliqueNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
-            admitted = count_orderings(level) - int(all(c.optional for c in children))
+                counts = _choice_counts(self._orders(node), len(children), len(performed), skipped)
+            admitted = self._admitted_orders(group.chain, tuple(c.optional for c in children))
             if not group.chain:
                 admitted //= math.prod(math.factorial(n) for n in Counter(kinds).values())
             support = Support(len(performed), seen, admitted, seen >= admitted)
@@ -208,14 +199,101 @@ def _aligned(node: Node) -> list[int]:
     return sorted(range(len(node.children)), key=lambda i: repr(shape(node.children[i], optional=False)))
 
 
-def _choice_counts(orders: Sequence[Sequence[int]], size: int, performed: int, skipped: int) -> Counts:
-    first = [0] * size
-    after = [[0] * size for _ in range(size)]
-    for order in orders:
-        if order:
-            first[order[0]] += 1
-        for a, b in itertools.pairwise(order):
-            after[a][b] += 1
+def _choice_counts(orders: Sequence[Sequence[int]] | IntMatrix, size: int, performed: int, skipped: int) -> Counts:
+    """Which child came first and which followed which: ``orders`` holds, per demonstration, the children
+    in the order performed (a matrix row may end in -1s)."""
+    matrix = orders if isinstance(orders, np.ndarray) else as_matrix(orders)
+    starts = matrix[:, :1]
+    first = np.bincount(starts[starts >= 0], minlength=size)
+    later = matrix[:, 1:] >= 0
+    after = np.bincount(matrix[:, :-1][later] * size + matrix[:, 1:][later], minlength=size * size)
     return Counts(
-        performed=performed, skipped=skipped, first=tuple(first), after=tuple(tuple(row) for row in after)
+        performed=performed,
+        skipped=skipped,
+        first=tuple(first.tolist()),
+        after=tuple(tuple(row) for row in after.reshape(size, size).tolist()),
     )
+
+
+class _ChildOrders:
+    """The orders in which the demonstrations perform each node's children, read as a walk from every leaf
+    up through its parents reads them (every node's leaves are performed contiguously, so a child is met once
+    per demonstration). A node's parent on that walk is the last group in ``groups`` that lists it: a group
+    left behind by splicing or folding may list it too, and then the node counts for that group only.
+
+    Args:
+        decomposition: What :func:`~supportive.learning.decomposition.decompose` found.
+    """
+
+    def __init__(self, decomposition: Decomposition) -> None:
+        owner: dict[int, tuple[int, int]] = {}
+        for node, group in decomposition.groups.items():
+            for i, child in enumerate(group.children):
+                owner[child] = (node, i)
+        self._owned = {
+            node: [i for i, child in enumerate(group.children) if owner[child] == (node, i)]
+            for node, group in decomposition.groups.items()
+        }
+        self._groups = decomposition.groups
+        self._whole: dict[int, bool] = {}
+        self._first = self._first_positions(decomposition)
+
+    def __call__(self, node: int) -> IntMatrix:
+        """Per demonstration performing any child of ``node`` (in order), the indices of the children it
+        performs in the order performed, -1 after them."""
+        owned = self._owned[node]
+        children = self._groups[node].children
+        first = self._first[:, [children[i] for i in owned]]
+        absent = first == _ABSENT
+        performing = ~absent.all(axis=1)
+        first, absent = first[performing], absent[performing]
+        order = np.argsort(first, axis=1, kind="stable")
+        index = np.append(np.asarray(owned, dtype=np.int64), -1)  # -1 (not performed) stays -1
+        out: IntMatrix = index[np.where(np.take_along_axis(absent, order, axis=1), -1, order)]
+        return out
+
+    def whole(self, node: int) -> bool:
+        """True when every node under ``node`` has it as its parent on the walk (its orders are read from all
+        its leaves)."""
+        found = self._whole.get(node)
+        if found is None:
+            group = self._groups.get(node)
+            found = group is None or (
+                len(self._owned[node]) == len(group.children) and all(self.whole(c) for c in group.children)
+            )
+            self._whole[node] = found
+        return found
+
+    def _first_positions(self, decomposition: Decomposition) -> IntMatrix:
+        """``first[d, n]``: where demonstration ``d`` first meets node ``n`` on the walks (:data:`_ABSENT`
+        when it never does), lowest nodes first."""
+        size = max([*decomposition.groups, len(decomposition.leaves) - 1]) + 1
+        first = np.full((len(decomposition.leaf_sequences), size), _ABSENT, dtype=np.int64)
+        nodes = as_matrix(decomposition.leaf_sequences)
+        rows, columns = np.nonzero(nodes >= 0)
+        first[rows, nodes[rows, columns]] = columns
+        for parents in self._by_height():
+            children = [[self._groups[p].children[i] for i in self._owned[p]] for p in parents]
+            starts = np.cumsum([0, *(len(c) for c in children[:-1])])
+            below = first[:, list(itertools.chain.from_iterable(children))]
+            first[:, parents] = np.minimum.reduceat(below, starts, axis=1)
+        return first
+
+    def _by_height(self) -> list[list[int]]:
+        """The groups that are parents on the walks, by height (those over leaves only first)."""
+        height: dict[int, int] = {}
+
+        def visit(node: int) -> int:
+            if node not in self._groups:
+                return 0
+            if node not in height:
+                height[node] = 1 + max((visit(self._groups[node].children[i]) for i in self._owned[node]), default=-1)
+            return height[node]
+
+        for node in self._groups:
+            visit(node)
+        levels: list[list[int]] = [[] for _ in range(max(height.values(), default=0))]
+        for node, h in height.items():
+            if h > 0:
+                levels[h - 1].append(node)
+        return levels
