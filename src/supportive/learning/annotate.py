@@ -17,9 +17,10 @@ from collections import Counter, defaultdict
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
-from supportive.learning.decomposition import Decomposition, Group, Shapes
-from supportive.learning.evidence import IntMatrix, as_matrix
+from supportive.learning.decomposition import Decomposition, Shapes
+from supportive.learning.evidence import IntMatrix
 from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
@@ -54,8 +55,13 @@ class Annotated:
         self.decomposition = decomposition
         self.demonstrations = demonstrations
         self._performed = self._performances(excused)
-        self._orders = _ChildOrders(decomposition)
-        self._shape = Shapes(decomposition.leaves, decomposition.groups)
+        shape = Shapes(decomposition.leaves, decomposition.groups)
+        self._kinds = {  # for each child, the index of the first child of its shape (instances share it)
+            node: _first_alike([shape(child) for child in decomposition.groups[node].children])
+            for node in self._performed
+            if node in decomposition.groups
+        }
+        self._orders = _ChildOrders(decomposition, self._kinds)
         self._admitted: dict[tuple[bool, tuple[bool, ...]], int] = {}
         self.nodes: dict[int, Node] = {}
         for root in decomposition.roots:
@@ -92,24 +98,6 @@ class Annotated:
             visit(root)
         return performed
 
-    def _classes(self, children: Sequence[int]) -> list[int]:
-        """For each child, the index of the first child of its shape (instances of one subtask share it)."""
-        first: dict[int, int] = {}
-        return [first.setdefault(self._shape(child), i) for i, child in enumerate(children)]
-
-    def _orders_seen(self, node: int, group: Group, kinds: list[int]) -> int:
-        """How many orders of its children (instances of one subtask alike) the demonstrations show; a chain
-        whose every child is performed wherever it is shows its one order."""
-        presence = self.decomposition.presence
-        if (
-            group.chain
-            and self._orders.whole(node)
-            and all(presence[child] == presence[node] for child in group.children)
-        ):
-            return 1
-        classes = [*kinds, -1]  # -1 (not performed) stays -1
-        return len({tuple(classes[i] for i in order) for order in self._orders(node).tolist()})
-
     def _admitted_orders(self, chain: bool, optional: tuple[bool, ...]) -> int:
         """Orders of children with these optional flags a chain (or clique) admits, performing any."""
         key = (chain, optional)
@@ -134,15 +122,15 @@ class Annotated:
                 support=Support(len(performed), 1, 1, True),
             )
         else:
-            kinds = self._classes(group.children)  # interchangeable instances make one order
+            kinds = self._kinds[node]  # interchangeable instances make one order
             children = tuple(self._node(child, performed) for child in group.children)
             if len(set(kinds)) < len(kinds):
                 children = _instances_alike(children)
-            seen = self._orders_seen(node, group, kinds)
+            seen = self._orders.seen[node]
             if group.chain:
                 counts = Counts(performed=len(performed), skipped=skipped)
             else:
-                counts = _choice_counts(self._orders(node), len(children), len(performed), skipped)
+                counts = self._orders.counts(node, len(performed), skipped)
             admitted = self._admitted_orders(group.chain, tuple(c.optional for c in children))
             if not group.chain:
                 admitted //= math.prod(math.factorial(n) for n in Counter(kinds).values())
@@ -199,101 +187,143 @@ def _aligned(node: Node) -> list[int]:
     return sorted(range(len(node.children)), key=lambda i: repr(shape(node.children[i], optional=False)))
 
 
-def _choice_counts(orders: Sequence[Sequence[int]] | IntMatrix, size: int, performed: int, skipped: int) -> Counts:
-    """Which child came first and which followed which: ``orders`` holds, per demonstration, the children
-    in the order performed (a matrix row may end in -1s)."""
-    matrix = orders if isinstance(orders, np.ndarray) else as_matrix(orders)
-    starts = matrix[:, :1]
-    first = np.bincount(starts[starts >= 0], minlength=size)
-    later = matrix[:, 1:] >= 0
-    after = np.bincount(matrix[:, :-1][later] * size + matrix[:, 1:][later], minlength=size * size)
+def _choice_counts(orders: Sequence[Sequence[int]], size: int, performed: int, skipped: int) -> Counts:
+    first = [0] * size
+    after = [[0] * size for _ in range(size)]
+    for order in orders:
+        if order:
+            first[order[0]] += 1
+        for a, b in itertools.pairwise(order):
+            after[a][b] += 1
     return Counts(
-        performed=performed,
-        skipped=skipped,
-        first=tuple(first.tolist()),
-        after=tuple(tuple(row) for row in after.reshape(size, size).tolist()),
+        performed=performed, skipped=skipped, first=tuple(first), after=tuple(tuple(row) for row in after)
     )
 
 
+def _first_alike(keys: Sequence[int]) -> list[int]:
+    """For each key, the index of its first occurrence."""
+    first: dict[int, int] = {}
+    return [first.setdefault(key, i) for i, key in enumerate(keys)]
+
+
 class _ChildOrders:
-    """The orders in which the demonstrations perform each node's children, read as a walk from every leaf
-    up through its parents reads them (every node's leaves are performed contiguously, so a child is met once
-    per demonstration). A node's parent on that walk is the last group in ``groups`` that lists it: a group
-    left behind by splicing or folding may list it too, and then the node counts for that group only.
+    """How the demonstrations order each node's children: how many distinct orders (instances of one subtask
+    alike) and, as :class:`~supportive.tasks.htn.Counts` hold them, which child came first and which followed
+    which. Computed for all nodes at once.
+
+    The orders are those a walk from every leaf up through its parents reads (every node's leaves are
+    performed contiguously, so a child is met once per demonstration). A node's parent on that walk is the
+    last group in ``groups`` that lists it: a group left behind by splicing or folding may list it too, and
+    then the node counts for that group only.
 
     Args:
         decomposition: What :func:`~supportive.learning.decomposition.decompose` found.
+        kinds: For the nodes to describe, per child, the index of the first child of its shape.
     """
 
-    def __init__(self, decomposition: Decomposition) -> None:
+    def __init__(self, decomposition: Decomposition, kinds: Mapping[int, Sequence[int]]) -> None:
+        groups = decomposition.groups
         owner: dict[int, tuple[int, int]] = {}
-        for node, group in decomposition.groups.items():
+        for node, group in groups.items():
             for i, child in enumerate(group.children):
                 owner[child] = (node, i)
-        self._owned = {
-            node: [i for i, child in enumerate(group.children) if owner[child] == (node, i)]
-            for node, group in decomposition.groups.items()
-        }
-        self._groups = decomposition.groups
-        self._whole: dict[int, bool] = {}
-        self._first = self._first_positions(decomposition)
+        owned = {node: [i for i, c in enumerate(groups[node].children) if owner[c] == (node, i)] for node in kinds}
+        below = {node: [groups[node].children[i] for i in owned[node]] for node in kinds}
+        first = _first_positions(decomposition, below)
+        self.seen = _simple_chains(first, {node: below[node] for node in kinds if groups[node].chain})
+        """Node -> how many distinct orders of its children the demonstrations show."""
+        nodes = [node for node in kinds if node not in self.seen]
+        self._sizes = np.array([len(groups[node].children) for node in nodes], dtype=np.int64)
+        self._offsets = np.cumsum(self._sizes) - self._sizes
+        self._squares = np.cumsum(self._sizes**2) - self._sizes**2
+        self._place = {node: i for i, node in enumerate(nodes)}
+        node_of = np.repeat(np.arange(len(nodes)), [len(owned[node]) for node in nodes])
+        index = np.array([i for node in nodes for i in owned[node]], dtype=np.int64)
+        kind = np.array([kinds[node][i] for node in nodes for i in owned[node]], dtype=np.int64)
+        where = first[:, [c for node in nodes for c in below[node]]]
+        demo, entry = np.nonzero(where != _ABSENT)
+        ranked = np.lexsort((where[demo, entry], demo, node_of[entry]))  # by node, demonstration, position
+        demo, entry = demo[ranked], entry[ranked]
+        parent = node_of[entry]
+        starts = np.ones(len(entry), dtype=bool)  # where one node's order in one demonstration starts
+        starts[1:] = (parent[1:] != parent[:-1]) | (demo[1:] != demo[:-1])
+        self._first = np.bincount(self._offsets[parent[starts]] + index[entry[starts]], minlength=int(self._sizes.sum()))
+        within = ~starts[1:]
+        following = parent[1:][within]
+        pairs = self._squares[following] + index[entry[:-1][within]] * self._sizes[following] + index[entry[1:][within]]
+        self._after = np.bincount(pairs, minlength=int((self._sizes**2).sum()))
+        self.seen.update(zip(nodes, _distinct_runs(parent, starts, kind[entry], len(nodes)).tolist(), strict=True))
 
-    def __call__(self, node: int) -> IntMatrix:
-        """Per demonstration performing any child of ``node`` (in order), the indices of the children it
-        performs in the order performed, -1 after them."""
-        owned = self._owned[node]
-        children = self._groups[node].children
-        first = self._first[:, [children[i] for i in owned]]
-        absent = first == _ABSENT
-        performing = ~absent.all(axis=1)
-        first, absent = first[performing], absent[performing]
-        order = np.argsort(first, axis=1, kind="stable")
-        index = np.append(np.asarray(owned, dtype=np.int64), -1)  # -1 (not performed) stays -1
-        out: IntMatrix = index[np.where(np.take_along_axis(absent, order, axis=1), -1, order)]
-        return out
+    def counts(self, node: int, performed: int, skipped: int) -> Counts:
+        """A clique's counts: performed and skipped as given, and which child came first and which followed
+        which."""
+        place = self._place[node]
+        size = int(self._sizes[place])
+        first = self._first[self._offsets[place] : self._offsets[place] + size]
+        after = self._after[self._squares[place] : self._squares[place] + size * size].reshape(size, size)
+        return Counts(
+            performed=performed,
+            skipped=skipped,
+            first=tuple(first.tolist()),
+            after=tuple(tuple(row) for row in after.tolist()),
+        )
 
-    def whole(self, node: int) -> bool:
-        """True when every node under ``node`` has it as its parent on the walk (its orders are read from all
-        its leaves)."""
-        found = self._whole.get(node)
-        if found is None:
-            group = self._groups.get(node)
-            found = group is None or (
-                len(self._owned[node]) == len(group.children) and all(self.whole(c) for c in group.children)
-            )
-            self._whole[node] = found
-        return found
 
-    def _first_positions(self, decomposition: Decomposition) -> IntMatrix:
-        """``first[d, n]``: where demonstration ``d`` first meets node ``n`` on the walks (:data:`_ABSENT`
-        when it never does), lowest nodes first."""
-        size = max([*decomposition.groups, len(decomposition.leaves) - 1]) + 1
-        first = np.full((len(decomposition.leaf_sequences), size), _ABSENT, dtype=np.int64)
-        nodes = as_matrix(decomposition.leaf_sequences)
-        rows, columns = np.nonzero(nodes >= 0)
-        first[rows, nodes[rows, columns]] = columns
-        for parents in self._by_height():
-            children = [[self._groups[p].children[i] for i in self._owned[p]] for p in parents]
-            starts = np.cumsum([0, *(len(c) for c in children[:-1])])
-            below = first[:, list(itertools.chain.from_iterable(children))]
-            first[:, parents] = np.minimum.reduceat(below, starts, axis=1)
-        return first
+def _simple_chains(first: IntMatrix, chains: Mapping[int, Sequence[int]]) -> dict[int, int]:
+    """Chain -> the orders of its children shown (0 or 1), for the chains whose children (``chains``: those
+    it is the parent of) every demonstration performs all or none of: they come in the chain's order."""
+    nonempty = [node for node, children in chains.items() if children]
+    out = {node: 0 for node, children in chains.items() if not children}
+    if nonempty:
+        sizes = np.array([len(chains[node]) for node in nonempty], dtype=np.int64)
+        present = first[:, [c for node in nonempty for c in chains[node]]] != _ABSENT
+        performed = np.add.reduceat(present, np.cumsum(sizes) - sizes, axis=1)
+        simple: list[bool] = np.all((performed == 0) | (performed == sizes), axis=0).tolist()
+        shown: list[bool] = np.any(performed > 0, axis=0).tolist()
+        out.update((node, int(one)) for node, one, alike in zip(nonempty, shown, simple, strict=True) if alike)
+    return out
 
-    def _by_height(self) -> list[list[int]]:
-        """The groups that are parents on the walks, by height (those over leaves only first)."""
-        height: dict[int, int] = {}
 
-        def visit(node: int) -> int:
-            if node not in self._groups:
-                return 0
-            if node not in height:
-                height[node] = 1 + max((visit(self._groups[node].children[i]) for i in self._owned[node]), default=-1)
-            return height[node]
+def _distinct_runs(node: IntMatrix, starts: npt.NDArray[np.bool_], kind: IntMatrix, nodes: int) -> IntMatrix:
+    """Per node (``0 … nodes-1``), how many distinct sequences of ``kind`` its runs hold; a run is the
+    entries from one start to the next, all of one node."""
+    begin = np.flatnonzero(starts)
+    length = np.diff(np.append(begin, len(starts)))
+    distinct = np.zeros(nodes, dtype=np.int64)
+    for size in np.unique(length).tolist():  # runs of different lengths differ
+        chosen = begin[length == size]
+        rows = kind[chosen[:, None] + np.arange(size)]
+        owner = node[chosen]
+        order = np.lexsort((*rows.T[::-1], owner))
+        rows, owner = rows[order], owner[order]
+        new = np.ones(len(owner), dtype=bool)
+        new[1:] = (owner[1:] != owner[:-1]) | (rows[1:] != rows[:-1]).any(axis=1)
+        distinct += np.bincount(owner[new], minlength=nodes)
+    return distinct
 
-        for node in self._groups:
-            visit(node)
-        levels: list[list[int]] = [[] for _ in range(max(height.values(), default=0))]
-        for node, h in height.items():
-            if h > 0:
-                levels[h - 1].append(node)
-        return levels
+
+def _first_positions(decomposition: Decomposition, below: Mapping[int, Sequence[int]]) -> IntMatrix:
+    """``first[d, n]``: where demonstration ``d`` starts node ``n`` on the walks (:data:`_ABSENT` when it never
+    does), for the leaves and the nodes of ``below`` (node -> the children it is the parent of)."""
+    size = max([*decomposition.groups, len(decomposition.leaves) - 1]) + 1
+    nodes = decomposition.leaf_nodes
+    first = np.full((len(nodes), size), _ABSENT, dtype=np.int64)
+    rows, columns = np.nonzero(nodes >= 0)
+    first[rows, nodes[rows, columns]] = columns
+    height: dict[int, int] = {}
+
+    def visit(node: int) -> int:
+        if node not in below:
+            return 0
+        if node not in height:
+            height[node] = 1 + max(map(visit, below[node]), default=-1)
+        return height[node]
+
+    levels: list[list[int]] = [[] for _ in range(max(map(visit, below), default=0))]
+    for node, h in height.items():
+        if h > 0:
+            levels[h - 1].append(node)
+    for parents in levels:
+        starts = np.cumsum([0, *(len(below[p]) for p in parents[:-1])])
+        first[:, parents] = np.minimum.reduceat(first[:, [c for p in parents for c in below[p]]], starts, axis=1)
+    return first

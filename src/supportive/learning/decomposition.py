@@ -70,7 +70,7 @@ class Decomposition:
         roots: The top-level node ids, in the order they first occur.
         sequences: Every demonstration as a sequence of root ids.
         presence: Node id -> the demonstrations (indices) performing any of its leaves.
-        leaf_sequences: Every demonstration as a sequence of leaf ids.
+        leaf_nodes: Every demonstration as a row of leaf ids, -1 after its end.
     """
 
     leaves: tuple[Leaf, ...]
@@ -78,7 +78,7 @@ class Decomposition:
     roots: list[int] = field(default_factory=list)
     sequences: list[list[int]] = field(default_factory=list)
     presence: dict[int, frozenset[int]] = field(default_factory=dict)
-    leaf_sequences: list[list[int]] = field(default_factory=list)
+    leaf_nodes: IntMatrix = field(default_factory=lambda: np.zeros((0, 0), dtype=np.int64))
 
 
 class Shapes:
@@ -166,6 +166,11 @@ class _Level(abc.ABC):
         """``positions[d, i]``: where demonstration ``d`` performs ``members[i]`` (-1: not at all)."""
 
     @abc.abstractmethod
+    def chain_order(self, members: Sequence[int]) -> tuple[int, ...] | None:
+        """The members in the one order every demonstration performing any of them performs all of them in,
+        or None when there is no such order."""
+
+    @abc.abstractmethod
     def performers(self) -> dict[int, set[int]]:
         """Node -> the demonstrations performing it."""
 
@@ -201,9 +206,13 @@ class _Lists(_Level):
             self.adjacent.update(itertools.pairwise(sequence))
 
     @cached_property
-    def where(self) -> list[dict[int, int]]:
-        """Per demonstration, node -> its position."""
-        return [dict(zip(sequence, range(len(sequence)), strict=True)) for sequence in self._sequences]
+    def spots(self) -> dict[int, list[int]]:
+        """Per node of the level, its position in each demonstration (-1: not performed)."""
+        spots = {node: [-1] * len(self._sequences) for node in self.present}
+        for d, sequence in enumerate(self._sequences):
+            for i, node in enumerate(sequence):
+                spots[node][d] = i
+        return spots
 
     @cached_property
     def nodes(self) -> IntMatrix:
@@ -212,11 +221,27 @@ class _Lists(_Level):
 
     def closure(self, pair: tuple[int, int], limit: int) -> frozenset[int] | None:
         """See :meth:`_Level.closure`; its spans grown one node at a time."""
-        return _closure(pair, self.where, self._sequences, limit)
+        return _closure(pair, self.spots, self._sequences, limit)
 
     def positions(self, members: Sequence[int]) -> IntMatrix:
         """See :meth:`_Level.positions`."""
-        return np.array([[where.get(m, -1) for m in members] for where in self.where], dtype=np.int64)
+        return np.array([self.spots[m] for m in members], dtype=np.int64).T
+
+    def chain_order(self, members: Sequence[int]) -> tuple[int, ...] | None:
+        """See :meth:`_Level.chain_order`."""
+        columns = [self.spots[m] for m in members]
+        found: list[int] | None = None
+        for row in zip(*columns, strict=True):
+            if max(row) < 0:
+                continue
+            if min(row) < 0:
+                return None
+            order = sorted(range(len(row)), key=row.__getitem__)
+            if found is None:
+                found = order
+            elif order != found:
+                return None
+        return None if found is None else tuple(members[i] for i in found)
 
     def performers(self) -> dict[int, set[int]]:
         """See :meth:`_Level.performers`."""
@@ -252,9 +277,6 @@ class _Matrix(_Level):
         pairs = np.unique(nodes[:, :-1][valid[:, 1:]] * (size + 1) + nodes[:, 1:][valid[:, 1:]])
         before, after = np.divmod(pairs, size + 1)
         self.adjacent = set(zip(before.tolist(), after.tolist(), strict=True))
-        self.at = np.full((len(nodes), size), -1, dtype=np.int64)
-        rows, columns = np.nonzero(valid)
-        self.at[rows, nodes[rows, columns]] = columns
 
     @property
     def nodes(self) -> IntMatrix:
@@ -281,9 +303,26 @@ class _Matrix(_Level):
             return None
         return frozenset(np.flatnonzero(member).tolist())
 
+    @cached_property
+    def at(self) -> IntMatrix:
+        """``at[d, n]``: the position of node ``n`` in demonstration ``d`` (-1 when it does not perform it)."""
+        at = np.full((len(self.nodes), self.size), -1, dtype=np.int64)
+        rows, columns = np.nonzero(self.nodes >= 0)
+        at[rows, self.nodes[rows, columns]] = columns
+        return at
+
     def positions(self, members: Sequence[int]) -> IntMatrix:
         """See :meth:`_Level.positions`."""
         return self.at[:, list(members)]
+
+    def chain_order(self, members: Sequence[int]) -> tuple[int, ...] | None:
+        """See :meth:`_Level.chain_order`."""
+        positions = self.positions(members)
+        performing = positions[(positions >= 0).any(axis=1)]
+        orders = np.argsort(performing, axis=1)
+        if len(performing) and (performing >= 0).all() and (orders == orders[0]).all():
+            return tuple(members[i] for i in orders[0].tolist())
+        return None
 
     def performers(self) -> dict[int, set[int]]:
         """See :meth:`_Level.performers`."""
@@ -335,9 +374,9 @@ def decompose(
     """
     order = {leaf: i for i, leaf in enumerate(dict.fromkeys(itertools.chain.from_iterable(labelled)))}
     result = Decomposition(tuple(order))
-    result.leaf_sequences = [list(map(order.__getitem__, demo)) for demo in labelled]
     rank = list(range(len(order)))
-    level = _level(result.leaf_sequences, len(order), many)
+    level = _level([list(map(order.__getitem__, demo)) for demo in labelled], len(order), many)
+    result.leaf_nodes = level.nodes
     presence = level.performers()
     chance: dict[int, float] = {}
     closures: dict[frozenset[int], frozenset[int] | None] = {}  # pair -> closure, kept while no member merges
@@ -354,9 +393,9 @@ def decompose(
             weak = set()
             if not group.chain and not group.seen_in_full:
                 weak = {m for m in group.children if not supported(chance.get(m, 1.0), evidence)}
-            result.groups[node] = _spliced(group, result.groups, presence, weak)
-            rank.append(min(rank[m] for m in group.children))
             presence[node] = set().union(*(presence[m] for m in group.children))
+            result.groups[node] = _spliced(group, result.groups, presence, weak, presence[node])
+            rank.append(min(map(rank.__getitem__, group.children)))
             for member in group.children:
                 replace[member] = node
         level = level.rewritten(replace, len(rank), many)
@@ -401,7 +440,7 @@ def _choose(
         if found is not None:
             candidates[found] = None
     whole = frozenset(level.present)
-    ordered = sorted(candidates, key=lambda c: (len(c), min(rank[m] for m in c)))
+    ordered = sorted(candidates, key=lambda c: (len(c), min(map(rank.__getitem__, c))))
     chosen: list[Group] = []
     used: set[int] = set()
     for candidate in ordered:
@@ -420,19 +459,18 @@ def _choose(
 
 
 def _closure(
-    pair: tuple[int, int], where: Sequence[dict[int, int]], sequences: Sequence[Sequence[int]], limit: int
+    pair: tuple[int, int], spots: Mapping[int, Sequence[int]], sequences: Sequence[Sequence[int]], limit: int
 ) -> frozenset[int] | None:
-    """:meth:`_Level.closure`, its spans grown one node at a time (``where``: per sequence, node -> its
-    position)."""
+    """:meth:`_Level.closure`, its spans grown one node at a time (``spots``: per node, its position in each
+    sequence, -1 when absent)."""
     members = set(pair)
     frontier = list(pair)
     lo = [-1] * len(sequences)
     hi = [-1] * len(sequences)
     while frontier:
         node = frontier.pop()
-        for d, positions in enumerate(where):
-            p = positions.get(node)
-            if p is None:
+        for d, p in enumerate(spots[node]):
+            if p < 0:
                 continue
             if lo[d] < 0:
                 lo[d] = hi[d] = p
@@ -459,12 +497,11 @@ def _closure(
 def _classify(level: _Level, listed: list[int], order_support: int) -> Group | None:
     """The nodes ``listed`` (in rank order): a chain when one order fits every sequence, a clique when no
     order between two of them is established, else None."""
+    chain = level.chain_order(listed)
+    if chain is not None:
+        return Group(chain, True)
     positions = level.positions(listed)
     present = positions >= 0
-    performing = positions[present.any(axis=1)]
-    orders = np.argsort(performing, axis=1)
-    if (performing >= 0).all() and (orders == orders[0]).all():
-        return Group(tuple(listed[i] for i in orders[0].tolist()), True)
     before, together = position_pair_counts(positions)
     precedes = before > 0
     if _topological(precedes, lambda i: i) is not None:
@@ -523,12 +560,13 @@ def _every_order(orders: IntMatrix, size: int) -> bool:
     return len(set(map(tuple, orders.tolist()))) == needed
 
 
-def _spliced(group: Group, groups: dict[int, Group], presence: dict[int, set[int]], weak: set[int]) -> Group:
+def _spliced(
+    group: Group, groups: dict[int, Group], presence: dict[int, set[int]], weak: set[int], whole: set[int]
+) -> Group:
     """Members that mean nothing of their own are replaced by their children: a chain in a chain performed
-    whenever its siblings are (both mean the same order; an optional sub-chain stays a node of its own), and
-    a clique in a clique whose contiguity is not evidenced (``weak``: a clique of its own would claim it is
-    never interleaved with its siblings)."""
-    whole = set().union(*(presence[m] for m in group.children))
+    whenever its siblings are (``whole``: the demonstrations performing any of them; both mean the same
+    order; an optional sub-chain stays a node of its own), and a clique in a clique whose contiguity is not
+    evidenced (``weak``: a clique of its own would claim it is never interleaved with its siblings)."""
     children: list[int] = []
     for member in group.children:
         inner = groups.get(member)
