@@ -422,13 +422,13 @@ def _choose(
     outside it was inside its span)."""
     links = level.links()
     candidates: dict[frozenset[int], None] = {}
-    chains: dict[frozenset[int], Group] = {}
+    linked: dict[frozenset[int], tuple[int, int]] = {}
     tried: set[frozenset[int]] = set()
     for pair in sorted(level.candidate_pairs(), key=lambda p: (rank[p[0]], rank[p[1]])):
         key = frozenset(pair)
         if links.get(pair[0]) == pair[1]:  # always one right after the other: a link, a chain of two
             candidates[key] = None
-            chains[key] = Group(pair, True)
+            linked[key] = pair
             continue
         if key in tried:  # the same pair in the other order: the same closure
             continue
@@ -446,7 +446,10 @@ def _choose(
     for candidate in ordered:
         if candidate & used or candidate == whole:
             continue
-        group = chains.get(candidate) or _classify(level, sorted(candidate, key=rank.__getitem__), order_support)
+        if candidate in linked:
+            group: Group | None = Group(linked[candidate], True)
+        else:
+            group = _classify(level, sorted(candidate, key=rank.__getitem__), order_support)
         if group is None:
             continue
         chosen.append(group)

@@ -60,17 +60,15 @@ def position_pair_counts(positions: IntMatrix) -> tuple[IntMatrix, IntMatrix]:
     """:func:`pair_counts` of sequences given as ``positions[s, i]``, where sequence ``s`` does member ``i``
     (-1: not at all; only the order of the positions in a row matters). Sequences doing fewer than two
     members count in neither matrix."""
-    shown = positions[(positions >= 0).sum(axis=1) >= 2]
+    present = positions >= 0
+    shown = present[present.sum(axis=1) >= 2].astype(np.int64)
+    together: IntMatrix = shown.T @ shown
+    first = np.where(present, positions, positions.max(initial=0) + 1)  # absent: never before another
     size = positions.shape[1]
     before = np.zeros((size, size), dtype=np.int64)
-    together = np.zeros((size, size), dtype=np.int64)
-    step = max(1, len(shown) // max(size, 1))  # a chunk of sequences holds about as many cells as the input
-    for start in range(0, len(shown), step):
-        chunk = shown[start : start + step]
-        present = chunk >= 0
-        both = present[:, :, None] & present[:, None, :]
-        together += both.sum(axis=0)
-        before += (both & (chunk[:, :, None] < chunk[:, None, :])).sum(axis=0)
+    step = max(1, len(positions) // max(size, 1))  # a chunk of sequences holds about as many cells as the input
+    for start in range(0, len(positions), step):
+        before += (first[start : start + step, :, None] < positions[start : start + step, None, :]).sum(axis=0)
     return before, together
 
 
@@ -122,7 +120,7 @@ def contiguity_chance(arrays: Sequence[npt.NDArray[np.int64]], members: frozense
 
 def as_matrix(sequences: Sequence[Sequence[int]] | Sequence[npt.NDArray[np.int64]]) -> IntMatrix:
     """Sequences of node ids as the rows of one matrix, each row padded with -1 after its sequence ends."""
-    lengths = np.fromiter((len(s) for s in sequences), dtype=np.int64, count=len(sequences))
+    lengths = np.array(list(map(len, sequences)), dtype=np.int64)
     matrix = np.full((len(sequences), int(lengths.max(initial=0))), -1, dtype=np.int64)
     matrix[np.arange(matrix.shape[1]) < lengths[:, None]] = np.fromiter(
         itertools.chain.from_iterable(sequences), dtype=np.int64, count=int(lengths.sum())

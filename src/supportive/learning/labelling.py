@@ -39,7 +39,7 @@ def label_performances(demonstrations: Sequence[Sequence[str]]) -> list[tuple[Le
     labelled after the last instance (``k + 1``, ``k + 2``, … in order: a repeated step).
     """
     if all(len(set(demo)) == len(demo) for demo in demonstrations):  # no action repeats: nothing to decide
-        first = {action: (action, 1) for action in itertools.chain.from_iterable(demonstrations)}
+        first = {action: (action, 1) for action in set(itertools.chain.from_iterable(demonstrations))}
         return [tuple(map(first.__getitem__, demo)) for demo in demonstrations]
     counts = [Counter(demo) for demo in demonstrations]
     labelled = [list(to_leaves(demo)) for demo in demonstrations]
