@@ -47,6 +47,7 @@ __all__ = [
     "TaskFileError",
     "TaskGraphError",
     "TaskModelError",
+    "TokenError",
     "TooManyOrderingsError",
     "UnderstandingError",
     "UnknownHelpError",
@@ -327,6 +328,11 @@ class ServiceError(SupportiveError):
 
 class StoreError(SupportiveError, ValueError):
     """The board's database cannot be used (a bad URL, a server that does not answer, another task in it)."""
+
+
+class TokenError(StoreError):
+    """An agent or token the board's database does not have, or a change to them it refuses (a token given
+    that was revoked or is another agent's, an agent asked for with another kind or role)."""
 
 
 class DatasetError(SupportiveError, ValueError):

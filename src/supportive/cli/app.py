@@ -17,6 +17,7 @@ from typer.exceptions import TyperException
 from supportive.cli import caregiver, chat, demo, infer, learn, reproduce, serve, support, teach, workbench
 from supportive.cli.bag import bag_app
 from supportive.cli.output import out, say
+from supportive.cli.tokens import tokens_app
 from supportive.errors import SupportiveError
 from supportive.render.terminal import printable
 
@@ -29,6 +30,7 @@ app = typer.Typer(
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
 app.add_typer(bag_app, name="bag")
+app.add_typer(tokens_app, name="tokens")
 for command in (
     learn.learn,
     infer.infer,

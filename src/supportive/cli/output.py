@@ -20,10 +20,12 @@ out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's widt
 err = terminal_console(stderr=True)  # an error is one line, whatever its length
 
 
-def say(line: object, *, to_stderr: bool = False) -> None:
+def say(line: object, *, to_stderr: bool = False, whole: bool = False) -> None:
     """Print one line that may hold a user's text: as text (never markup or emoji), escaped for the terminal
-    (:mod:`supportive.render.terminal`)."""
-    (err if to_stderr else out).print(printable(str(line)), markup=False)
+    (:mod:`supportive.render.terminal`); ``whole`` keeps it on one line whatever the terminal's width (a URL,
+    a token or a command to copy and paste)."""
+    console = err if to_stderr else out
+    console.print(printable(str(line)), markup=False, soft_wrap=whole or console.soft_wrap)
 
 
 def finite(value: float | None) -> float | None:
