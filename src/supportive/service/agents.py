@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from sqlalchemy import func, insert, select, update
+from sqlalchemy import Select, bindparam, func, insert, select, update
 from sqlalchemy.engine import Connection
 
 from supportive.errors import TokenError
@@ -38,6 +38,7 @@ __all__ = [
     "agent_for_token",
     "all_agents",
     "list_tokens",
+    "lookup_query",
     "new_token",
     "revoke_tokens",
     "set_up_agents",
@@ -204,14 +205,18 @@ def set_up_agents(
     return AgentSetup(shown, tuple(known[name] for name in sorted(known)), int(working))
 
 
-def agent_for_token(connection: Connection, token: str) -> Agent | None:
-    """The agent a token signs in as, or None when it is unknown or revoked."""
-    query = (
+def lookup_query() -> Select[Any]:
+    """The query for the agent (id, kind, role) of a working token whose hash is the parameter ``digest``."""
+    return (
         select(agents_table.c.id, agents_table.c.kind, agents_table.c.role)
         .join(tokens_table, tokens_table.c.agent == agents_table.c.id)
-        .where(tokens_table.c.hash == token_hash(token), tokens_table.c.revoked.is_(None))
+        .where(tokens_table.c.hash == bindparam("digest"), tokens_table.c.revoked.is_(None))
     )
-    row = connection.execute(query).first()
+
+
+def agent_for_token(connection: Connection, token: str) -> Agent | None:
+    """The agent a token signs in as, or None when it is unknown or revoked."""
+    row = connection.execute(lookup_query(), {"digest": token_hash(token)}).first()
     return None if row is None else Agent(row.id, row.kind, row.role)
 
 

@@ -108,7 +108,11 @@ def create_app(settings: ServiceSettings) -> FastAPI:
             token given again).
     """
     store = BoardStore(settings.database)
-    _, setup = store.initialize(settings.board, settings.agents, default_agents())
+    try:
+        _, setup = store.initialize(settings.board, settings.agents, default_agents())
+    except BaseException:
+        store.close()
+        raise
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
