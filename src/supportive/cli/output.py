@@ -52,6 +52,8 @@ def write_text(text: str, output: Path | None) -> None:
     if output is None:
         sys.stdout.write(text)
         return
+    from supportive.cli.interrupt import writing
     from supportive.io.atomic import atomic_write
 
-    atomic_write(output, text, error=TaskFileError)
+    with writing(output):
+        atomic_write(output, text, error=TaskFileError)

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from supportive.cli.interrupt import NOTHING_WRITTEN, explained
 from supportive.cli.output import finite, say
 
 if TYPE_CHECKING:
@@ -72,7 +73,20 @@ def serve(
         lead_only=lead_only or (),
         client_timeout=client_timeout,
     )
-    run_service(launch, announce)
+    running: list[Started] = []
+
+    def stopped() -> str:
+        """What an interruption kept: every operation the board acknowledged (once it was opened)."""
+        if not running:
+            return NOTHING_WRITTEN
+        return f"the board stopped; every operation it acknowledged is kept in {running[0].database}"
+
+    def tell(started: Started) -> None:
+        running.append(started)
+        announce(started)
+
+    with explained(stopped):
+        run_service(launch, tell)
 
 
 def announce(started: Started) -> None:
@@ -89,7 +103,7 @@ def announce(started: Started) -> None:
             say(f"  token for {name} ({kinds.get(name, '?')}), shown this last time: {token}", whole=True)
     known = ", ".join(f"{a.id} ({kinds[a.id]})" for a in setup.agents if a.id not in setup.shown)
     if known:
-        say(f"  agents as before: {known}; their {setup.working - len(setup.shown)} working tokens are unchanged")
+        say(f"  agents as before: {known}; their {setup.working - len(setup.shown)} working tokens are unchanged", whole=True)
     say(
         "  tokens are shown only when made and kept as hashes: note them. "
         f"More, or revoke one: supportive tokens add|list|revoke --db {started.database}",
