@@ -62,5 +62,5 @@ def terminal_console(*, stderr: bool = False, **options: object) -> Console:
     settings: dict[str, object] = {"highlight": False, "soft_wrap": True, **options}
     console = Console(stderr=stderr, emoji=False, **settings)  # type: ignore[arg-type]
     if "width" not in options:
-        console._width = None  # noqa: SLF001 - read again at every print (Console.size)
+        console._width = None  # read again at every print (Console.size)
     return console
