@@ -39,6 +39,7 @@ __all__ = [
     "ResetNeededError",
     "SafetyError",
     "ScenarioFileError",
+    "SearchLimitError",
     "SentenceTooLongError",
     "ServiceError",
     "SocialError",
@@ -179,6 +180,11 @@ class ExportError(SupportiveError):
 class PlanningError(SupportiveError, ValueError):
     """A planning problem is malformed or has no solution the planner can find (no plan reaches the goal,
     a plan names an object the world does not have, …)."""
+
+
+class SearchLimitError(PlanningError):
+    """A search stopped at the limit of work it was given before it had its answer (the message names the
+    limit and what to change): a search never runs on without a word."""
 
 
 class CircuitError(PlanningError):

@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.interrupt import changes, explained
-from supportive.cli.output import out, say
+from supportive.cli.output import local_workers, out, say
 from supportive.errors import OptionError
 from supportive.extras import require_extra
 
@@ -55,6 +55,7 @@ def reproduce(
     from supportive.experiments.output import RUN_FILE
     from supportive.render.tables import fitted_table
 
+    local_workers(workers)
     if workers is not None and scheduler is not None:
         raise OptionError("--workers and --scheduler are mutually exclusive: give one or the other")
     require_extra("plotting experiment results", "matplotlib", "plot")

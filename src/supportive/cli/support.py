@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.interrupt import writing
-from supportive.cli.output import about, say
+from supportive.cli.output import about, local_workers, say
 from supportive.extras import require_extra
 
 __all__ = ["support"]
@@ -65,6 +65,7 @@ def support(
     from supportive.render.circuits import write_before_after
     from supportive.render.files import picture_path
 
+    local_workers(workers)
     if render is not None:
         require_extra("drawing the circuit table (--render)", "matplotlib", "plot")
         picture_path(render, ".png", "the picture")  # before planning: a folder or a name without .png is refused
