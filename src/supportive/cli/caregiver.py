@@ -24,7 +24,7 @@ def caregiver(
         float, typer.Option("--novice", help="The novice's share of random moves ε, in [0, 1].")
     ] = 0.5,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same episode).")] = 0,
-    steps: Annotated[int, typer.Option("--steps", min=1, max=100_000, help="Novice steps in the episode.")] = 200,
+    steps: Annotated[int, typer.Option("--steps", min=1, max=10_000, help="Novice steps in the episode.")] = 200,
     no_caregiver: Annotated[bool, typer.Option("--no-caregiver", help="Let the novice play alone.")] = False,
     gif: Annotated[
         Path | None,

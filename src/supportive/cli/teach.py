@@ -69,14 +69,17 @@ def teach(
     out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
 
     def stopped() -> str:
-        """What an interruption kept: the copy as last saved, and the demonstration under way, dropped."""
+        """What an interruption kept: the copy as last saved; what it dropped: the demonstration under way,
+        or the one being saved when the save did not finish."""
         dropped = console.in_progress
-        lost = f"dropped the unfinished demonstration ({dropped} step{'s' if dropped != 1 else ''})" if dropped else ""
+        lost = [f"dropped the unfinished demonstration ({dropped} step{'s' if dropped != 1 else ''})"] if dropped else []
         try:
-            now = f": {len(parse_task_file(copy.path).demonstrations)} demonstrations, {at_start} when this session began"
+            count = len(parse_task_file(copy.path).demonstrations)
         except SupportiveError:  # changed meanwhile by someone else: say no more than is known
-            now = ""
-        return f"kept {copy.path}{now}" + (f"; {lost}" if lost else "")
+            return "; ".join([f"kept {copy.path}", *lost])
+        if console.saving and count <= at_start + console.recorded:
+            lost.append("dropped the demonstration being saved (the save did not finish)")
+        return "; ".join([f"kept {copy.path}: {count} demonstrations, {at_start} when this session began", *lost])
 
     with about(file), explained(stopped):
         console.run(demonstrations)

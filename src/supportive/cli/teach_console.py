@@ -133,6 +133,8 @@ class TeachingConsole:
     """Demonstrations saved by this session (each reported as saved)."""
     in_progress: int = field(default=0, init=False)
     """Steps of the demonstration under way, not saved yet (0 between demonstrations)."""
+    saving: bool = field(default=False, init=False)
+    """Whether a finished demonstration is being saved now."""
     _ready: tuple[TaskSpec, Repertoire, TeachingSession] | None = field(default=None, init=False, repr=False)
 
     def prepare(self) -> TaskSpec:
@@ -188,9 +190,11 @@ class TeachingConsole:
                     number += 1
                 return current.with_demonstrations([*current.demonstrations, replace(finished, id=f"d{number}")])
 
+            self.saving = True
             spec = update_task_file(self.path, append)
             finished = spec.demonstrations[-1]
             self.recorded += 1
+            self.saving = False
             graph = session.learner.task_graph_
             shape = (
                 "complete"
