@@ -15,6 +15,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.interrupt import writing
+from supportive.cli.output import finite
 from supportive.errors import OptionError, TaskFileError
 
 __all__ = ["bag_app"]
@@ -123,7 +124,13 @@ def export_bag(
     ] = "/task/demonstration",
     start: Annotated[
         float,
-        typer.Option("--start", min=0.0, help="When the first demonstration begins (seconds since 1970)."),
+        typer.Option(
+            "--start",
+            min=0.0,
+            max=2_147_483_647.0,
+            callback=finite,
+            help="When the first demonstration begins (seconds since 1970; a bag's times end in 2038).",
+        ),
     ] = 1_704_067_200.0,
 ) -> None:
     """Write a task's demonstrations into a new bag, each after a marker; `bag import --segment-topic` reads
