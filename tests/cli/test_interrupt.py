@@ -251,8 +251,9 @@ def test_a_teach_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
 def test_a_new_working_copy_cut_in_the_middle_is_not_made(tmp_path: Path, sig: int) -> None:
-    code, _, lines = interrupt(["chat", "ikea-chair", "--save", "c.yaml"], tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
-    assert_stopped(code, lines, sig)
+    args = ["teach", "blocks-tower", "--save", "c.yaml"]
+    code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == "nothing written"
     assert list(tmp_path.iterdir()) == []
 
 
