@@ -119,12 +119,12 @@ def add_token(
     """Make a new token for an agent (a new agent too, given --kind and --role) and print it on stdout, this
     once: it is kept only as a hash. The agent's other tokens keep working."""
     from supportive.errors import OptionError
-    from supportive.service.settings import parse_agent
+    from supportive.service.agents import check_agent_name
 
     if (kind is None) != (role is None):
         raise OptionError("give --kind and --role together (they make a new agent), or neither")
-    if kind is not None and role is not None:
-        parse_agent(f"{agent}:{kind.value}:{role.value}")  # the name's rules, as for serve --agent
+    if kind is not None:
+        check_agent_name(agent)  # before the database is opened: the rules of serve --agent
     store = _open(db)
     try:
         token, text = store.add_token(

@@ -23,8 +23,9 @@ from typing import Any, Literal
 from sqlalchemy import Select, bindparam, func, insert, select, update
 from sqlalchemy.engine import Connection
 
-from supportive.errors import TokenError
-from supportive.service.tables import LABEL_LENGTH, agents_table, tokens_table
+from supportive.errors import InvalidValueError, TokenError
+from supportive.io.values import check_id
+from supportive.service.tables import AGENT_NAME_LENGTH, LABEL_LENGTH, agents_table, tokens_table
 from supportive.social.board import ROLES, Role
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "add_token",
     "agent_for_token",
     "all_agents",
+    "check_agent_name",
     "list_tokens",
     "lookup_query",
     "new_token",
@@ -123,6 +125,22 @@ class AgentSetup:
     shown: dict[str, str]
     agents: tuple[Agent, ...]
     working: int
+
+
+def check_agent_name(name: str) -> str:
+    """``name``, checked as an agent's name: an id (no control character, …) of at most
+    :data:`~supportive.service.tables.AGENT_NAME_LENGTH` characters.
+
+    Raises:
+        InvalidValueError: naming the agent (cut to the limit) and the problem.
+    """
+    try:
+        check_id(name, what="an agent's name")
+        if len(name) > AGENT_NAME_LENGTH:
+            raise InvalidValueError(f"an agent's name is at most {AGENT_NAME_LENGTH} characters, got {len(name)}")
+    except ValueError as exc:
+        raise InvalidValueError(f"agent {name[:AGENT_NAME_LENGTH]!r}: {exc}") from None
+    return name
 
 
 def token_hash(token: str) -> str:
@@ -252,10 +270,13 @@ def add_token(
     Raises:
         TokenError: for an unknown agent without a kind and role, a kind or role that differs from a known
             agent's, or a label over :data:`~supportive.service.tables.LABEL_LENGTH` characters.
+        InvalidValueError: for a new agent's name that is not one (:func:`check_agent_name`).
     """
     if len(label) > LABEL_LENGTH:
         raise TokenError(f"a token's label is at most {LABEL_LENGTH} characters, got {len(label)}")
     known = {a.id: a for a in all_agents(connection)}
+    if agent not in known:
+        check_agent_name(agent)
     token = new_token()
     if agent not in known:
         if kind is None or role is None:

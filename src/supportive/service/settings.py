@@ -10,15 +10,14 @@ from typing import cast
 from supportive.errors import InvalidValueError, ServiceError
 from supportive.io.values import check_id
 from supportive.learning.learner import learn
-from supportive.service.agents import AgentKind, AgentSpec
+from supportive.service.agents import AgentKind, AgentSpec, check_agent_name
+from supportive.service.tables import AGENT_NAME_LENGTH
 from supportive.social.board import ROLES, TaskBoard
 from supportive.tasks.htn import CliqueNode
 from supportive.tasks.spec import TaskSpec
 
 __all__ = ["AGENT_NAME_LENGTH", "DEFAULT_AGENTS", "ServiceSettings", "board_of", "default_agents", "parse_agent"]
 
-AGENT_NAME_LENGTH = 64
-"""The longest agent name (the database's column)."""
 
 DEFAULT_AGENTS = ("alice:human:lead", "robot:robot:assistant", "screen:human:observer")
 """The agents a new board starts with unless told otherwise: a human lead, a robot assistant, a screen."""
@@ -94,13 +93,11 @@ def parse_agent(text: str) -> AgentSpec:
         raise InvalidValueError(
             f"agent {text!r}: expected name:kind:role[:token], kind human or robot, role {', '.join(ROLES)}"
         )
-    try:
-        check_id(parts[0], what="an agent's name")
-        if len(parts[0]) > AGENT_NAME_LENGTH:
-            raise InvalidValueError(f"an agent's name is at most {AGENT_NAME_LENGTH} characters, got {len(parts[0])}")
-        if len(parts) == 4 and parts[3]:
+    check_agent_name(parts[0])
+    if len(parts) == 4 and parts[3]:
+        try:
             check_id(parts[3], what="a token")
-    except ValueError as exc:
-        raise InvalidValueError(f"agent {parts[0][:AGENT_NAME_LENGTH]!r}: {exc}") from None
+        except ValueError as exc:
+            raise InvalidValueError(f"agent {parts[0]!r}: {exc}") from None
     token = parts[3] if len(parts) == 4 and parts[3] else None
     return AgentSpec(parts[0], cast(AgentKind, parts[1]), parts[2], token)

@@ -13,8 +13,10 @@ from __future__ import annotations
 
 from sqlalchemy import Column, Float, ForeignKey, Integer, MetaData, String, Table, Text
 
-__all__ = ["LABEL_LENGTH", "agents_table", "boards", "events_table", "metadata", "tokens_table"]
+__all__ = ["AGENT_NAME_LENGTH", "LABEL_LENGTH", "agents_table", "boards", "events_table", "metadata", "tokens_table"]
 
+AGENT_NAME_LENGTH = 64
+"""The longest agent name (the column's width)."""
 LABEL_LENGTH = 200
 """The longest label a token may carry (the column's width)."""
 
@@ -31,7 +33,7 @@ boards = Table(
 agents_table = Table(
     "agents",
     metadata,
-    Column("id", String(64), primary_key=True),
+    Column("id", String(AGENT_NAME_LENGTH), primary_key=True),
     Column("kind", String(16), nullable=False),
     Column("role", String(16), nullable=False),
     Column("token_hash", String(64), nullable=False, unique=True),
@@ -51,7 +53,7 @@ tokens_table = Table(
     "tokens",
     metadata,
     Column("id", Integer, primary_key=True, autoincrement=True),
-    Column("agent", String(64), ForeignKey("agents.id"), nullable=False, index=True),
+    Column("agent", String(AGENT_NAME_LENGTH), ForeignKey("agents.id"), nullable=False, index=True),
     Column("hash", String(64), nullable=False, unique=True),
     Column("created", Float, nullable=False),
     Column("label", String(LABEL_LENGTH), nullable=False),
