@@ -178,7 +178,7 @@ def test_sigterm_stops_like_ctrl_c_with_status_143(tmp_path: Path, big_task: Pat
 def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_path: Path) -> None:
     """The whole process group gets the signal, the workers too (as from a terminal), while they start and
     while they run trials."""
-    for after in (0.5, 6.0):
+    for after in (0.5, 2.0, 6.0):
         args = ["reproduce", "edge-reduction", "--workers", "2", "-o", str(tmp_path / "run")]
         code, _, lines = interrupt(args, tmp_path, after=after, group=True)
         assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/, once it was running)

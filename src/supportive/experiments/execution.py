@@ -197,23 +197,15 @@ def _quiet_workers(distributed: ModuleType) -> Iterator[None]:
 
     A terminal's Ctrl-C reaches every process of its foreground group, the workers too: each would die with a
     traceback while the run shuts the cluster down in order. So the workers are forked by Python's fork
-    server (dask's ``forkserver`` method), started with SIGINT ignored: it hands its children the handlers it
-    started with. Only the milliseconds of its start ignore a Ctrl-C meant for the run.
+    server (dask's ``forkserver`` method), whose first preload, :mod:`supportive.quiet_fork` (a module of
+    the standard library alone, imported in some milliseconds), makes it ignore SIGINT and hand that on to
+    every worker it forks; this process's own handling of Ctrl-C is never touched.
     """
-    import multiprocessing.forkserver
-    import signal
-    import threading
-
     import dask
 
     with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver"}):
-        distributed.utils.get_mp_context()  # dask's preload for the fork server, set before it starts
-        if threading.current_thread() is threading.main_thread():
-            previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-            try:
-                multiprocessing.forkserver.ensure_running()
-            finally:
-                signal.signal(signal.SIGINT, previous)
+        context = distributed.utils.get_mp_context()  # dask sets its preloads once, on the first call
+        context.set_forkserver_preload(["supportive.quiet_fork", "distributed"])
         yield
 
 
