@@ -147,11 +147,25 @@ def generate(
 ) -> None:
     """Generate a random nested chain/clique task with sampled demonstrations (a task file)."""
     from supportive.generate import generate_task
+    from supportive.io.limits import MAX_FILE_BYTES, MAX_GENERATED_STEPS
     from supportive.io.taskfile import dump_task, format_of
 
-    spec = generate_task(actions, seed, demonstrations=demonstrations, profile=profile.value)
     fmt = format_of(output) if output is not None else "yaml"
-    write_text(dump_task(spec, fmt), output)
+    if actions * demonstrations > MAX_GENERATED_STEPS:
+        raise OptionError(
+            f"{actions:,} actions × {demonstrations:,} demonstrations = {actions * demonstrations:,} steps, more than "
+            f"the {MAX_GENERATED_STEPS:,} a generated task may have (docs/limits.md)",
+            "--demonstrations",
+        )
+    spec = generate_task(actions, seed, demonstrations=demonstrations, profile=profile.value)
+    text = dump_task(spec, fmt)
+    if len(text.encode("utf-8")) > MAX_FILE_BYTES:
+        raise TaskFileError(
+            f"the task would be {len(text.encode('utf-8')):,} bytes, more than the {MAX_FILE_BYTES:,} supportive "
+            "reads back (docs/limits.md): fewer actions or demonstrations",
+            path=output or "<stdout>",
+        )
+    write_text(text, output)
 
 
 def evaluate(
