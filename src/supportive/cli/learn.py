@@ -99,16 +99,16 @@ def learn(
         if learner.selection_ is not None:
             data["selection"] = learner.selection_.as_dict()
         text = json.dumps(data, indent=2) + "\n"
+    elif format is LearnFormat.dot:
+        text = htn_to_dot(learner.htn_)
     else:
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
+    write_text(text, output)
+    if format is not LearnFormat.json:  # said once the result is out (a refused output says one line only)
         if learner.selection_ is not None:
             say(learner.selection_.describe(), to_stderr=True)
         if learner.deviations_:
             say(_slips_notice([d.as_dict(ids) for d in learner.deviations_]), to_stderr=True)
-        if format is LearnFormat.dot:
-            text = htn_to_dot(learner.htn_)
-        else:
-            text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
-    write_text(text, output)
 
 
 SLIPS_SHOWN = 5
