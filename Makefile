@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test lint bench serve system clean example-bags
+.PHONY: demo test test-fast lint bench serve system clean example-bags
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -38,7 +38,11 @@ test: $(VENV)/.dev system
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
 	$(BIN)/lint-imports
-	$(BIN)/pytest -q
+	$(BIN)/pytest -q -n auto
+
+# The edit-test loop: the suite without the tests marked slow, on every core.
+test-fast: $(VENV)/.dev
+	$(BIN)/pytest -q -n auto -m "not slow"
 
 serve: $(VENV)/.server
 	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000
@@ -50,6 +54,7 @@ lint: $(VENV)/.dev
 
 bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_learn.py
+	$(BIN)/python benchmarks/bench_admission.py
 	$(BIN)/python benchmarks/bench_generate.py
 	$(BIN)/python benchmarks/bench_inference.py
 	$(BIN)/python benchmarks/bench_experiments.py

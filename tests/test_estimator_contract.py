@@ -22,6 +22,7 @@ import supportive
 from supportive.errors import NotFittedError
 from supportive.estimator import Estimator
 from supportive.evaluation.baselines import Bigram, MaskedBigram, MostFrequentNotDone
+from supportive.inference.bigram import TransitionCounts
 from supportive.examples import load
 from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM, StepPredictor
 from supportive.inference.synthetic import synthetic_stream
@@ -183,6 +184,14 @@ CASES = [
     _baseline(Bigram),
     _baseline(MaskedBigram),
     _baseline(MostFrequentNotDone),
+    Case(
+        "TransitionCounts",
+        TransitionCounts,
+        lambda e: e.fit(A_DEMOS),
+        lambda e: e.fit(B_DEMOS),
+        lambda e: e.transitions_["<start>"],
+        lambda e: (dict(e.transitions_), e.actions_, e.most_, e.ends_),
+    ),
     _recorder(),
     _planner(),
 ]

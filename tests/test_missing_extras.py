@@ -38,6 +38,7 @@ CASES = [
     (["serve", "--db", "sqlite:///out.db", "--port", "1"], "sqlalchemy", "server"),
     (["serve", "--db", "sqlite:///out.db", "--port", "1"], "fastapi", "server"),
     (["serve", "--db", "sqlite:///out.db", "--port", "1"], "uvicorn", "server"),
+    (["tokens", "list", "--db", "sqlite:///out.db"], "sqlalchemy", "server"),
     (["workbench-sim", "--seconds", "1"], "httpx", "server"),
     (["workbench-sim", "--seconds", "1"], "sqlalchemy", "server"),
     (["chat", "ikea-chair", "--save", "out.yaml"], "sklearn", "language"),
@@ -73,7 +74,7 @@ def test_a_command_without_its_extra_says_which_in_one_line(
     assert len(lines) == 1 and "Traceback" not in result.stderr, result.stderr
     assert lines[0].startswith("supportive: error: ") and f"pip install 'supportive[{extra}]'" in lines[0]
     assert not any(p.name.startswith("out") for p in tmp_path.iterdir())  # nothing written (reproduce checks
-    # for matplotlib before running, serve builds the app before it keeps the tokens: issue 15)
+    # for matplotlib before running, serve builds the app before it prints anything: issue 15)
 
 
 def test_the_extras_come_from_the_package_metadata() -> None:

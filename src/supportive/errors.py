@@ -39,6 +39,7 @@ __all__ = [
     "ResetNeededError",
     "SafetyError",
     "ScenarioFileError",
+    "SearchLimitError",
     "SentenceTooLongError",
     "ServiceError",
     "SocialError",
@@ -47,6 +48,7 @@ __all__ = [
     "TaskFileError",
     "TaskGraphError",
     "TaskModelError",
+    "TokenError",
     "TooManyOrderingsError",
     "UnderstandingError",
     "UnknownHelpError",
@@ -178,6 +180,11 @@ class ExportError(SupportiveError):
 class PlanningError(SupportiveError, ValueError):
     """A planning problem is malformed or has no solution the planner can find (no plan reaches the goal,
     a plan names an object the world does not have, …)."""
+
+
+class SearchLimitError(PlanningError):
+    """A search stopped at the limit of work it was given before it had its answer (the message names the
+    limit and what to change): a search never runs on without a word."""
 
 
 class CircuitError(PlanningError):
@@ -327,6 +334,11 @@ class ServiceError(SupportiveError):
 
 class StoreError(SupportiveError, ValueError):
     """The board's database cannot be used (a bad URL, a server that does not answer, another task in it)."""
+
+
+class TokenError(StoreError):
+    """An agent or token the board's database does not have, or a change to them it refuses (a token given
+    that was revoked or is another agent's, an agent asked for with another kind or role)."""
 
 
 class DatasetError(SupportiveError, ValueError):

@@ -101,6 +101,20 @@ BROKEN: dict[str, list[tuple[list[str], str]]] = {
         (["reproduce", "edge-reduction", "-w", "2", "--scheduler", "tcp://127.0.0.1:1"], "mutually exclusive"),
         (["reproduce", "caregiver", "--reading", "nope", "-o", "{dir}/out"], "unknown reading 'nope'"),
     ],
+    "tokens list": [
+        (["tokens", "list", "--db", "sqlite:///{dir}/missing.db"], "no board in sqlite:///"),
+        (["tokens", "list", "--db", "nonsense"], "cannot use database 'nonsense': expected a URL like"),
+        (["tokens", "list", "--db", "sqlite:///{dir}/garbage.yaml"], "garbage.yaml: file is not a database"),
+    ],
+    "tokens add": [
+        (["tokens", "add", "alice", "--db", "sqlite:///{dir}/missing.db"], "no board in sqlite:///"),
+        (["tokens", "add", "a\x1b[2J", "--kind", "human", "--role", "lead"], "control character"),
+        (["tokens", "add", "alice", "--role", "lead"], "give --kind and --role together"),
+    ],
+    "tokens revoke": [
+        (["tokens", "revoke", "1", "--db", "sqlite:///{dir}/missing.db"], "no board in sqlite:///"),
+        (["tokens", "revoke"], "name the tokens to revoke by number"),
+    ],
     "bag import": [
         (["bag", "import", "{dir}/missing.bag"], "missing.bag: no such bag"),
         (["bag", "import", "{dir}/garbage.yaml"], "not a ROS bag"),

@@ -203,3 +203,35 @@ API_BODIES = st.one_of(
     st.fixed_dictionaries({"events": st.lists(SCALARS, max_size=70)}),
 )
 """Bodies for the API's POST operations: well-formed, out of range, of the wrong type, or noise."""
+
+
+PAST_A_LIMIT = st.sampled_from(["-1", "-5", "10000000000", str(10**30), "1e999", "nan", "inf", "-inf", "", "x", "1.5e"])
+"""Command-line values past any bound an option has (or no number at all)."""
+
+
+@st.composite
+def session_refused_tasks(draw: st.DrawFn) -> tuple[str, str]:
+    """``(suffix, text)`` of a task file that reads, but that ``teach`` or ``chat`` cannot start a session on
+    (no action; explicit states that contradict each other; no structure to enumerate states from), or a
+    broken one."""
+    kind = draw(st.sampled_from(["no-action", "contradiction", "no-structure", "broken"]))
+    if kind == "broken":
+        return draw(task_files())
+    if kind == "no-action":
+        document: dict[str, Any] = {"name": draw(st.sampled_from(["t", "no actions"])), "actions": []}
+        if draw(st.booleans()):
+            del document["actions"]
+    elif kind == "contradiction":
+        first, second = draw(st.permutations(["a", "b"]))
+        state = draw(st.sampled_from([["x"], ["x", "y"]]))
+        document = {
+            "name": "contradiction",
+            "demonstrations": [
+                {"steps": [{"action": first, "state": state}, {"action": second, "state": ["z"]}]},
+                {"steps": [{"action": second, "state": state}, {"action": first, "state": ["w"]}]},
+            ],
+        }
+    else:
+        document = {"name": "flat", "actions": ["a", "b"], "demonstrations": [{"steps": ["a", "b"]}]}
+    suffix = draw(st.sampled_from([".yaml", ".json"]))
+    return suffix, _yaml(document) if suffix == ".yaml" else _json(document)

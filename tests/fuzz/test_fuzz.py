@@ -30,11 +30,12 @@ BOUNDED = settings(
     deadline=None, suppress_health_check=list(HealthCheck), database=None)
 
 
-def run_cli(args: list[str]) -> tuple[int, str, str]:
-    """``supportive ARGS`` in this process: (exit status, stdout, stderr)."""
+def run_cli(args: list[str], stdin: str = "") -> tuple[int, str, str]:
+    """``supportive ARGS`` in this process, reading ``stdin``: (exit status, stdout, stderr)."""
     out, err = io.StringIO(), io.StringIO()
-    argv = sys.argv
+    argv, given = sys.argv, sys.stdin
     sys.argv = ["supportive", *args]
+    sys.stdin = io.StringIO(stdin)
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
             try:
@@ -43,7 +44,7 @@ def run_cli(args: list[str]) -> tuple[int, str, str]:
             except SystemExit as exc:
                 code = int(exc.code or 0)
     finally:
-        sys.argv = argv
+        sys.argv, sys.stdin = argv, given
     return code, out.getvalue(), err.getvalue()
 
 

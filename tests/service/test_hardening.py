@@ -140,11 +140,15 @@ def test_sigterm_drains_and_exits_0_with_no_traceback_after_websocket_closes(sql
     assert "Traceback" not in log and "ERROR" not in log, log
 
 
-def test_database_and_tokens_files_are_private(sqlite_server: Server, tmp_path: Path) -> None:
+def test_database_files_are_private_and_hold_no_token_in_plain_text(sqlite_server: Server, tmp_path: Path) -> None:
     with httpx.Client(base_url=sqlite_server.url) as client:
         assert client.post("/api/nodes/n1/claim", headers=auth("alice")).status_code == 200
-    files = [tmp_path / name for name in ("board.db", "board.db-wal", "board.db-shm", "board.db.tokens.json")]
+    files = [tmp_path / name for name in ("board.db", "board.db-wal", "board.db-shm")]
     assert {f.name: stat.filemode(f.stat().st_mode) for f in files} == {f.name: "-rw-------" for f in files}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["board.db", "board.db-shm", "board.db-wal"]
+    for path in files:
+        data = path.read_bytes()
+        assert not any(token.encode() in data for token in TOKENS.values()), path
 
 
 def serve(tmp_path: Path, *args: str) -> subprocess.CompletedProcess[str]:
@@ -169,4 +173,4 @@ def test_serve_refuses_a_bad_set_up_before_printing_url_or_tokens(tmp_path: Path
     assert result.returncode == 2 and result.stdout == "", result.stdout
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("supportive: error: ") and problem in lines[0], result.stderr
-    assert not list(tmp_path.glob("*.tokens.json"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["corrupt.db"]  # no database made, nothing written

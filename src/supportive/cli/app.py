@@ -16,11 +16,16 @@ from typer.exceptions import TyperException
 
 from supportive.cli import caregiver, chat, demo, infer, learn, reproduce, serve, support, teach, workbench
 from supportive.cli.bag import bag_app
+from supportive.cli.interrupt import handling
 from supportive.cli.output import out, say
+from supportive.cli.tokens import tokens_app
 from supportive.errors import SupportiveError
 from supportive.render.terminal import printable
 
-__all__ = ["app", "main"]
+__all__ = ["INTERRUPTED", "app", "main"]
+
+INTERRUPTED = 130
+"""The status typer gives a command that a KeyboardInterrupt (Ctrl-C, or SIGTERM here) stopped."""
 
 app = typer.Typer(
     add_completion=False,
@@ -29,6 +34,7 @@ app = typer.Typer(
     help="Supportive behaviors for human-robot teaming: learn CC-HTNs from demonstrations, and more.",
 )
 app.add_typer(bag_app, name="bag")
+app.add_typer(tokens_app, name="tokens")
 for command in (
     learn.learn,
     infer.infer,
@@ -89,13 +95,27 @@ def _plain_placeholders(command: Any) -> None:
 
 def main() -> None:
     """Entry point: run the app, turning library errors into one line and exit status 2 (a missing optional
-    dependency too: the line names the extra that installs it)."""
+    dependency too: the line names the extra that installs it), and Ctrl-C or SIGTERM into one line saying
+    what was kept and what was not, with exit status 130 or 143 (:mod:`supportive.cli.interrupt`)."""
+    with handling() as stopped:
+        code = _run()
+        if code == INTERRUPTED:
+            say(stopped.line(), to_stderr=True, whole=True)
+            sys.exit(stopped.status)
+    if code:
+        sys.exit(code)
+
+
+def _run() -> int:
+    """Run the command line; its exit status (typer's 130 for a KeyboardInterrupt)."""
     from supportive.extras import missing_extra
 
     command = typer.main.get_command(app)
     _plain_placeholders(command)
     try:
-        command.main(standalone_mode=False)
+        code = command.main(standalone_mode=False)
+    except KeyboardInterrupt:  # before the command started (typer turns one inside it into 130)
+        return INTERRUPTED
     except typer.Abort:
         say("supportive: aborted", to_stderr=True)
         sys.exit(1)
@@ -116,5 +136,6 @@ def main() -> None:
             raise
         say(f"supportive: error: {problem}", to_stderr=True)
         sys.exit(2)
+    return code if isinstance(code, int) else 0
 
 

@@ -14,6 +14,8 @@ from typing import Annotated
 
 import typer
 
+from supportive.cli.interrupt import writing
+from supportive.cli.output import finite
 from supportive.errors import OptionError, TaskFileError
 
 __all__ = ["bag_app"]
@@ -98,13 +100,16 @@ def import_bags(
     if output is None:
         sys.stdout.write(dump_task(spec, fmt))
         return
-    write_task_file(spec, output, fmt)
+    with writing(output):
+        write_task_file(spec, output, fmt)
     typer.echo(f"wrote {output}: {len(demonstrations)} demonstrations", err=True)
 
 
 @bag_app.command("export")
 def export_bag(
-    task: Annotated[Path, typer.Argument(help="Task file whose demonstrations to write.")],
+    task: Annotated[
+        Path, typer.Argument(help="Task file whose demonstrations to write, or a bundled example's name.")
+    ],
     output: Annotated[
         Path, typer.Option("--output", "-o", help="The new bag: a directory, or a .bag file for rosbag1.")
     ],
@@ -119,18 +124,26 @@ def export_bag(
     ] = "/task/demonstration",
     start: Annotated[
         float,
-        typer.Option("--start", min=0.0, help="When the first demonstration begins (seconds since 1970)."),
+        typer.Option(
+            "--start",
+            min=0.0,
+            max=2_147_483_647.0,
+            callback=finite,
+            help="When the first demonstration begins (seconds since 1970; a bag's times end in 2038).",
+        ),
     ] = 1_704_067_200.0,
 ) -> None:
     """Write a task's demonstrations into a new bag, each after a marker; `bag import --segment-topic` reads
     them back."""
+    from supportive.examples import task_path
     from supportive.io.rosbag import BagWriter, write_demonstrations
     from supportive.io.taskfile import parse_task_file
 
+    task = task_path(task)
     spec = parse_task_file(task)
     if not spec.demonstrations:
         raise TaskFileError("no demonstrations to write", path=task, place="demonstrations")
-    with BagWriter(output, storage.value) as writer:
+    with writing(output, "bag"), BagWriter(output, storage.value) as writer:
         write_demonstrations(
             writer,
             spec.demonstrations,

@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from supportive.cli.interrupt import writing
 from supportive.cli.output import finite, out, say
 from supportive.errors import OptionError
 from supportive.extras import require_extra
@@ -23,7 +24,7 @@ def caregiver(
         float, typer.Option("--novice", help="The novice's share of random moves ε, in [0, 1].")
     ] = 0.5,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Random seed (same seed, same episode).")] = 0,
-    steps: Annotated[int, typer.Option("--steps", min=1, max=100_000, help="Novice steps in the episode.")] = 200,
+    steps: Annotated[int, typer.Option("--steps", min=1, max=10_000, help="Novice steps in the episode.")] = 200,
     no_caregiver: Annotated[bool, typer.Option("--no-caregiver", help="Let the novice play alone.")] = False,
     gif: Annotated[
         Path | None,
@@ -49,6 +50,7 @@ def caregiver(
 
     from rich.live import Live
 
+    from supportive.render.files import picture_path
     from supportive.render.household import LEGEND, render_frame, summary, write_gif
     from supportive.safety.episode import THRESHOLD, run_episode
     from supportive.worlds.household import load_map
@@ -57,6 +59,7 @@ def caregiver(
         raise OptionError(f"ε must be in [0, 1] (the share of random moves), got {novice}", "--novice")
     if gif is not None:
         require_extra("drawing an episode as a GIF (--gif)", "matplotlib", "plot")
+        picture_path(gif, ".gif", "a GIF")  # before the episode: a folder or a name without .gif is refused
     grid = load_map(map_name)
     with_caregiver = not no_caregiver
     result = run_episode(grid, novice, caregiver=with_caregiver, steps=steps, seed=seed, record=True)
@@ -78,5 +81,6 @@ def caregiver(
                 out.print(render_frame(grid, frame, steps=steps))
     out.print(f"[bold]{who}:[/] " + summary(result, threshold=THRESHOLD, steps=steps), highlight=False)
     if gif is not None:
-        write_gif(result.frames, grid, gif)
+        with writing(gif):
+            write_gif(result.frames, grid, gif)
         say(f"wrote {gif} ({len(result.frames)} frames)", to_stderr=True)

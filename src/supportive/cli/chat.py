@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from supportive.cli.interrupt import explained
 from supportive.cli.output import about, out, say
 from supportive.render.terminal import printable
 
@@ -50,5 +51,12 @@ def chat(
     with about(file):
         console = ChatConsole(copy.reads(), read, say, matcher)
         console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
-        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+    out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+
+    def stopped() -> str:
+        """What an interruption kept: the copy, with every change acknowledged."""
+        changes = f"{console.saved} change{'s' if console.saved != 1 else ''}"
+        return f"kept {copy.path}: every change acknowledged is saved in it ({changes} this session)"
+
+    with about(file), explained(stopped):
         console.run()

@@ -73,6 +73,8 @@ class ChatConsole:
     states: TaskStates = field(init=False)
     understanding: Understanding = field(init=False)
     _next: str | None = field(init=False, default=None)
+    saved: int = field(init=False, default=0)
+    """Changes saved (and acknowledged) by this session."""
 
     def __post_init__(self) -> None:
         self.spec = parse_task_file(self.path)
@@ -205,6 +207,7 @@ class ChatConsole:
             return current.with_behaviors(others)
 
         self.spec = update_task_file(self.path, put)
+        self.saved += 1
         self.states = TaskStates.of(self.spec, self.states.structure)
         self.understanding = self.understanding.with_states(self.states)
 

@@ -99,16 +99,16 @@ def learn(
         if learner.selection_ is not None:
             data["selection"] = learner.selection_.as_dict()
         text = json.dumps(data, indent=2) + "\n"
+    elif format is LearnFormat.dot:
+        text = htn_to_dot(learner.htn_)
     else:
+        text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
+    write_text(text, output)
+    if format is not LearnFormat.json:  # said once the result is out (a refused output says one line only)
         if learner.selection_ is not None:
             say(learner.selection_.describe(), to_stderr=True)
         if learner.deviations_:
             say(_slips_notice([d.as_dict(ids) for d in learner.deviations_]), to_stderr=True)
-        if format is LearnFormat.dot:
-            text = htn_to_dot(learner.htn_)
-        else:
-            text = render_tree(learner.htn_, spec.texts(), width=120 if output is not None else out.width)
-    write_text(text, output)
 
 
 SLIPS_SHOWN = 5
@@ -147,11 +147,25 @@ def generate(
 ) -> None:
     """Generate a random nested chain/clique task with sampled demonstrations (a task file)."""
     from supportive.generate import generate_task
+    from supportive.io.limits import MAX_FILE_BYTES, MAX_GENERATED_STEPS
     from supportive.io.taskfile import dump_task, format_of
 
-    spec = generate_task(actions, seed, demonstrations=demonstrations, profile=profile.value)
     fmt = format_of(output) if output is not None else "yaml"
-    write_text(dump_task(spec, fmt), output)
+    if actions * demonstrations > MAX_GENERATED_STEPS:
+        raise OptionError(
+            f"{actions:,} actions × {demonstrations:,} demonstrations = {actions * demonstrations:,} steps, more than "
+            f"the {MAX_GENERATED_STEPS:,} a generated task may have (docs/limits.md)",
+            "--demonstrations",
+        )
+    spec = generate_task(actions, seed, demonstrations=demonstrations, profile=profile.value)
+    text = dump_task(spec, fmt)
+    if len(text.encode("utf-8")) > MAX_FILE_BYTES:
+        raise TaskFileError(
+            f"the task would be {len(text.encode('utf-8')):,} bytes, more than the {MAX_FILE_BYTES:,} supportive "
+            "reads back (docs/limits.md): fewer actions or demonstrations",
+            path=output or "<stdout>",
+        )
+    write_text(text, output)
 
 
 def evaluate(

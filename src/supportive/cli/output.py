@@ -14,22 +14,44 @@ import typer
 from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError, naming
 from supportive.render.terminal import printable, terminal_console
 
-__all__ = ["about", "err", "finite", "out", "say", "write_text"]
+__all__ = ["about", "err", "finite", "local_workers", "out", "say", "write_text"]
 
 out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
 err = terminal_console(stderr=True)  # an error is one line, whatever its length
 
 
-def say(line: object, *, to_stderr: bool = False) -> None:
+def say(line: object, *, to_stderr: bool = False, whole: bool = False) -> None:
     """Print one line that may hold a user's text: as text (never markup or emoji), escaped for the terminal
-    (:mod:`supportive.render.terminal`)."""
-    (err if to_stderr else out).print(printable(str(line)), markup=False)
+    (:mod:`supportive.render.terminal`); ``whole`` keeps it on one line whatever the terminal's width (a URL,
+    a token or a command to copy and paste)."""
+    console = err if to_stderr else out
+    console.print(printable(str(line)), markup=False, soft_wrap=whole or console.soft_wrap)
 
 
 def finite(value: float | None) -> float | None:
     """A float option's value when it is a number (click lets ``nan`` through its ranges)."""
     if value is not None and not math.isfinite(value):
         raise typer.BadParameter(f"expected a finite number, got {value}")
+    return value
+
+
+def local_workers(value: int | None) -> int | None:
+    """A ``--workers`` value for processes on this machine: at most twice its cores (at least 2). More only
+    slow a run down, each process costing memory (a dask worker some 100 MB); a cluster has ``--scheduler``.
+
+    Raises:
+        OptionError: for more.
+    """
+    import os
+
+    from supportive.errors import OptionError
+
+    most = max(2, 2 * (os.cpu_count() or 1))
+    if value is not None and value > most:
+        raise OptionError(
+            f"{value} processes on a machine with {os.cpu_count()} cores: give at most {most} (twice the cores)",
+            "--workers",
+        )
     return value
 
 
@@ -50,6 +72,8 @@ def write_text(text: str, output: Path | None) -> None:
     if output is None:
         sys.stdout.write(text)
         return
+    from supportive.cli.interrupt import writing
     from supportive.io.atomic import atomic_write
 
-    atomic_write(output, text, error=TaskFileError)
+    with writing(output):
+        atomic_write(output, text, error=TaskFileError)

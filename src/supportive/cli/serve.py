@@ -2,14 +2,19 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from supportive.cli.interrupt import NOTHING_WRITTEN, explained
 from supportive.cli.output import finite, say
 
-__all__ = ["serve"]
+if TYPE_CHECKING:
+    from supportive.service.launch import Started
+
+__all__ = ["announce", "serve"]
 
 
 def serve(
@@ -52,8 +57,9 @@ def serve(
     ] = 10.0,
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
-    subtasks through. The database is checked before the URL and tokens are printed; SIGTERM stops it
-    gracefully (exit status 0)."""
+    subtasks through. The database is checked before the URL and tokens are printed; a token is printed once,
+    when it is made (later starts make none: `supportive tokens` lists, adds and revokes them); SIGTERM stops
+    it gracefully (exit status 0)."""
     from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
@@ -67,12 +73,41 @@ def serve(
         lead_only=lead_only or (),
         client_timeout=client_timeout,
     )
+    running: list[Started] = []
 
-    def announce() -> None:
-        say(f"task board for {launch.settings.board.task} at {launch.url()}")
-        for spec in launch.settings.agents:
-            say(f"  {spec.id} ({spec.kind}, {spec.role}): token {spec.token}")
-        if launch.tokens_file is not None:
-            say(f"  (tokens kept in {launch.tokens_file}; API docs at http://{host}:{port}/docs)")
+    def stopped() -> str:
+        """What an interruption kept: every operation the board acknowledged (once it was opened)."""
+        if not running:
+            return NOTHING_WRITTEN
+        return f"the board stopped; every operation it acknowledged is kept in {running[0].database}"
 
-    run_service(launch, announce)
+    def tell(started: Started) -> None:
+        running.append(started)
+        announce(started)
+
+    with explained(stopped):
+        run_service(launch, tell)
+
+
+def announce(started: Started) -> None:
+    """Print where the board is and the tokens made now (the only time they are shown), then flush: a log or
+    a pipe has them before the first request."""
+    launch, setup = started.launch, started.setup
+    say(f"task board for {launch.settings.board.task} at {started.url()}", whole=True)
+    kinds = {a.id: f"{a.kind}, {a.role}" for a in setup.agents}
+    for name, token in setup.shown.items():
+        say(f"  new token for {name} ({kinds[name]}): {token}", whole=True)
+    if started.retired_file is not None:
+        say(f"  {started.retired_file} held tokens in plain text (an earlier version's); removing it.")
+        for name, token in started.retired.items():
+            say(f"  token for {name} ({kinds.get(name, '?')}), shown this last time: {token}", whole=True)
+    known = ", ".join(f"{a.id} ({kinds[a.id]})" for a in setup.agents if a.id not in setup.shown)
+    if known:
+        say(f"  agents as before: {known}; their {setup.working - len(setup.shown)} working tokens are unchanged", whole=True)
+    say(
+        "  tokens are shown only when made and kept as hashes: note them. "
+        f"More, or revoke one: supportive tokens add|list|revoke --db {started.database}",
+        whole=True,
+    )
+    say(f"  API docs at http://{launch.host}:{launch.port}/docs")
+    sys.stdout.flush()

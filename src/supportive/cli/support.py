@@ -10,7 +10,8 @@ from typing import Annotated
 
 import typer
 
-from supportive.cli.output import about, say
+from supportive.cli.interrupt import writing
+from supportive.cli.output import about, local_workers, say
 from supportive.extras import require_extra
 
 __all__ = ["support"]
@@ -62,9 +63,12 @@ def support(
     from supportive.examples import scenario_path
     from supportive.planning.weighting import parse_scheme
     from supportive.render.circuits import write_before_after
+    from supportive.render.files import picture_path
 
+    local_workers(workers)
     if render is not None:
         require_extra("drawing the circuit table (--render)", "matplotlib", "plot")
+        picture_path(render, ".png", "the picture")  # before planning: a folder or a name without .png is refused
     file = scenario_path(file)
     scenario = parse_scenario_file(file)
     if environments is not None:
@@ -90,5 +94,6 @@ def support(
     if render is not None:
         world = scenario.world
         after = decision.chosen.state
-        write_before_after(world, world.initial_state, after, render, moved=decision.chosen.move)
+        with writing(render):
+            write_before_after(world, world.initial_state, after, render, moved=decision.chosen.move)
         say(f"wrote {render}", to_stderr=True)

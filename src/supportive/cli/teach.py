@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from supportive.cli.interrupt import explained
 from supportive.cli.output import about, out, say
 from supportive.render.terminal import printable
 
@@ -41,8 +42,9 @@ def teach(
 ) -> None:
     """Teach a task by demonstration at the terminal; the robot asks for actions as you go (§2.2)."""
     from supportive.cli.teach_console import TeachingConsole
-    from supportive.errors import OptionError
+    from supportive.errors import OptionError, SupportiveError
     from supportive.examples import task_path
+    from supportive.io.taskfile import parse_task_file
     from supportive.io.working_copy import working_copy
     from supportive.learning.active import QuerySchedule, strategy_names
 
@@ -61,6 +63,23 @@ def teach(
 
     copy = working_copy(task_path(file), save)
     with about(file):
-        console = TeachingConsole(copy.start(), read, say, strategy, schedule, seed)
-        out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+        console = TeachingConsole(copy.reads(), read, say, strategy, schedule, seed)
+        at_start = len(console.prepare().demonstrations)  # a task the session refuses: refused before any copy
+        console.path = copy.start()
+    out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+
+    def stopped() -> str:
+        """What an interruption kept: the copy as last saved; what it dropped: the demonstration under way,
+        or the one being saved when the save did not finish."""
+        dropped = console.in_progress
+        lost = [f"dropped the unfinished demonstration ({dropped} step{'s' if dropped != 1 else ''})"] if dropped else []
+        try:
+            count = len(parse_task_file(copy.path).demonstrations)
+        except SupportiveError:  # changed meanwhile by someone else: say no more than is known
+            return "; ".join([f"kept {copy.path}", *lost])
+        if console.saving and count <= at_start + console.recorded:
+            lost.append("dropped the demonstration being saved (the save did not finish)")
+        return "; ".join([f"kept {copy.path}: {count} demonstrations, {at_start} when this session began", *lost])
+
+    with about(file), explained(stopped):
         console.run(demonstrations)

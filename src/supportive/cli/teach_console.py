@@ -129,20 +129,45 @@ class TeachingConsole:
     )
     seed: int | None = 0
 
-    def run(self, demonstrations: int | None = None) -> TaskSpec:
-        """Teach until the person quits, input ends, or ``demonstrations`` new ones are recorded.
+    recorded: int = field(default=0, init=False)
+    """Demonstrations saved by this session (each reported as saved)."""
+    in_progress: int = field(default=0, init=False)
+    """Steps of the demonstration under way, not saved yet (0 between demonstrations)."""
+    saving: bool = field(default=False, init=False)
+    """Whether a finished demonstration is being saved now."""
+    _ready: tuple[TaskSpec, Repertoire, TeachingSession] | None = field(default=None, init=False, repr=False)
 
-        Returns:
-            The task as saved.
+    def prepare(self) -> TaskSpec:
+        """Read the task and set up the learner and the session: every check the task must pass, with nothing
+        written (``teach`` calls it before it makes the working copy, so a task it refuses leaves no copy).
+        Returns the task.
+
+        Raises:
+            SupportiveError: for a task a session cannot start on (no action, demonstrations that contradict
+                each other, …).
         """
+        self._ready = self._set_up()
+        return self._ready[0]
+
+    def _set_up(self) -> tuple[TaskSpec, Repertoire, TeachingSession]:
         spec = parse_task_file(self.path)
-        actions = spec.action_ids()
-        texts = spec.texts()
         repertoire = Repertoire.of(spec)
         learner = HTNLearner(names=known_names(spec.structure))
         if spec.demonstrations:
             learner.fit(spec)
-        session = TeachingSession(actions, self.strategy, self.schedule, self.seed, learner)
+        session = TeachingSession(spec.action_ids(), self.strategy, self.schedule, self.seed, learner)
+        return spec, repertoire, session
+
+    def run(self, demonstrations: int | None = None) -> TaskSpec:
+        """Teach until the person quits, input ends, or ``demonstrations`` new ones are recorded (after
+        :meth:`prepare`, which it calls when not called yet).
+
+        Returns:
+            The task as saved.
+        """
+        spec, repertoire, session = self._ready if self._ready is not None else self._set_up()
+        actions = spec.action_ids()
+        texts = spec.texts()
         self.write(
             f"Teaching {spec.name}: {len(actions)} actions, {len(spec.demonstrations)} demonstrations so far."
         )
@@ -152,8 +177,7 @@ class TeachingConsole:
             f"Type each action you perform (id, text or number); '{DONE}' ends a demonstration, '{QUIT}' stops, "
             "'help' shows the actions again."
         )
-        recorded = 0
-        while demonstrations is None or recorded < demonstrations:
+        while demonstrations is None or self.recorded < demonstrations:
             finished = self._demonstration(session, repertoire)
             if finished is None:
                 break
@@ -166,9 +190,11 @@ class TeachingConsole:
                     number += 1
                 return current.with_demonstrations([*current.demonstrations, replace(finished, id=f"d{number}")])
 
+            self.saving = True
             spec = update_task_file(self.path, append)
             finished = spec.demonstrations[-1]
-            recorded += 1
+            self.recorded += 1
+            self.saving = False
             graph = session.learner.task_graph_
             shape = (
                 "complete"
@@ -188,6 +214,7 @@ class TeachingConsole:
         self.write(f"Demonstration {len(session.demonstrations) + 1}:")
         asked_at = -1
         while True:
+            self.in_progress = len(session.done)
             question = session.query()
             if question is not None and asked_at != len(session.done):
                 asked_at = len(session.done)
@@ -198,6 +225,7 @@ class TeachingConsole:
                 line = QUIT
             word = line.casefold().strip(".!")
             if word == QUIT:
+                self.in_progress = 0
                 if session.done:
                     steps = len(session.done)
                     self.write(f"  dropped the unfinished demonstration ({steps} step{'s' if steps > 1 else ''})")
@@ -211,14 +239,21 @@ class TeachingConsole:
                         f"  not finished: still to do {', '.join(missing)}; type them, or '{QUIT}' to drop it"
                     )
                 else:
-                    return session.end()
+                    return self._end(session)
                 continue
             action = self._action(line, word, question, session, repertoire)
             if action is None:
                 continue
             session.observe(action)
+            self.in_progress = len(session.done)
             if repertoire.exhausted(session.done):
-                return session.end()
+                return self._end(session)
+
+    def _end(self, session: TeachingSession) -> Demonstration:
+        """End the demonstration under way (it is no longer unfinished: it is saved next)."""
+        finished = session.end()
+        self.in_progress = 0
+        return finished
 
     def _action(
         self, line: str, word: str, question: str | None, session: TeachingSession, repertoire: Repertoire

@@ -8,6 +8,7 @@ back in trial order, so a run's results never depend on the number of workers.
 from __future__ import annotations
 
 import logging
+import queue
 import re
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -18,6 +19,7 @@ from typing import Any, Protocol
 from supportive.errors import ExperimentError, MissingExtraError
 from supportive.experiments.registry import TrialResult
 from supportive.experiments.trials import Trial
+from supportive.io.atomic import uninterrupted
 
 __all__ = [
     "CONNECT_TIMEOUT",
@@ -78,17 +80,28 @@ class OnDask:
     def map(
         self, function: Callable[[Trial], TrialResult], trials: Sequence[Trial], done: Callable[[], None]
     ) -> list[TrialResult]:
-        """Submit every trial, collect the results as they finish and return them in trial order."""
-        distributed = import_distributed()
+        """Submit every trial, collect the results as they finish and return them in trial order.
+
+        The results are waited for on a queue the futures' callbacks fill, not inside dask: a Ctrl-C while
+        waiting stops the run without cutting one of dask's own calls in half (which makes it log errors);
+        fetching a finished result and cancelling the rest on the way out hold Ctrl-C back for the moment
+        they take."""
         futures = self.client.map(function, list(trials), pure=False)
         position = {future.key: index for index, future in enumerate(futures)}
+        finished: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        for future in futures:
+            future.add_done_callback(finished.put)
         found: dict[int, TrialResult] = {}
         try:
-            for future in distributed.as_completed(futures, loop=self.client.loop):
-                found[position[future.key]] = future.result()
+            while len(found) < len(futures):
+                future = finished.get()
+                with uninterrupted():
+                    result = future.result()
+                found[position[future.key]] = result
                 done()
         finally:
-            self.client.cancel(futures)
+            with uninterrupted():
+                self.client.cancel(futures)
         return [found[index] for index in range(len(futures))]
 
 
@@ -163,7 +176,42 @@ def open_executor(workers: int = 1, scheduler: str | None = None) -> Iterator[Ex
         finally:
             client.close()
         return
-    cluster = distributed.LocalCluster(
+    with _quiet_workers(distributed):
+        with uninterrupted():  # a Ctrl-C while the cluster starts takes effect once it has: none is half made
+            cluster = _new_cluster(distributed, workers)
+        try:
+            client = distributed.Client(cluster, set_as_default=False)
+            try:
+                yield OnDask(client, f"dask LocalCluster, {workers} worker processes")
+            finally:
+                with uninterrupted():
+                    client.close()
+        finally:
+            with uninterrupted():
+                cluster.close()
+
+
+@contextmanager
+def _quiet_workers(distributed: ModuleType) -> Iterator[None]:
+    """While the block runs, local worker processes ignore Ctrl-C from birth.
+
+    A terminal's Ctrl-C reaches every process of its foreground group, the workers too: each would die with a
+    traceback while the run shuts the cluster down in order. So the workers are forked by Python's fork
+    server (dask's ``forkserver`` method), whose first preload, :mod:`supportive.quiet_fork` (a module of
+    the standard library alone, imported in some milliseconds), makes it ignore SIGINT and hand that on to
+    every worker it forks; this process's own handling of Ctrl-C is never touched.
+    """
+    import dask
+
+    with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver"}):
+        context = distributed.utils.get_mp_context()  # dask sets its preloads once, on the first call
+        context.set_forkserver_preload(["supportive.quiet_fork", "distributed"])
+        yield
+
+
+def _new_cluster(distributed: ModuleType, workers: int) -> Any:
+    """A ``LocalCluster`` of ``workers`` processes (see :func:`open_executor`)."""
+    return distributed.LocalCluster(
         n_workers=workers,
         threads_per_worker=1,
         processes=True,
@@ -172,13 +220,7 @@ def open_executor(workers: int = 1, scheduler: str | None = None) -> Iterator[Ex
         # No dashboard; the scheduler's small HTTP endpoint (health, metrics) takes any free port on 127.0.0.1
         # instead of 8787, so that runs never collide with another cluster on this machine.
         scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
-        silence_logs=logging.ERROR,
+        # dask's own errors while a cluster closes (a heartbeat missed under load) are noise to the person who
+        # stopped the run; a trial's error reaches the run as the trial's result.
+        silence_logs=logging.CRITICAL,
     )
-    try:
-        client = distributed.Client(cluster, set_as_default=False)
-        try:
-            yield OnDask(client, f"dask LocalCluster, {workers} worker processes")
-        finally:
-            client.close()
-    finally:
-        cluster.close()

@@ -1,16 +1,31 @@
 """The files a run writes: ``metrics.json`` (deterministic), ``report.md``, ``run.json`` (wall time and
-where it ran) and, when trials measured wall-clock times, ``timing.json``."""
+where it ran) and, when trials measured wall-clock times, ``timing.json``; all of them into their folder
+together (:func:`write_folder`), so an interrupted or failed run leaves the folder as it was."""
 
 from __future__ import annotations
 
+import contextlib
 import json
-from collections.abc import Mapping
+import os
+import shutil
+import tempfile
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from supportive.errors import ExperimentError
+from supportive.errors import ExperimentError, FileFormatError
+from supportive.io.atomic import atomic_write, uninterrupted
 
-__all__ = ["METRICS_FILE", "REPORT_FILE", "RUN_FILE", "TIMING_FILE", "dump_json", "write_text"]
+__all__ = [
+    "METRICS_FILE",
+    "REPORT_FILE",
+    "RUN_FILE",
+    "TIMING_FILE",
+    "check_folder",
+    "dump_json",
+    "write_folder",
+    "write_text",
+]
 
 METRICS_FILE = "metrics.json"
 """The metrics: the same trials give the same bytes, however many workers ran them."""
@@ -39,14 +54,75 @@ def dump_json(data: Mapping[str, Any], *, what: str = "metrics") -> str:
 
 
 def write_text(path: Path, text: str) -> Path:
-    """Write ``text`` to ``path`` (UTF-8), creating its directory.
+    """Write ``text`` to ``path`` (UTF-8, atomically), creating its directory.
 
     Raises:
         ExperimentError: when the file cannot be written.
     """
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
+        atomic_write(path, text)
     except OSError as exc:
         raise ExperimentError(f"{path}: cannot write: {exc.strerror or exc}") from None
+    except FileFormatError as exc:
+        raise ExperimentError(str(exc)) from None
     return path
+
+
+def check_folder(output: Path) -> None:
+    """Check that ``output`` can be a run's folder (it is one, or does not exist yet), before the run.
+
+    Raises:
+        ExperimentError: when it is a file.
+    """
+    if output.exists() and not output.is_dir():
+        raise ExperimentError(f"{output}: is a file; the output is a folder (it gets {METRICS_FILE}, {REPORT_FILE}, …)")
+
+
+def write_folder(output: Path, write: Callable[[Path], Sequence[Path]]) -> list[Path]:
+    """Write a run's files into the folder ``output`` all together: ``write(folder)`` writes them into a
+    hidden folder beside ``output`` and returns them; then, with Ctrl-C and SIGTERM held back, they are moved
+    into ``output`` (made when missing). A run interrupted or failing before that leaves ``output`` as it was
+    (a folder it would have made is not made) and no hidden folder; files of ``output`` the run does not
+    write are kept.
+
+    Returns:
+        The files, under ``output``.
+
+    Raises:
+        ExperimentError: when ``output`` is a file or cannot be written.
+    """
+    check_folder(output)
+    target = output.absolute()
+    missing = [folder for folder in (target, *target.parents) if not folder.exists()]
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".partial", dir=target.parent))
+    except OSError as exc:
+        _remove_empty(missing)
+        raise ExperimentError(f"{output}: cannot write: {exc.strerror or exc}") from None
+    try:
+        written = [path.relative_to(staging) for path in write(staging)]
+        with uninterrupted():
+            if not target.exists():
+                os.rename(staging, target)
+            else:
+                for name in written:
+                    (target / name).parent.mkdir(parents=True, exist_ok=True)
+                    os.replace(staging / name, target / name)
+    except OSError as exc:
+        _remove_empty(missing)
+        raise ExperimentError(f"{output}: cannot write: {exc.strerror or exc}") from None
+    except BaseException:
+        _remove_empty(missing)
+        raise
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return [output / name for name in written]
+
+
+def _remove_empty(folders: list[Path]) -> None:
+    """Remove the folders a failed write made (deepest first), if nothing else went into them."""
+    for folder in folders:
+        with contextlib.suppress(OSError):
+            folder.rmdir()

@@ -34,7 +34,9 @@ from supportive.experiments.output import (
     REPORT_FILE,
     RUN_FILE,
     TIMING_FILE,
+    check_folder,
     dump_json,
+    write_folder,
     write_text,
 )
 from supportive.experiments.progress import progress_bar
@@ -155,8 +157,9 @@ def run_experiment(
     chosen = select_readings(experiment.name, experiment.readings, readings)
     check_backend(workers, scheduler)
     count = _trial_count(experiment, trials)
+    directory = _directory(output)
     with open_executor(workers, scheduler) as executor:
-        return _run(experiment, executor, count, seed, _directory(output), progress, chosen)
+        return _run(experiment, executor, count, seed, directory, progress, chosen)
 
 
 def run_all(
@@ -188,7 +191,6 @@ def run_all(
             for experiment, count in zip(experiments, counts, strict=True)
         ]
     if directory is not None:
-        write_text(directory / SUMMARY_FILE, summary_table(results))
         document = {
             "seed": seed,
             "trials": {r.experiment: r.trials for r in results},
@@ -202,7 +204,11 @@ def run_all(
                 for r in results
             ],
         }
-        write_text(directory / SUMMARY_JSON, dump_json(document, what="findings"))
+        table, findings = summary_table(results), dump_json(document, what="findings")
+        write_folder(
+            directory,
+            lambda folder: [write_text(folder / SUMMARY_FILE, table), write_text(folder / SUMMARY_JSON, findings)],
+        )
     return results
 
 
@@ -251,7 +257,11 @@ def _trial_count(experiment: Experiment, trials: int | None) -> int:
 
 
 def _directory(output: str | Path | None) -> Path | None:
-    return None if output is None else Path(output)
+    """The output folder, checked before anything runs (it may not be a file)."""
+    if output is None:
+        return None
+    check_folder(Path(output))
+    return Path(output)
 
 
 def _run(
@@ -299,19 +309,22 @@ def _run(
     headline = tuple(experiment.headline(metrics))
     findings = tuple(experiment.findings(metrics)) if experiment.findings is not None else ()
     seconds = time.perf_counter() - started
-    files: list[Path] = []
-    if output is not None:
-        files.append(write_text(output / METRICS_FILE, text))
-        files.append(write_text(output / REPORT_FILE, report))
-        files.extend(experiment.plots(metrics, output))
+
+    def write(folder: Path) -> list[Path]:
+        """Every file of the run, into ``folder`` (moved into ``output`` together once all are written)."""
+        files = [write_text(folder / METRICS_FILE, text), write_text(folder / REPORT_FILE, report)]
+        files.extend(experiment.plots(metrics, folder))
         info = _run_info(
             experiment, executor, len(specs), seed, started_at, seconds, time.perf_counter() - started
         )
-        files.append(write_text(output / RUN_FILE, dump_json(info, what="run info")))
+        files.append(write_text(folder / RUN_FILE, dump_json(info, what="run info")))
         if timing_text is not None:
-            files.append(write_text(output / TIMING_FILE, timing_text))
+            files.append(write_text(folder / TIMING_FILE, timing_text))
             if experiment.timing_report is not None:
-                files.extend(experiment.timing_report(json.loads(timing_text)["trials"], output))
+                files.extend(experiment.timing_report(json.loads(timing_text)["trials"], folder))
+        return files
+
+    files = write_folder(output, write) if output is not None else []
     return RunResult(
         experiment=experiment.name,
         trials=len(specs),

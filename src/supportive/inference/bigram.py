@@ -7,7 +7,7 @@ given probability 0) and the simplest baseline ``supportive evaluate`` reports
 
 >>> bigram = Bigram().fit([["a", "b"], ["a", "c"]])
 >>> {k: round(v, 2) for k, v in bigram.next_step(["a"]).items()}
-{'a': 0.14, 'b': 0.29, 'c': 0.29, '<end>': 0.14}
+{'a': 0.17, 'b': 0.33, 'c': 0.33, '<end>': 0.17}
 """
 
 from __future__ import annotations

@@ -5,6 +5,13 @@ at a time.
   renames it over the target: a reader, a crash or a full disk sees the old file or the new one, never half
   of one. A symlink is followed (the file it names is replaced, the link stays a link); the file's mode (and,
   where allowed, its owner) is kept; a new file gets the mode ``open()`` would give it.
+* :func:`create_new` makes a file that must not exist yet, whole or not at all (never a truncated one).
+* :func:`atomic_target` gives a writer that wants a file name (matplotlib, Pillow) a temporary one beside
+  the target, renamed over it once the writer is done; :func:`check_target` checks such a target's name
+  before any work (a folder, or a name without the suffix that says the format, is refused).
+* :func:`uninterrupted` holds Ctrl-C and SIGTERM back while a few renames that belong together run (the two
+  files of an HDDL export, the files of an experiment's report), so an interruption never leaves some of them
+  new and some old.
 * :func:`exclusive` holds a lock on the file while a read-change-write cycle runs, so a second ``supportive``
   process editing the same file waits for the first instead of overwriting what it just saved. The lock is
   ``flock`` on the file itself; a writer that waited checks it still holds the file that is there now (the
@@ -24,14 +31,25 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import os
+import signal
 import stat
 import tempfile
+import threading
 from collections.abc import Iterator
 from pathlib import Path
+from types import FrameType
 
 from supportive.errors import FileFormatError
 
-__all__ = ["atomic_write", "exclusive", "real_path"]
+__all__ = [
+    "atomic_target",
+    "atomic_write",
+    "check_target",
+    "create_new",
+    "exclusive",
+    "real_path",
+    "uninterrupted",
+]
 
 
 def real_path(path: str | Path) -> Path:
@@ -91,6 +109,10 @@ def atomic_write(
         with contextlib.suppress(OSError):
             os.unlink(temporary)
         raise error(f"cannot write: {exc.strerror}", path=path) from None
+    except BaseException:  # interrupted (Ctrl-C, or SIGTERM turned into one): the old file, and no temporary
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+        raise
     with contextlib.suppress(OSError):  # the rename itself reaches the disk
         folder = os.open(target.parent, os.O_RDONLY)
         try:
@@ -98,6 +120,71 @@ def atomic_write(
         finally:
             os.close(folder)
     return target
+
+
+def create_new(path: str | Path, text: str) -> Path:
+    """Make the new file ``path`` with ``text`` (UTF-8): written and flushed to disk under a temporary name,
+    then linked to ``path``, which must not exist. A crash, a kill or Ctrl-C leaves no file or the whole one.
+
+    Raises:
+        FileExistsError: when ``path`` exists (nothing is changed).
+        OSError: when it cannot be written.
+    """
+    target = Path(path)
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8", newline="") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fchmod(handle.fileno(), 0o666 & ~_umask())
+            os.fsync(handle.fileno())
+        os.link(temporary, target)  # fails when the target exists: never replaces a file
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+    return target
+
+
+def check_target(path: str | Path, suffix: str, what: str, *, error: type[FileFormatError] = FileFormatError) -> Path:
+    """Check that ``path`` can be written as a file of the kind ``what`` whose name ends in ``suffix`` (any
+    case): not a folder, not a name without that suffix. Nothing is written.
+
+    Raises:
+        error: naming the file, otherwise.
+    """
+    target = Path(path)
+    if target.is_dir():
+        raise error(f"is a folder; {what} is written to a file whose name ends in {suffix}", path=path)
+    if target.suffix.lower() != suffix:
+        raise error(f"{what} is written to a file whose name ends in {suffix}", path=path)
+    return target
+
+
+@contextlib.contextmanager
+def atomic_target(path: str | Path, *, error: type[FileFormatError] = FileFormatError) -> Iterator[Path]:
+    """A temporary file beside ``path`` (same suffix: writers choose the format by it) for the block to write;
+    once the block ends it replaces ``path`` atomically. A failure or an interruption removes it, and ``path``
+    is as it was.
+
+    Raises:
+        error: naming the file, when it cannot be written.
+    """
+    target = real_path(path)
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        descriptor, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=f".tmp{target.suffix}", dir=target.parent)
+        os.close(descriptor)
+    except OSError as exc:
+        raise error(f"cannot write: {exc.strerror}", path=path) from None
+    temporary = Path(name)
+    try:
+        yield temporary
+        os.replace(temporary, target)
+    except OSError as exc:
+        raise error(f"cannot write: {exc.strerror}", path=path) from None
+    finally:
+        with contextlib.suppress(OSError):
+            temporary.unlink()  # gone already once it replaced the target
 
 
 @contextlib.contextmanager
@@ -128,3 +215,26 @@ def exclusive(path: str | Path, *, error: type[FileFormatError] = FileFormatErro
         finally:
             os.close(descriptor)  # closing releases the lock
         # another writer replaced the file while we waited: lock the one that is there now
+
+
+@contextlib.contextmanager
+def uninterrupted() -> Iterator[None]:
+    """Hold back Ctrl-C (SIGINT) and SIGTERM while the block runs, then deliver the first that came: for a few
+    quick steps that must all happen or none (renaming a set of files into place). Outside the main thread,
+    where Python runs no signal handler, it changes nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+
+    def hold(signum: int, frame: FrameType | None) -> None:
+        caught.append(signum)
+
+    previous = {number: signal.signal(number, hold) for number in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler if handler is not None else signal.SIG_DFL)
+        if caught:
+            signal.raise_signal(caught[0])

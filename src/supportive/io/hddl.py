@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from supportive.errors import ExportError, FileFormatError
-from supportive.io.atomic import atomic_write
+from supportive.io.atomic import atomic_write, uninterrupted
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, first_leaves, nullable
 
 __all__ = ["hddl_strings", "htn_to_problem", "read_hddl", "solve_hddl", "write_hddl"]
@@ -209,7 +209,8 @@ def write_hddl(htn: HTN, directory: str | Path) -> tuple[Path, Path]:
     """Write ``domain.hddl`` and ``problem.hddl`` into ``directory`` (created if missing).
 
     Both texts are produced before anything is written, and each file is written atomically (mode and symlinks
-    kept), so a failed export leaves no half-written file and no domain without its problem.
+    kept), Ctrl-C held back until both are, so a failed or interrupted export leaves no half-written file and
+    no domain without its problem.
 
     Returns:
         The paths of the domain and problem files.
@@ -228,8 +229,9 @@ def write_hddl(htn: HTN, directory: str | Path) -> tuple[Path, Path]:
     paths = folder / "domain.hddl", folder / "problem.hddl"
     fresh = not paths[0].exists()
     try:
-        atomic_write(paths[0], domain)
-        atomic_write(paths[1], problem)
+        with uninterrupted():  # Ctrl-C never leaves a new domain beside an old problem
+            atomic_write(paths[0], domain)
+            atomic_write(paths[1], problem)
     except FileFormatError as exc:
         if fresh:  # never leave a domain without its problem
             paths[0].unlink(missing_ok=True)

@@ -11,6 +11,7 @@ __all__ = [
     "MAX_CSV_FIELD",
     "MAX_DEPTH",
     "MAX_FILE_BYTES",
+    "MAX_GENERATED_STEPS",
     "MAX_ID_LENGTH",
     "MAX_MAP_CELLS",
     "MAX_MAP_SIDE",
@@ -22,6 +23,11 @@ __all__ = [
 
 MAX_FILE_BYTES = 16 * 1024 * 1024
 """The largest file read (task files, observation streams, scenarios, maps): 16 MiB."""
+
+MAX_GENERATED_STEPS = 300_000
+"""The most steps ``supportive generate`` draws (actions × demonstrations), checked before it starts: some
+7 MB of YAML and, with 100,000 actions, 40 s on two cores. The file it writes must also stay within
+:data:`MAX_FILE_BYTES`, so that it can be read back (checked before it is written)."""
 
 MAX_DEPTH = 100
 """The deepest nesting of lists and mappings in a YAML or JSON file."""

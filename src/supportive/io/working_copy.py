@@ -10,11 +10,11 @@ copy.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from supportive.errors import TaskFileError
+from supportive.io.atomic import create_new
 from supportive.io.taskfile import dump_task, format_of, parse_task_file
 
 __all__ = ["EDITED", "WorkingCopy", "package_folder", "working_copy"]
@@ -50,7 +50,7 @@ class WorkingCopy:
 
     def start(self) -> Path:
         """Make the copy (the source's text, byte for byte; converted when the suffixes name different formats)
-        unless it exists; its path.
+        unless it exists; its path. The copy appears whole or not at all (:func:`~supportive.io.atomic.create_new`).
 
         Raises:
             TaskFileError: when it cannot be written.
@@ -64,9 +64,9 @@ class WorkingCopy:
             else dump_task(parse_task_file(self.source), format_of(self.path))
         )
         try:
-            descriptor = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-            with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
-                handle.write(text)
+            create_new(self.path, text)
+        except FileExistsError:  # made meanwhile by another session: carry on in it
+            return self.path
         except OSError as exc:
             raise TaskFileError(f"cannot make the working copy: {exc.strerror}", path=self.path) from None
         self.made = True
@@ -109,6 +109,9 @@ def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingC
             target = Path(name) if inside else source.parent / name  # a bundled one: in the current folder
     else:
         target = Path(save)
+    if target.is_dir():
+        raise TaskFileError("is a folder; --save names the file of the copy (.yaml, .yml or .json)", path=target)
+    format_of(target)  # a name whose suffix says no format is refused before anything is done
     if _inside_package(target):
         raise TaskFileError(
             f"{target} is inside the installed supportive package, whose examples are its own data: "

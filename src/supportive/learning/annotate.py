@@ -16,7 +16,11 @@ import math
 from collections import Counter, defaultdict
 from collections.abc import Mapping, Sequence
 
-from supportive.learning.decomposition import Decomposition
+import numpy as np
+import numpy.typing as npt
+
+from supportive.learning.decomposition import Decomposition, Shapes
+from supportive.learning.evidence import IntMatrix
 from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
@@ -30,6 +34,9 @@ from supportive.tasks.htn import (
 )
 
 __all__ = ["Annotated", "annotate"]
+
+_ABSENT = np.iinfo(np.int64).max
+"""The first position of a node a demonstration does not perform (after any other)."""
 
 
 class Annotated:
@@ -48,9 +55,15 @@ class Annotated:
         self.decomposition = decomposition
         self.demonstrations = demonstrations
         self._performed = self._performances(excused)
-        self._orders = self._child_orders()
+        shape = Shapes(decomposition.leaves, decomposition.groups)
+        self._kinds = {  # for each child, the index of the first child of its shape (instances share it)
+            node: _first_alike([shape(child) for child in decomposition.groups[node].children])
+            for node in self._performed
+            if node in decomposition.groups
+        }
+        self._orders = _ChildOrders(decomposition, self._kinds)
+        self._admitted: dict[tuple[bool, tuple[bool, ...]], int] = {}
         self.nodes: dict[int, Node] = {}
-        self._shapes: dict[int, object] = {}
         for root in decomposition.roots:
             self._node(root, frozenset(range(demonstrations)))
 
@@ -85,45 +98,14 @@ class Annotated:
             visit(root)
         return performed
 
-    def _child_orders(self) -> dict[int, list[list[int]]]:
-        """Internal node id -> per demonstration, the indices of its children in the order performed."""
-        groups = self.decomposition.groups
-        parent: dict[int, tuple[int, int]] = {}
-        for node, group in groups.items():
-            for i, child in enumerate(group.children):
-                parent[child] = (node, i)
-        orders: dict[int, list[list[int]]] = {node: [] for node in groups}
-        for sequence in self.decomposition.leaf_sequences:
-            current: dict[int, list[int]] = {}
-            for leaf in sequence:
-                node = leaf
-                while node in parent:
-                    up, position = parent[node]
-                    seen = current.setdefault(up, [])
-                    if not seen or seen[-1] != position:
-                        seen.append(position)
-                    node = up
-            for node, seen in current.items():
-                orders[node].append(seen)
-        return orders
-
-    def _shape(self, node: int) -> object:
-        """A node's shape by its actions, occurrences and optional flags left out (cached by id)."""
-        cached = self._shapes.get(node)
-        if cached is None:
-            group = self.decomposition.groups.get(node)
-            if group is None:
-                cached = ("action", self.decomposition.leaves[node][0])
-            else:
-                parts = [self._shape(c) for c in group.children]
-                cached = ("chain", tuple(parts)) if group.chain else ("clique", tuple(sorted(parts, key=repr)))
-            self._shapes[node] = cached
-        return cached
-
-    def _classes(self, children: Sequence[int]) -> list[int]:
-        """For each child, the index of the first child of its shape (instances of one subtask share it)."""
-        first: dict[object, int] = {}
-        return [first.setdefault(self._shape(child), i) for i, child in enumerate(children)]
+    def _admitted_orders(self, chain: bool, optional: tuple[bool, ...]) -> int:
+        """Orders of children with these optional flags a chain (or clique) admits, performing any."""
+        key = (chain, optional)
+        if key not in self._admitted:
+            children = tuple(ActionNode(str(i), optional=flag) for i, flag in enumerate(optional))
+            level: Node = ChainNode(children) if chain else CliqueNode(children)
+            self._admitted[key] = count_orderings(level) - int(all(optional))
+        return self._admitted[key]
 
     def _node(self, node: int, parent_performed: frozenset[int]) -> Node:
         performed = self._performed[node]
@@ -140,19 +122,16 @@ class Annotated:
                 support=Support(len(performed), 1, 1, True),
             )
         else:
-            kinds = self._classes(group.children)  # interchangeable instances make one order
+            kinds = self._kinds[node]  # interchangeable instances make one order
             children = tuple(self._node(child, performed) for child in group.children)
             if len(set(kinds)) < len(kinds):
                 children = _instances_alike(children)
-            orders = self._orders.get(node, [])
-            seen = len({tuple(kinds[i] for i in o) for o in orders})
+            seen = self._orders.seen[node]
             if group.chain:
                 counts = Counts(performed=len(performed), skipped=skipped)
-                level: Node = ChainNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
             else:
-                counts = _choice_counts(orders, len(children), len(performed), skipped)
-                level = CliqueNode(tuple(ActionNode(str(i), optional=c.optional) for i, c in enumerate(children)))
-            admitted = count_orderings(level) - int(all(c.optional for c in children))
+                counts = self._orders.counts(node, len(performed), skipped)
+            admitted = self._admitted_orders(group.chain, tuple(c.optional for c in children))
             if not group.chain:
                 admitted //= math.prod(math.factorial(n) for n in Counter(kinds).values())
             support = Support(len(performed), seen, admitted, seen >= admitted)
@@ -219,3 +198,132 @@ def _choice_counts(orders: Sequence[Sequence[int]], size: int, performed: int, s
     return Counts(
         performed=performed, skipped=skipped, first=tuple(first), after=tuple(tuple(row) for row in after)
     )
+
+
+def _first_alike(keys: Sequence[int]) -> list[int]:
+    """For each key, the index of its first occurrence."""
+    first: dict[int, int] = {}
+    return [first.setdefault(key, i) for i, key in enumerate(keys)]
+
+
+class _ChildOrders:
+    """How the demonstrations order each node's children: how many distinct orders (instances of one subtask
+    alike) and, as :class:`~supportive.tasks.htn.Counts` hold them, which child came first and which followed
+    which. Computed for all nodes at once.
+
+    The orders are those a walk from every leaf up through its parents reads (every node's leaves are
+    performed contiguously, so a child is met once per demonstration). A node's parent on that walk is the
+    last group in ``groups`` that lists it: a group left behind by splicing or folding may list it too, and
+    then the node counts for that group only.
+
+    Args:
+        decomposition: What :func:`~supportive.learning.decomposition.decompose` found.
+        kinds: For the nodes to describe, per child, the index of the first child of its shape.
+    """
+
+    def __init__(self, decomposition: Decomposition, kinds: Mapping[int, Sequence[int]]) -> None:
+        groups = decomposition.groups
+        owner: dict[int, tuple[int, int]] = {}
+        for node, group in groups.items():
+            for i, child in enumerate(group.children):
+                owner[child] = (node, i)
+        owned = {node: [i for i, c in enumerate(groups[node].children) if owner[c] == (node, i)] for node in kinds}
+        below = {node: [groups[node].children[i] for i in owned[node]] for node in kinds}
+        first = _first_positions(decomposition, below)
+        self.seen = _simple_chains(first, {node: below[node] for node in kinds if groups[node].chain})
+        """Node -> how many distinct orders of its children the demonstrations show."""
+        nodes = [node for node in kinds if node not in self.seen]
+        self._sizes = np.array([len(groups[node].children) for node in nodes], dtype=np.int64)
+        self._offsets = np.cumsum(self._sizes) - self._sizes
+        self._squares = np.cumsum(self._sizes**2) - self._sizes**2
+        self._place = {node: i for i, node in enumerate(nodes)}
+        node_of = np.repeat(np.arange(len(nodes)), [len(owned[node]) for node in nodes])
+        index = np.array([i for node in nodes for i in owned[node]], dtype=np.int64)
+        kind = np.array([kinds[node][i] for node in nodes for i in owned[node]], dtype=np.int64)
+        where = first[:, [c for node in nodes for c in below[node]]]
+        demo, entry = np.nonzero(where != _ABSENT)
+        ranked = np.lexsort((where[demo, entry], demo, node_of[entry]))  # by node, demonstration, position
+        demo, entry = demo[ranked], entry[ranked]
+        parent = node_of[entry]
+        starts = np.ones(len(entry), dtype=bool)  # where one node's order in one demonstration starts
+        starts[1:] = (parent[1:] != parent[:-1]) | (demo[1:] != demo[:-1])
+        self._first = np.bincount(self._offsets[parent[starts]] + index[entry[starts]], minlength=int(self._sizes.sum()))
+        within = ~starts[1:]
+        following = parent[1:][within]
+        pairs = self._squares[following] + index[entry[:-1][within]] * self._sizes[following] + index[entry[1:][within]]
+        self._after = np.bincount(pairs, minlength=int((self._sizes**2).sum()))
+        self.seen.update(zip(nodes, _distinct_runs(parent, starts, kind[entry], len(nodes)).tolist(), strict=True))
+
+    def counts(self, node: int, performed: int, skipped: int) -> Counts:
+        """A clique's counts: performed and skipped as given, and which child came first and which followed
+        which."""
+        place = self._place[node]
+        size = int(self._sizes[place])
+        first = self._first[self._offsets[place] : self._offsets[place] + size]
+        after = self._after[self._squares[place] : self._squares[place] + size * size].reshape(size, size)
+        return Counts(
+            performed=performed,
+            skipped=skipped,
+            first=tuple(first.tolist()),
+            after=tuple(tuple(row) for row in after.tolist()),
+        )
+
+
+def _simple_chains(first: IntMatrix, chains: Mapping[int, Sequence[int]]) -> dict[int, int]:
+    """Chain -> the orders of its children shown (0 or 1), for the chains whose children (``chains``: those
+    it is the parent of) every demonstration performs all or none of: they come in the chain's order."""
+    nonempty = [node for node, children in chains.items() if children]
+    out = {node: 0 for node, children in chains.items() if not children}
+    if nonempty:
+        sizes = np.array([len(chains[node]) for node in nonempty], dtype=np.int64)
+        present = first[:, [c for node in nonempty for c in chains[node]]] != _ABSENT
+        performed = np.add.reduceat(present, np.cumsum(sizes) - sizes, axis=1)
+        simple: list[bool] = np.all((performed == 0) | (performed == sizes), axis=0).tolist()
+        shown: list[bool] = np.any(performed > 0, axis=0).tolist()
+        out.update((node, int(one)) for node, one, alike in zip(nonempty, shown, simple, strict=True) if alike)
+    return out
+
+
+def _distinct_runs(node: IntMatrix, starts: npt.NDArray[np.bool_], kind: IntMatrix, nodes: int) -> IntMatrix:
+    """Per node (``0 … nodes-1``), how many distinct sequences of ``kind`` its runs hold; a run is the
+    entries from one start to the next, all of one node."""
+    begin = np.flatnonzero(starts)
+    length = np.diff(np.append(begin, len(starts)))
+    distinct = np.zeros(nodes, dtype=np.int64)
+    for size in np.unique(length).tolist():  # runs of different lengths differ
+        chosen = begin[length == size]
+        rows = kind[chosen[:, None] + np.arange(size)]
+        owner = node[chosen]
+        order = np.lexsort((*rows.T[::-1], owner))
+        rows, owner = rows[order], owner[order]
+        new = np.ones(len(owner), dtype=bool)
+        new[1:] = (owner[1:] != owner[:-1]) | (rows[1:] != rows[:-1]).any(axis=1)
+        distinct += np.bincount(owner[new], minlength=nodes)
+    return distinct
+
+
+def _first_positions(decomposition: Decomposition, below: Mapping[int, Sequence[int]]) -> IntMatrix:
+    """``first[d, n]``: where demonstration ``d`` starts node ``n`` on the walks (:data:`_ABSENT` when it never
+    does), for the leaves and the nodes of ``below`` (node -> the children it is the parent of)."""
+    size = max([*decomposition.groups, len(decomposition.leaves) - 1]) + 1
+    nodes = decomposition.leaf_nodes
+    first = np.full((len(nodes), size), _ABSENT, dtype=np.int64)
+    rows, columns = np.nonzero(nodes >= 0)
+    first[rows, nodes[rows, columns]] = columns
+    height: dict[int, int] = {}
+
+    def visit(node: int) -> int:
+        if node not in below:
+            return 0
+        if node not in height:
+            height[node] = 1 + max(map(visit, below[node]), default=-1)
+        return height[node]
+
+    levels: list[list[int]] = [[] for _ in range(max(map(visit, below), default=0))]
+    for node, h in height.items():
+        if h > 0:
+            levels[h - 1].append(node)
+    for parents in levels:
+        starts = np.cumsum([0, *(len(below[p]) for p in parents[:-1])])
+        first[:, parents] = np.minimum.reduceat(first[:, [c for p in parents for c in below[p]]], starts, axis=1)
+    return first

@@ -27,17 +27,27 @@ counts and support.
 
 from __future__ import annotations
 
-import math
-from collections.abc import Sequence
+import abc
+import heapq
+import itertools
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
-import networkx as nx
 import numpy as np
 
-from supportive.learning.evidence import contiguity_chance, established_precedences, pair_counts, supported
+from supportive.learning.evidence import (
+    BoolMatrix,
+    IntMatrix,
+    as_matrix,
+    established_precedences,
+    matrix_contiguity_chance,
+    position_pair_counts,
+    supported,
+)
 from supportive.tasks.htn import Leaf
 
-__all__ = ["Decomposition", "Group", "decompose"]
+__all__ = ["Decomposition", "Group", "Shapes", "decompose"]
 
 
 @dataclass(frozen=True)
@@ -60,7 +70,7 @@ class Decomposition:
         roots: The top-level node ids, in the order they first occur.
         sequences: Every demonstration as a sequence of root ids.
         presence: Node id -> the demonstrations (indices) performing any of its leaves.
-        leaf_sequences: Every demonstration as a sequence of leaf ids.
+        leaf_nodes: Every demonstration as a row of leaf ids, -1 after its end.
     """
 
     leaves: tuple[Leaf, ...]
@@ -68,7 +78,273 @@ class Decomposition:
     roots: list[int] = field(default_factory=list)
     sequences: list[list[int]] = field(default_factory=list)
     presence: dict[int, frozenset[int]] = field(default_factory=dict)
-    leaf_sequences: list[list[int]] = field(default_factory=list)
+    leaf_nodes: IntMatrix = field(default_factory=lambda: np.zeros((0, 0), dtype=np.int64))
+
+
+class Shapes:
+    """Numbers for the shapes of nodes: the same number for nodes of the same structure over the same actions,
+    whatever their occurrence numbers (the instances of one repeated subtask), a clique's children in any
+    order.
+
+    Args:
+        leaves: The leaf labels (leaf ``i`` is node ``i``).
+        groups: Internal nodes by id.
+    """
+
+    def __init__(self, leaves: Sequence[Leaf], groups: Mapping[int, Group]) -> None:
+        self._leaves = leaves
+        self._groups = groups
+        self._numbers: dict[int, int] = {}
+        self._forms: dict[tuple[object, ...], int] = {}
+
+    def __call__(self, node: int) -> int:
+        """The number of ``node``'s shape."""
+        number = self._numbers.get(node)
+        if number is None:
+            group = self._groups.get(node)
+            if group is None:
+                form: tuple[object, ...] = ("action", self._leaves[node][0])
+            else:
+                parts = [self(child) for child in group.children]
+                form = ("chain", *parts) if group.chain else ("clique", *sorted(parts))
+            number = self._numbers[node] = self._forms.setdefault(form, len(self._forms))
+        return number
+
+
+class _Level(abc.ABC):
+    """The demonstrations at one level of the decomposition: what the steps of :func:`_choose` ask of them.
+
+    Two forms answer alike: :class:`_Lists` (one demonstration at a time) and :class:`_Matrix` (all of them
+    at once, for many short demonstrations); :func:`_level` picks one.
+    """
+
+    size: int
+    present: set[int]
+    first: list[int]
+    starts: set[int]
+    ends: set[int]
+    adjacent: set[tuple[int, int]]
+
+    @property
+    @abc.abstractmethod
+    def nodes(self) -> IntMatrix:
+        """``nodes[d, i]``: the i-th node of demonstration ``d`` (-1 after its end)."""
+
+    def links(self) -> dict[int, int]:
+        """``x -> y`` for the pairs always performed one right after the other: every ``x`` is followed by
+        ``y`` and every ``y`` follows ``x``."""
+        followers: dict[int, set[int]] = {}
+        leaders: dict[int, set[int]] = {}
+        for x, y in self.adjacent:
+            followers.setdefault(x, set()).add(y)
+            leaders.setdefault(y, set()).add(x)
+        out: dict[int, int] = {}
+        for x, after in followers.items():
+            if len(after) == 1 and x not in self.ends:
+                (y,) = after
+                if y not in self.starts and len(leaders[y]) == 1:
+                    out[x] = y
+        return out
+
+    def candidate_pairs(self) -> set[tuple[int, int]]:
+        """Pairs whose closures hold every minimal candidate: those adjacent in the first sequence, and those
+        adjacent elsewhere that involve a node the first sequence lacks (a set contiguous everywhere with two
+        members in the first sequence holds a pair adjacent there; otherwise it holds such a node next to
+        another member)."""
+        seen = set(self.first)
+        pairs = set(itertools.pairwise(self.first))
+        pairs.update(pair for pair in self.adjacent if pair[0] not in seen or pair[1] not in seen)
+        return pairs
+
+    @abc.abstractmethod
+    def closure(self, pair: tuple[int, int], limit: int) -> frozenset[int] | None:
+        """The smallest set holding ``pair`` whose present members are contiguous in every sequence, or None
+        when it outgrows ``limit``."""
+
+    @abc.abstractmethod
+    def positions(self, members: Sequence[int]) -> IntMatrix:
+        """``positions[d, i]``: where demonstration ``d`` performs ``members[i]`` (-1: not at all)."""
+
+    @abc.abstractmethod
+    def chain_order(self, members: Sequence[int]) -> tuple[int, ...] | None:
+        """The members in the one order every demonstration performing any of them performs all of them in,
+        or None when there is no such order."""
+
+    @abc.abstractmethod
+    def performers(self) -> dict[int, set[int]]:
+        """Node -> the demonstrations performing it."""
+
+    @abc.abstractmethod
+    def rewritten(self, replace: dict[int, int], size: int, many: int) -> _Level:
+        """The next level: each member of a group replaced by the group (node ids below ``size``)."""
+
+    @abc.abstractmethod
+    def sequences(self) -> list[list[int]]:
+        """Every demonstration as a list of node ids."""
+
+
+def _level(sequences: list[list[int]], size: int, many: int) -> _Level:
+    """A level in the form that suits it: as matrices from ``many`` demonstrations on when they outnumber the
+    steps of the longest, else as lists."""
+    if len(sequences) >= many and len(sequences) > max(map(len, sequences), default=0):
+        return _Matrix(as_matrix(sequences), size)
+    return _Lists(sequences, size)
+
+
+class _Lists(_Level):
+    """A level as one list of node ids per demonstration (each node at most once)."""
+
+    def __init__(self, sequences: list[list[int]], size: int) -> None:
+        self._sequences = sequences
+        self.size = size
+        self.present = set(itertools.chain.from_iterable(sequences))
+        self.first = sequences[0]
+        self.starts = {sequence[0] for sequence in sequences if sequence}
+        self.ends = {sequence[-1] for sequence in sequences if sequence}
+        self.adjacent = set()
+        for sequence in sequences:
+            self.adjacent.update(itertools.pairwise(sequence))
+
+    @cached_property
+    def spots(self) -> dict[int, list[int]]:
+        """Per node of the level, its position in each demonstration (-1: not performed)."""
+        spots = {node: [-1] * len(self._sequences) for node in self.present}
+        for d, sequence in enumerate(self._sequences):
+            for i, node in enumerate(sequence):
+                spots[node][d] = i
+        return spots
+
+    @cached_property
+    def nodes(self) -> IntMatrix:
+        """The sequences as a matrix (:func:`~supportive.learning.evidence.as_matrix`)."""
+        return as_matrix(self._sequences)
+
+    def closure(self, pair: tuple[int, int], limit: int) -> frozenset[int] | None:
+        """See :meth:`_Level.closure`; its spans grown one node at a time."""
+        return _closure(pair, self.spots, self._sequences, limit)
+
+    def positions(self, members: Sequence[int]) -> IntMatrix:
+        """See :meth:`_Level.positions`."""
+        return np.array([self.spots[m] for m in members], dtype=np.int64).T
+
+    def chain_order(self, members: Sequence[int]) -> tuple[int, ...] | None:
+        """See :meth:`_Level.chain_order`."""
+        columns = [self.spots[m] for m in members]
+        found: list[int] | None = None
+        for row in zip(*columns, strict=True):
+            if max(row) < 0:
+                continue
+            if min(row) < 0:
+                return None
+            order = sorted(range(len(row)), key=row.__getitem__)
+            if found is None:
+                found = order
+            elif order != found:
+                return None
+        return None if found is None else tuple(members[i] for i in found)
+
+    def performers(self) -> dict[int, set[int]]:
+        """See :meth:`_Level.performers`."""
+        out: dict[int, set[int]] = {node: set() for node in sorted(self.present)}
+        for d, sequence in enumerate(self._sequences):
+            for node in sequence:
+                out[node].add(d)
+        return out
+
+    def rewritten(self, replace: dict[int, int], size: int, many: int) -> _Level:
+        """See :meth:`_Level.rewritten`: a group is performed contiguously and every node once, so the
+        group's are the only repeats."""
+        return _level([list(dict.fromkeys(map(replace.get, s, s))) for s in self._sequences], size, many)
+
+    def sequences(self) -> list[list[int]]:
+        """See :meth:`_Level.sequences`."""
+        return [list(sequence) for sequence in self._sequences]
+
+
+class _Matrix(_Level):
+    """A level as matrices: ``nodes[d, i]`` is the i-th node of demonstration ``d`` (-1 after its end) and
+    ``at[d, n]`` the position of node ``n`` in it (-1 when it does not perform it)."""
+
+    def __init__(self, nodes: IntMatrix, size: int) -> None:
+        self._nodes = nodes
+        self.size = size
+        valid = nodes >= 0
+        self.present = set(np.unique(nodes[valid]).tolist())
+        self.first = nodes[0][valid[0]].tolist()
+        lengths = valid.sum(axis=1)
+        self.starts = set(nodes[lengths > 0, 0].tolist())
+        self.ends = set(nodes[lengths > 0, lengths[lengths > 0] - 1].tolist())
+        pairs = np.unique(nodes[:, :-1][valid[:, 1:]] * (size + 1) + nodes[:, 1:][valid[:, 1:]])
+        before, after = np.divmod(pairs, size + 1)
+        self.adjacent = set(zip(before.tolist(), after.tolist(), strict=True))
+
+    @property
+    def nodes(self) -> IntMatrix:
+        """See :attr:`_Level.nodes`."""
+        return self._nodes
+
+    def closure(self, pair: tuple[int, int], limit: int) -> frozenset[int] | None:
+        """See :meth:`_Level.closure`; a fixpoint over all demonstrations at once: every node inside a span
+        joins."""
+        member = np.zeros(self.size + 1, dtype=bool)  # the last entry stands for the padding
+        member[list(pair)] = True
+        columns = np.arange(self.nodes.shape[1])
+        count = 2
+        while True:
+            where = self.at[:, member[:-1]]
+            lo = np.where(where >= 0, where, self.nodes.shape[1]).min(axis=1)
+            hi = where.max(axis=1)
+            member[self.nodes[(columns >= lo[:, None]) & (columns <= hi[:, None])]] = True
+            grown = int(np.count_nonzero(member))
+            if grown == count:
+                break
+            count = grown
+        if count > max(limit, 2):  # as when grown one node at a time: the pair itself is never refused
+            return None
+        return frozenset(np.flatnonzero(member).tolist())
+
+    @cached_property
+    def at(self) -> IntMatrix:
+        """``at[d, n]``: the position of node ``n`` in demonstration ``d`` (-1 when it does not perform it)."""
+        at = np.full((len(self.nodes), self.size), -1, dtype=np.int64)
+        rows, columns = np.nonzero(self.nodes >= 0)
+        at[rows, self.nodes[rows, columns]] = columns
+        return at
+
+    def positions(self, members: Sequence[int]) -> IntMatrix:
+        """See :meth:`_Level.positions`."""
+        return self.at[:, list(members)]
+
+    def chain_order(self, members: Sequence[int]) -> tuple[int, ...] | None:
+        """See :meth:`_Level.chain_order`."""
+        positions = self.positions(members)
+        performing = positions[(positions >= 0).any(axis=1)]
+        orders = np.argsort(performing, axis=1)
+        if len(performing) and (performing >= 0).all() and (orders == orders[0]).all():
+            return tuple(members[i] for i in orders[0].tolist())
+        return None
+
+    def performers(self) -> dict[int, set[int]]:
+        """See :meth:`_Level.performers`."""
+        return {node: set(np.flatnonzero(self.at[:, node] >= 0).tolist()) for node in sorted(self.present)}
+
+    def rewritten(self, replace: dict[int, int], size: int, many: int) -> _Level:
+        """See :meth:`_Level.rewritten`."""
+        new = np.arange(size + 1)
+        new[-1] = -1  # the padding stays padding
+        new[list(replace)] = list(replace.values())
+        mapped = new[self.nodes]
+        previous = np.concatenate([np.full((len(mapped), 1), -1), mapped[:, :-1]], axis=1)
+        keep = (mapped >= 0) & (mapped != previous)  # a group is performed contiguously, every node once
+        nodes = np.full((len(mapped), int(keep.sum(axis=1).max(initial=0))), -1, dtype=np.int64)
+        rows, _ = np.nonzero(keep)
+        nodes[rows, (np.cumsum(keep, axis=1) - 1)[keep]] = mapped[keep]
+        return _Matrix(nodes, size)
+
+    def sequences(self) -> list[list[int]]:
+        """See :meth:`_Level.sequences`."""
+        lengths = (self.nodes >= 0).sum(axis=1).tolist()
+        return [row[:length] for row, length in zip(self.nodes.tolist(), lengths, strict=True)]
 
 
 def decompose(
@@ -78,6 +354,7 @@ def decompose(
     order_support: int,
     modules: bool = True,
     max_module: int = 1000,
+    many: int = 64,
 ) -> Decomposition:
     """Chains and cliques of the labelled demonstrations (see the module docstring).
 
@@ -91,61 +368,51 @@ def decompose(
         modules: False keeps every leaf a root (no chain or clique is made).
         max_module: Candidates larger than this (nodes of one level) are not grown further (they are found
             only as the whole level); bounds the work on long demonstrations without structure.
+        many: From this many demonstrations, when they also outnumber the steps of a level's longest, that
+            level is worked on as matrices over all demonstrations at once, otherwise one demonstration at a
+            time; only the speed depends on it.
     """
-    order: dict[Leaf, int] = {}
-    for demo in labelled:
-        for leaf in demo:
-            order.setdefault(leaf, len(order))
+    order = {leaf: i for i, leaf in enumerate(dict.fromkeys(itertools.chain.from_iterable(labelled)))}
     result = Decomposition(tuple(order))
-    sequences = [[order[leaf] for leaf in demo] for demo in labelled]
-    result.leaf_sequences = [list(s) for s in sequences]
-    rank = {i: i for i in range(len(order))}
-    presence: dict[int, set[int]] = {i: set() for i in range(len(order))}
-    for d, sequence in enumerate(sequences):
-        for node in sequence:
-            presence[node].add(d)
-    next_id = len(order)
+    rank = list(range(len(order)))
+    level = _level([list(map(order.__getitem__, demo)) for demo in labelled], len(order), many)
+    result.leaf_nodes = level.nodes
+    presence = level.performers()
     chance: dict[int, float] = {}
     closures: dict[frozenset[int], frozenset[int] | None] = {}  # pair -> closure, kept while no member merges
-    while modules:
-        level = {node for sequence in sequences for node in sequence}
-        if len(level) <= 1:
-            break
-        chosen = _choose(sequences, level, rank, order_support, max_module, closures)
+    while modules and len(level.present) > 1:
+        chosen = _choose(level, rank, order_support, max_module, closures)
         if not chosen:
             break
         replace: dict[int, int] = {}
-        arrays = [np.asarray(sequence, dtype=np.int64) for sequence in sequences]
         for group in chosen:
-            node = next_id
-            next_id += 1
-            whole = len(group.children) == len(level)
+            node = len(rank)
+            whole = len(group.children) == len(level.present)
             if not group.chain:
-                chance[node] = 1.0 if whole else contiguity_chance(arrays, frozenset(group.children), next_id)
+                chance[node] = 1.0 if whole else matrix_contiguity_chance(level.nodes, group.children, level.size)
             weak = set()
             if not group.chain and not group.seen_in_full:
                 weak = {m for m in group.children if not supported(chance.get(m, 1.0), evidence)}
-            result.groups[node] = _spliced(group, result.groups, presence, weak)
-            rank[node] = min(rank[m] for m in group.children)
             presence[node] = set().union(*(presence[m] for m in group.children))
+            result.groups[node] = _spliced(group, result.groups, presence, weak, presence[node])
+            rank.append(min(map(rank.__getitem__, group.children)))
             for member in group.children:
                 replace[member] = node
-        sequences = [_rewrite(sequence, replace) for sequence in sequences]
+        level = level.rewritten(replace, len(rank), many)
         closures = {  # one that outgrew the limit may fit once nodes in its span merge: try it again
             pair: found
             for pair, found in closures.items()
             if found is not None and not (found & replace.keys())
         }
-    result.sequences = sequences
-    result.roots = sorted({n for s in sequences for n in s}, key=lambda n: rank[n])
+    result.sequences = level.sequences()
+    result.roots = sorted(level.present, key=rank.__getitem__)
     result.presence = {node: frozenset(ds) for node, ds in presence.items()}
     return result
 
 
 def _choose(
-    sequences: Sequence[Sequence[int]],
-    level: set[int],
-    rank: dict[int, int],
+    level: _Level,
+    rank: list[int],
     order_support: int,
     max_module: int,
     closures: dict[frozenset[int], frozenset[int] | None],
@@ -153,90 +420,60 @@ def _choose(
     """This level's accepted candidates (see the module docstring); ``closures`` caches the closures of
     pairs from level to level (a closure none of whose members merged is the same at the next level: no node
     outside it was inside its span)."""
-    where = [{x: i for i, x in enumerate(sequence)} for sequence in sequences]
-    pairs = _candidate_pairs(sequences)
-    followers: dict[int, set[int | None]] = {}
-    leaders: dict[int, set[int | None]] = {}
-    for s in sequences:
-        for i, x in enumerate(s):
-            followers.setdefault(x, set()).add(s[i + 1] if i + 1 < len(s) else None)
-            leaders.setdefault(x, set()).add(s[i - 1] if i else None)
+    links = level.links()
     candidates: dict[frozenset[int], None] = {}
+    linked: dict[frozenset[int], tuple[int, int]] = {}
     tried: set[frozenset[int]] = set()
-    for pair in sorted(pairs, key=lambda p: (rank[p[0]], rank[p[1]])):
-        x, y = pair
-        if followers[x] == {y} and leaders[y] == {x}:  # always one right after the other: a link
-            candidates[frozenset(pair)] = None
-            continue
+    for pair in sorted(level.candidate_pairs(), key=lambda p: (rank[p[0]], rank[p[1]])):
         key = frozenset(pair)
+        if links.get(pair[0]) == pair[1]:  # always one right after the other: a link, a chain of two
+            candidates[key] = None
+            linked[key] = pair
+            continue
         if key in tried:  # the same pair in the other order: the same closure
             continue
         tried.add(key)
         if key in closures:
             found = closures[key]
         else:
-            found = closures[key] = _closure(pair, where, sequences, max_module)
+            found = closures[key] = level.closure(pair, max_module)
         if found is not None:
             candidates[found] = None
-    whole = frozenset(level)
-    ordered = sorted(candidates, key=lambda c: (len(c), min(rank[m] for m in c)))
+    whole = frozenset(level.present)
+    ordered = sorted(candidates, key=lambda c: (len(c), min(map(rank.__getitem__, c))))
     chosen: list[Group] = []
     used: set[int] = set()
     for candidate in ordered:
         if candidate & used or candidate == whole:
             continue
-        group = _classify(_member_orders(candidate, where), rank, order_support)
+        if candidate in linked:
+            group: Group | None = Group(linked[candidate], True)
+        else:
+            group = _classify(level, sorted(candidate, key=rank.__getitem__), order_support)
         if group is None:
             continue
         chosen.append(group)
         used |= candidate
     if not chosen:
-        group = _classify([list(s) for s in sequences], rank, order_support)
+        group = _classify(level, sorted(level.present, key=rank.__getitem__), order_support)
         if group is not None:
             chosen.append(group)
     return chosen
 
 
-def _member_orders(members: frozenset[int], where: Sequence[dict[int, int]]) -> list[list[int]]:
-    """The members each sequence performs, in its order."""
-    out = []
-    for positions in where:
-        present = [(positions[m], m) for m in members if m in positions]
-        present.sort()
-        out.append([m for _, m in present])
-    return out
-
-
-def _candidate_pairs(sequences: Sequence[Sequence[int]]) -> set[tuple[int, int]]:
-    """Pairs whose closures hold every minimal candidate: those adjacent in the first sequence, and those
-    adjacent elsewhere that involve a node the first sequence lacks (a set contiguous everywhere with two
-    members in the first sequence holds a pair adjacent there; otherwise it holds such a node next to
-    another member)."""
-    first = sequences[0]
-    pairs = {(first[i], first[i + 1]) for i in range(len(first) - 1)}
-    seen = set(first)
-    for sequence in sequences[1:]:
-        for i in range(len(sequence) - 1):
-            x, y = sequence[i], sequence[i + 1]
-            if x not in seen or y not in seen:
-                pairs.add((x, y))
-    return pairs
-
-
 def _closure(
-    pair: tuple[int, int], where: Sequence[dict[int, int]], sequences: Sequence[Sequence[int]], limit: int
+    pair: tuple[int, int], spots: Mapping[int, Sequence[int]], sequences: Sequence[Sequence[int]], limit: int
 ) -> frozenset[int] | None:
-    """The smallest set holding ``pair`` whose present members are contiguous in every sequence, or None
-    when it outgrows ``limit``."""
+    """:meth:`_Level.closure`, its spans grown one node at a time (``spots``: per node, its position in each
+    sequence, -1 when absent)."""
     members = set(pair)
     frontier = list(pair)
     lo = [-1] * len(sequences)
     hi = [-1] * len(sequences)
     while frontier:
         node = frontier.pop()
-        for d, positions in enumerate(where):
-            p = positions.get(node)
-            if p is None:
+        for d, p in enumerate(spots[node]):
+            if p < 0:
                 continue
             if lo[d] < 0:
                 lo[d] = hi[d] = p
@@ -260,46 +497,79 @@ def _closure(
     return frozenset(members)
 
 
-def _classify(orders: Sequence[Sequence[int]], rank: dict[int, int], order_support: int) -> Group | None:
-    """Members performed in ``orders`` (each sequence's members, in its order): a chain when one order fits
-    every sequence, a clique when no order between two of them is established, else None."""
-    listed = sorted({m for order in orders for m in order}, key=lambda n: rank[n])
-    performed = [order for order in orders if order]
-    if all(len(order) == len(listed) and order == performed[0] for order in performed):
-        return Group(tuple(performed[0]), True)
-    before, together = pair_counts(orders, listed)
-    graph = nx.DiGraph()
-    graph.add_nodes_from(range(len(listed)))
-    graph.add_edges_from((int(u), int(v)) for u, v in zip(*np.nonzero(before), strict=True))
-    if nx.is_directed_acyclic_graph(graph):
-        mean = _mean_positions(orders, listed)
-        order = list(nx.lexicographical_topological_sort(graph, key=lambda i: (mean[i], i)))
+def _classify(level: _Level, listed: list[int], order_support: int) -> Group | None:
+    """The nodes ``listed`` (in rank order): a chain when one order fits every sequence, a clique when no
+    order between two of them is established, else None."""
+    chain = level.chain_order(listed)
+    if chain is not None:
+        return Group(chain, True)
+    positions = level.positions(listed)
+    present = positions >= 0
+    before, together = position_pair_counts(positions)
+    precedes = before > 0
+    if _topological(precedes, lambda i: i) is not None:
+        mean = _mean_positions(positions)
+        order = _topological(precedes, lambda i: (mean[i], i))
+        assert order is not None
         return Group(tuple(listed[i] for i in order), True)
     if established_precedences(before, together, order_support).any():
         return None
-    complete = {tuple(order) for order in orders if len(order) == len(listed)}
-    return Group(tuple(listed), False, len(complete) == math.factorial(len(listed)))
+    complete = np.argsort(positions[present.all(axis=1)], axis=1)
+    return Group(tuple(listed), False, _every_order(complete, len(listed)))
 
 
-def _mean_positions(orders: Sequence[Sequence[int]], members: Sequence[int]) -> list[float]:
-    """Mean relative position (0 to 1) of each member within the orders it is performed in."""
-    index = {m: i for i, m in enumerate(members)}
-    total = [0.0] * len(members)
-    count = [0] * len(members)
-    for order in orders:
-        inside = [index[x] for x in order]
-        for p, i in enumerate(inside):
-            total[i] += p / max(len(inside) - 1, 1)
-            count[i] += 1
-    return [t / c if c else 0.0 for t, c in zip(total, count, strict=True)]
+def _topological(edges: BoolMatrix, key: Callable[[int], object]) -> list[int] | None:
+    """The nodes ``0 … n-1`` of the graph ``edges`` (``edges[i, j]``: an edge ``i -> j``) in topological
+    order, the ready node of smallest ``key`` first; None when the graph has a cycle."""
+    indegree = edges.sum(axis=0).tolist()
+    sources, targets = np.nonzero(edges)
+    successors: list[list[int]] = [[] for _ in indegree]
+    for u, v in zip(sources.tolist(), targets.tolist(), strict=True):
+        successors[u].append(v)
+    ready = [(key(i), i) for i, degree in enumerate(indegree) if degree == 0]
+    heapq.heapify(ready)
+    out: list[int] = []
+    while ready:
+        _, node = heapq.heappop(ready)
+        out.append(node)
+        for child in successors[node]:
+            indegree[child] -= 1
+            if indegree[child] == 0:
+                heapq.heappush(ready, (key(child), child))
+    return out if len(out) == len(indegree) else None
 
 
-def _spliced(group: Group, groups: dict[int, Group], presence: dict[int, set[int]], weak: set[int]) -> Group:
+def _mean_positions(positions: IntMatrix) -> list[float]:
+    """Mean relative position (0 to 1) of each member within the sequences performing it (``positions`` as
+    in :meth:`_Level.positions`), summed in sequence order."""
+    present = positions >= 0
+    performed = present.sum(axis=1)
+    order = np.argsort(np.where(present, positions, positions.shape[1] + positions.max()), axis=1)
+    place = np.empty_like(order)
+    np.put_along_axis(place, order, np.arange(positions.shape[1])[None, :], axis=1)
+    share = np.where(present, place / np.maximum(performed - 1, 1)[:, None], 0.0)
+    total = np.cumsum(share, axis=0)[-1]  # one sequence after another, as a running sum would
+    mean: list[float] = (total / present.sum(axis=0)).tolist()
+    return mean
+
+
+def _every_order(orders: IntMatrix, size: int) -> bool:
+    """True when the rows of ``orders`` hold each of the ``size!`` orders of ``size`` members."""
+    needed = 1
+    for k in range(2, size + 1):
+        needed *= k
+        if needed > len(orders):
+            return False
+    return len(set(map(tuple, orders.tolist()))) == needed
+
+
+def _spliced(
+    group: Group, groups: dict[int, Group], presence: dict[int, set[int]], weak: set[int], whole: set[int]
+) -> Group:
     """Members that mean nothing of their own are replaced by their children: a chain in a chain performed
-    whenever its siblings are (both mean the same order; an optional sub-chain stays a node of its own), and
-    a clique in a clique whose contiguity is not evidenced (``weak``: a clique of its own would claim it is
-    never interleaved with its siblings)."""
-    whole = set().union(*(presence[m] for m in group.children))
+    whenever its siblings are (``whole``: the demonstrations performing any of them; both mean the same
+    order; an optional sub-chain stays a node of its own), and a clique in a clique whose contiguity is not
+    evidenced (``weak``: a clique of its own would claim it is never interleaved with its siblings)."""
     children: list[int] = []
     for member in group.children:
         inner = groups.get(member)
@@ -310,15 +580,3 @@ def _spliced(group: Group, groups: dict[int, Group], presence: dict[int, set[int
         else:
             children.append(member)
     return Group(tuple(children), group.chain, group.seen_in_full and not weak)
-
-
-def _rewrite(sequence: Sequence[int], replace: dict[int, int]) -> list[int]:
-    out: list[int] = []
-    for node in sequence:
-        new = replace.get(node, node)
-        if new != node and out and out[-1] == new:
-            continue
-        out.append(new)
-    return out
-
-

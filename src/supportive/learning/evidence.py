@@ -21,6 +21,7 @@ Two claims a hierarchy makes need evidence from a few demonstrations:
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 
@@ -28,7 +29,17 @@ import numpy as np
 import numpy.typing as npt
 from scipy.stats import binom
 
-__all__ = ["agreed_orders", "contiguity_chance", "established_precedences", "pair_counts", "slip_allowance", "supported"]
+__all__ = [
+    "agreed_orders",
+    "as_matrix",
+    "contiguity_chance",
+    "established_precedences",
+    "matrix_contiguity_chance",
+    "pair_counts",
+    "position_pair_counts",
+    "slip_allowance",
+    "supported",
+]
 
 BoolMatrix = npt.NDArray[np.bool_]
 IntMatrix = npt.NDArray[np.int64]
@@ -38,19 +49,26 @@ def pair_counts(sequences: Sequence[Sequence[int]], members: Sequence[int]) -> t
     """``(before, together)``: ``before[i, j]`` counts the sequences doing ``members[i]`` before
     ``members[j]``, ``together[i, j]`` those doing both."""
     index = {m: i for i, m in enumerate(members)}
-    size = len(members)
+    ranks = np.full((len(sequences), len(members)), -1, dtype=np.int64)
+    for row, sequence in zip(ranks, sequences, strict=True):
+        order = [index[x] for x in sequence if x in index]
+        row[order] = np.arange(len(order))
+    return position_pair_counts(ranks)
+
+
+def position_pair_counts(positions: IntMatrix) -> tuple[IntMatrix, IntMatrix]:
+    """:func:`pair_counts` of sequences given as ``positions[s, i]``, where sequence ``s`` does member ``i``
+    (-1: not at all; only the order of the positions in a row matters). Sequences doing fewer than two
+    members count in neither matrix."""
+    present = positions >= 0
+    shown = present[present.sum(axis=1) >= 2].astype(np.int64)
+    together: IntMatrix = shown.T @ shown
+    first = np.where(present, positions, positions.max(initial=0) + 1)  # absent: never before another
+    size = positions.shape[1]
     before = np.zeros((size, size), dtype=np.int64)
-    together = np.zeros((size, size), dtype=np.int64)
-    for sequence in sequences:
-        order = np.array([index[x] for x in sequence if x in index], dtype=np.int64)
-        if len(order) < 2:
-            continue
-        rank = np.full(size, -1, dtype=np.int64)
-        rank[order] = np.arange(len(order))
-        present = rank >= 0
-        both = present[:, None] & present[None, :]
-        together += both
-        before += both & (rank[:, None] < rank[None, :])
+    step = max(1, len(positions) // max(size, 1))  # a chunk of sequences holds about as many cells as the input
+    for start in range(0, len(positions), step):
+        before += (first[start : start + step, :, None] < positions[start : start + step, None, :]).sum(axis=0)
     return before, together
 
 
@@ -97,24 +115,39 @@ def contiguity_chance(arrays: Sequence[npt.NDArray[np.int64]], members: frozense
         members: The nodes of the would-be subtask.
         size: One more than the largest node id.
     """
-    member = np.zeros(size, dtype=bool)
+    return matrix_contiguity_chance(as_matrix(arrays), list(members), size)
+
+
+def as_matrix(sequences: Sequence[Sequence[int]] | Sequence[npt.NDArray[np.int64]]) -> IntMatrix:
+    """Sequences of node ids as the rows of one matrix, each row padded with -1 after its sequence ends."""
+    lengths = np.array(list(map(len, sequences)), dtype=np.int64)
+    matrix = np.full((len(sequences), int(lengths.max(initial=0))), -1, dtype=np.int64)
+    matrix[np.arange(matrix.shape[1]) < lengths[:, None]] = np.fromiter(
+        itertools.chain.from_iterable(sequences), dtype=np.int64, count=int(lengths.sum())
+    )
+    return matrix
+
+
+def matrix_contiguity_chance(nodes: IntMatrix, members: Sequence[int], size: int) -> float:
+    """:func:`contiguity_chance` of sequences given as the rows of ``nodes`` (:func:`as_matrix`)."""
+    member = np.zeros(size + 1, dtype=bool)  # the last entry stands for the padding
     member[list(members)] = True
-    before = np.zeros(size, dtype=bool)
-    after = np.zeros(size, dtype=bool)
-    spans: list[tuple[npt.NDArray[np.int64], int]] = []
-    for array in arrays:
-        inside = np.flatnonzero(member[array])
-        if len(inside) == 0:
-            continue
-        before[array[: inside[0]]] = True
-        after[array[inside[-1] + 1 :]] = True
-        spans.append((array, len(inside)))
-    free = before & after & ~member
+    inside = member[nodes]
+    spans = inside.any(axis=1)
+    nodes, inside = nodes[spans], inside[spans]
+    columns = np.arange(nodes.shape[1])
+    first = inside.argmax(axis=1)
+    last = nodes.shape[1] - 1 - inside[:, ::-1].argmax(axis=1)
+    before = np.zeros(size + 1, dtype=bool)
+    after = np.zeros(size + 1, dtype=bool)
+    before[nodes[columns < first[:, None]]] = True
+    after[nodes[columns > last[:, None]]] = True
+    free = before & after & ~member  # the padding is never before a member: never free
     if not free.any():
         return 1.0
     log_chance = 0.0
-    for array, count in spans:
-        log_chance += int(free[array].sum()) * math.log(2.0 / (count + 1))
+    for loose, count in zip(free[nodes].sum(axis=1).tolist(), inside.sum(axis=1).tolist(), strict=True):
+        log_chance += loose * math.log(2.0 / (count + 1))
     return math.exp(log_chance)
 
 

@@ -16,6 +16,7 @@ neighbour's label may itself change.
 
 from __future__ import annotations
 
+import itertools
 from collections import Counter
 from collections.abc import Sequence
 
@@ -37,27 +38,26 @@ def label_performances(demonstrations: Sequence[Sequence[str]]) -> list[tuple[Le
     often has the instances matched to the performances that fit them best, and its other performances are
     labelled after the last instance (``k + 1``, ``k + 2``, … in order: a repeated step).
     """
+    if all(len(set(demo)) == len(demo) for demo in demonstrations):  # no action repeats: nothing to decide
+        first = {action: (action, 1) for action in set(itertools.chain.from_iterable(demonstrations))}
+        return [tuple(map(first.__getitem__, demo)) for demo in demonstrations]
+    counts = [Counter(demo) for demo in demonstrations]
     labelled = [list(to_leaves(demo)) for demo in demonstrations]
     tallies: dict[str, Counter[int]] = {}
-    for demo in demonstrations:
-        for action, count in Counter(demo).items():
-            tallies.setdefault(action, Counter())[count] += 1
+    for count in counts:
+        for action, times in count.items():
+            tallies.setdefault(action, Counter())[times] += 1
     full = Counter({action: max(t, key=lambda k: (t[k], k)) for action, t in tallies.items()})
-    short = {
-        action
-        for action, k in full.items()
-        if any(Counter(demo)[action] not in (0, k) for demo in demonstrations)
-        and (k > 1 or any(Counter(demo)[action] > k for demo in demonstrations))
-    }
+    missed = {action for count in counts for action, times in count.items() if times != full[action]}
+    short = {action for action in full if action in missed}  # built in this order: it is iterated below
     if not short:
         return [tuple(demo) for demo in labelled]
     for _ in range(_ROUNDS):
-        contexts = _contexts(labelled, demonstrations, full, short)
+        contexts = _contexts(labelled, counts, full, short)
         changed = False
         for d, demo in enumerate(demonstrations):
-            counts = Counter(demo)
             for action in short:
-                if counts[action] in (0, full[action]):
+                if counts[d][action] in (0, full[action]):
                     continue
                 positions = [i for i, a in enumerate(demo) if a == action]
                 slots = _assign(positions, labelled[d], contexts[action], full[action])
@@ -72,19 +72,19 @@ def label_performances(demonstrations: Sequence[Sequence[str]]) -> list[tuple[Le
 
 def _contexts(
     labelled: Sequence[Sequence[Leaf]],
-    demonstrations: Sequence[Sequence[str]],
+    counts: Sequence[Counter[str]],
     full: Counter[str],
     short: set[str],
 ) -> dict[str, list[tuple[Counter[Leaf], Counter[Leaf]]]]:
     """For each action of ``short``: per instance, the labels seen just before and just after it in the
-    demonstrations that perform the action as often as it has instances."""
+    demonstrations that perform the action as often as it has instances (``counts``: each demonstration's
+    performances per action)."""
     out: dict[str, list[tuple[Counter[Leaf], Counter[Leaf]]]] = {
         action: [(Counter(), Counter()) for _ in range(full[action])] for action in short
     }
-    for demo, labels in zip(demonstrations, labelled, strict=True):
-        counts = Counter(demo)
+    for count, labels in zip(counts, labelled, strict=True):
         for i, (action, instance) in enumerate(labels):
-            if action not in short or counts[action] != full[action]:
+            if action not in short or count[action] != full[action]:
                 continue
             before, after = out[action][instance - 1]
             before[labels[i - 1] if i else _START] += 1

@@ -38,7 +38,7 @@ from typing import Literal
 import numpy as np
 from scipy.stats import binom
 
-from supportive.learning.evidence import pair_counts
+from supportive.learning.evidence import IntMatrix, as_matrix, pair_counts
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
 from supportive.learning.structure import FittedStructure, StructureSettings, fit_structure
@@ -67,7 +67,11 @@ class Deviation:
     def as_dict(self, demo_ids: Sequence[str] = ()) -> dict[str, object]:
         """Plain-data form; ``demo_ids`` names the demonstrations by their ids."""
         action, instance = self.leaf
-        name = demo_ids[self.demonstration] if self.demonstration < len(demo_ids) else str(self.demonstration + 1)
+        name = (
+            demo_ids[self.demonstration]
+            if self.demonstration < len(demo_ids)
+            else str(self.demonstration + 1)
+        )
         data: dict[str, object] = {"demonstration": name, "kind": self.kind, "action": action}
         if instance != 1:
             data["occurrence"] = instance
@@ -130,7 +134,11 @@ class SlipResult:
 
 
 def find_slips(
-    labelled: Sequence[Sequence[Leaf]], structure: StructureSettings, settings: NoiseSettings, *, modules: bool = True
+    labelled: Sequence[Sequence[Leaf]],
+    structure: StructureSettings,
+    settings: NoiseSettings,
+    *,
+    modules: bool = True,
 ) -> SlipResult:
     """The most probable explanation of ``labelled`` as valid executions plus slips (see the module
     docstring).
@@ -148,7 +156,11 @@ class _Search:
     """Greedy search over sets of slips, scoring each set by refitting (see the module docstring)."""
 
     def __init__(
-        self, labelled: Sequence[Sequence[Leaf]], structure: StructureSettings, settings: NoiseSettings, modules: bool
+        self,
+        labelled: Sequence[Sequence[Leaf]],
+        structure: StructureSettings,
+        settings: NoiseSettings,
+        modules: bool,
     ) -> None:
         self.labelled = [tuple(demo) for demo in labelled]
         self.structure_settings = structure
@@ -157,6 +169,7 @@ class _Search:
         self.steps = sum(len(demo) for demo in self.labelled)
         self._scores: dict[frozenset[Deviation], float] = {}
         self._fits: dict[frozenset[Deviation], FittedStructure] = {}
+        self._found: dict[frozenset[Deviation], list[frozenset[Deviation]]] = {}
 
     # ------------------------------------------------------------------ search
     def run(self) -> SlipResult:
@@ -245,10 +258,21 @@ class _Search:
     def _searchable(self) -> bool:
         """With no more demonstrations than the support an agreement needs, no slip can be told from a
         variant: nothing to search (nor with an infinite margin)."""
-        return math.isfinite(self.settings.margin) and len(self.labelled) > self.structure_settings.support_needed
+        return (
+            math.isfinite(self.settings.margin)
+            and len(self.labelled) > self.structure_settings.support_needed
+        )
 
     # ------------------------------------------------------------------ candidates
     def _candidates(self, slips: frozenset[Deviation]) -> list[frozenset[Deviation]]:
+        """The slips worth scoring next, given ``slips`` (remembered: the joint start and the first
+        forward round ask for the same)."""
+        found = self._found.get(slips)
+        if found is None:
+            found = self._found[slips] = self._find_candidates(slips)
+        return found
+
+    def _find_candidates(self, slips: frozenset[Deviation]) -> list[frozenset[Deviation]]:
         cleaned = self._cleaned_positions(slips)
         n = len(cleaned)
         need = self.structure_settings.support_needed
@@ -309,11 +333,15 @@ class _Search:
                 continue
             for i, (position, leaf) in enumerate(cleaned[d]):
                 rest = leaves[:i] + leaves[i + 1 :]
-                if any(htn.admits_leaves([*rest[:j], leaf, *rest[j:]]) for j in range(len(rest) + 1) if j != i):
+                if any(
+                    htn.admits_leaves([*rest[:j], leaf, *rest[j:]]) for j in range(len(rest) + 1) if j != i
+                ):
                     out.append(frozenset({Deviation(d, position, leaf, "out of order")}))
         return out
 
-    def _moved(self, cleaned: list[list[tuple[int, Leaf]]], slips: frozenset[Deviation]) -> list[frozenset[Deviation]]:
+    def _moved(
+        self, cleaned: list[list[tuple[int, Leaf]]], slips: frozenset[Deviation]
+    ) -> list[frozenset[Deviation]]:
         """Single steps that reverse orders the other demonstrations agree on, the most telling first: each
         reversed order weighs one over the number of demonstrations reversing it (a step moved alone
         reverses orders nobody else does).
@@ -338,10 +366,14 @@ class _Search:
         chance = np.full((len(leaves), len(leaves)), 0.5)  # [i, j]: j before i, as the hierarchy predicts
         chance[np.ix_(where[known], where[known])] = predicted[np.ix_(known, known)].T
         tested = int(reversed_.sum())
-        agreed = reversed_ & (binom.cdf(before.T, together, chance) < self.structure_settings.evidence / tested)
+        agreed = reversed_ & (
+            binom.cdf(before.T, together, chance) < self.structure_settings.evidence / tested
+        )
         if not agreed.any():
             return []
-        weight = np.where(agreed.T, 1.0 / np.maximum(before.T, 1), 0.0)  # [i, j]: j before i agreed, i first here
+        weight = np.where(
+            agreed.T, 1.0 / np.maximum(before.T, 1), 0.0
+        )  # [i, j]: j before i agreed, i first here
         ranked: list[tuple[float, int, int, Leaf]] = []
         for d, sequence in enumerate(sequences):
             order = np.asarray(sequence, dtype=np.int64)
@@ -363,25 +395,38 @@ class _Search:
         except that a step found inside it in one demonstration only does not join: that demonstration's
         step is the candidate, when the subtask is then kept together by at least that support of the
         others and the step is done outside it by as many."""
-        arrays = [[leaf for _, leaf in demo] for demo in cleaned]
         need = self.structure_settings.support_needed
-        adjacent = Counter(pair for demo in arrays for pair in itertools.pairwise(demo))
+        leaves = sorted({leaf for demo in cleaned for _, leaf in demo})
+        index = {leaf: i for i, leaf in enumerate(leaves)}
+        matrix = as_matrix([[index[leaf] for _, leaf in demo] for demo in cleaned])
+        performed = np.zeros((len(cleaned), len(leaves) + 1), dtype=bool)  # [d, i]: demonstration d does i
+        performed[np.arange(len(cleaned))[:, None], matrix] = True  # padding (-1) lands in the last column
+        doers = performed[:, :-1].sum(axis=0)
+        followed = matrix[:, 1:] >= 0
+        adjacent = Counter(
+            zip(matrix[:, :-1][followed].tolist(), matrix[:, 1:][followed].tolist(), strict=True)
+        )
         found: dict[tuple[int, int], tuple[int, Leaf]] = {}
         for pair in (p for p, count in adjacent.items() if count >= need):
-            members, intruders = _robust_closure(frozenset(pair), arrays)
-            kept = sum(1 for demo in arrays if sum(leaf in members for leaf in demo) >= 2)
-            for d, leaf in intruders:
-                outside = sum(1 for demo in arrays if leaf in demo) - 1
-                if kept - 1 >= need and outside >= need:
-                    position = cleaned[d][arrays[d].index(leaf)][0]
-                    found[(d, position)] = max(found.get((d, position), (0, leaf)), (len(members), leaf))
+            members, intruders = _robust_closure(frozenset(pair), matrix)
+            kept = int((performed[:, sorted(members)].sum(axis=1) >= 2).sum())
+            for d, i in intruders:
+                if kept - 1 >= need and doers[i] - 1 >= need:
+                    where = int(np.flatnonzero(matrix[d] == i)[0])
+                    position = cleaned[d][where][0]
+                    found[(d, position)] = max(
+                        found.get((d, position), (0, leaves[i])), (len(members), leaves[i])
+                    )
         ranked = sorted(found.items(), key=lambda item: (-item[1][0], item[0]))
         return [frozenset({Deviation(d, p, leaf, "out of order")}) for (d, p), (_, leaf) in ranked]
 
     # ------------------------------------------------------------------ scoring
     def _cleaned_positions(self, slips: frozenset[Deviation]) -> list[list[tuple[int, Leaf]]]:
         out_at = {(d.demonstration, d.position) for d in slips if d.kind in _TAKEN_OUT}
-        return [[(p, leaf) for p, leaf in enumerate(demo) if (d, p) not in out_at] for d, demo in enumerate(self.labelled)]
+        return [
+            [(p, leaf) for p, leaf in enumerate(demo) if (d, p) not in out_at]
+            for d, demo in enumerate(self.labelled)
+        ]
 
     def _cleaned(self, slips: frozenset[Deviation]) -> list[tuple[Leaf, ...]]:
         """The demonstrations with the slips taken out; where a repeated performance was, the performances
@@ -416,7 +461,9 @@ class _Search:
         fitted = self._fits.get(slips)
         if fitted is None:
             excused = [(d.demonstration, d.leaf) for d in slips if d.kind in _PUT_BACK]
-            fitted = fit_structure(self._cleaned(slips), excused, self.structure_settings, modules=self.modules)
+            fitted = fit_structure(
+                self._cleaned(slips), excused, self.structure_settings, modules=self.modules
+            )
             self._fits[slips] = fitted
         return fitted
 
@@ -436,7 +483,9 @@ class _Search:
         total = 0.0
         for d, demo in enumerate(cleaned):
             mine = by_demo.get(d)
-            total += reading.log_probability(demo) if mine is None else self._restored(reading, list(demo), mine)
+            total += (
+                reading.log_probability(demo) if mine is None else self._restored(reading, list(demo), mine)
+            )
             if total == -math.inf:
                 break
         total -= 0.5 * math.log(max(len(cleaned), 1)) * reading.parameters()
@@ -473,7 +522,9 @@ class _Search:
         a, b = self._prior()
         n = self.steps
         return sum(
-            math.lgamma(k + a) + math.lgamma(n - k + b) - math.lgamma(n + a + b)
+            math.lgamma(k + a)
+            + math.lgamma(n - k + b)
+            - math.lgamma(n + a + b)
             - (math.lgamma(a) + math.lgamma(b) - math.lgamma(a + b))
             for k in (counts[kind] for kind in KINDS)
         )
@@ -483,27 +534,29 @@ class _Search:
         return self.settings.rate * self.settings.weight, (1.0 - self.settings.rate) * self.settings.weight
 
 
-
-
 def _surprising(demos: Sequence[Sequence[tuple[int, Leaf]]]) -> set[int]:
     """The demonstrations whose steps follow one another unusually: the mean surprisal of their transitions
     (``-log`` of how often the others go from each step to the next, add-one smoothed) is an outlier
     (:func:`_outliers`) among all demonstrations'."""
-    labels = [[None, *(leaf for _, leaf in demo), None] for demo in demos]
-    pairs: Counter[tuple[Leaf | None, Leaf | None]] = Counter(p for demo in labels for p in itertools.pairwise(demo))
-    starts: Counter[Leaf | None] = Counter(leaf for demo in labels for leaf in demo[:-1])
-    vocabulary = len(starts) + 1
-    scores = []
-    for demo in labels:
-        mine = Counter(itertools.pairwise(demo))
-        own = Counter(demo[:-1])
-        scores.append(
-            float(np.mean([
-                -math.log((pairs[p] - mine[p] + 1) / (starts[p[0]] - own[p[0]] + vocabulary))
-                for p in itertools.pairwise(demo)
-            ]))
-        )
-    return _outliers(scores)
+    leaves = sorted({leaf for demo in demos for _, leaf in demo})
+    index = {leaf: i for i, leaf in enumerate(leaves)}
+    start, end = len(leaves), len(leaves) + 1  # the ends of every demonstration, as two more steps
+    matrix = as_matrix([[start, *(index[leaf] for _, leaf in demo), end] for demo in demos])
+    before, after = matrix[:, :-1], matrix[:, 1:]
+    done = after >= 0  # a transition, not padding
+    width = len(leaves) + 2
+    codes = np.where(done, before * width + after, 0)
+    pairs = np.bincount(codes[done], minlength=width * width)
+    starts = np.bincount(before[done], minlength=width)
+    vocabulary = len(leaves) + 2  # the steps and the end, as the transitions' add-one smoothing counts them
+    # a step is done once in a demonstration, so each of its transitions is its own once: the others' count is
+    # one less, plus one of smoothing
+    surprisal = np.where(
+        done,
+        -np.log(np.where(done, pairs[codes], 1) / (starts[np.where(done, before, 0)] - 1 + vocabulary)),
+        0.0,
+    )
+    return _outliers((surprisal.sum(axis=1) / done.sum(axis=1)).tolist())
 
 
 def _outliers(scores: Sequence[float]) -> set[int]:
@@ -516,23 +569,25 @@ def _outliers(scores: Sequence[float]) -> set[int]:
     return {d for d, score in enumerate(scores) if score > fence}
 
 
-def _robust_closure(
-    start: frozenset[Leaf], demos: Sequence[Sequence[Leaf]]
-) -> tuple[frozenset[Leaf], list[tuple[int, Leaf]]]:
-    """The smallest set holding ``start`` whose members are contiguous in every demonstration but for steps
-    found inside its span in one demonstration only; those ``(demonstration, step)`` are returned apart."""
+def _robust_closure(start: frozenset[int], matrix: IntMatrix) -> tuple[frozenset[int], list[tuple[int, int]]]:
+    """The smallest set of step ids holding ``start`` whose members are contiguous in every demonstration (a
+    row of ``matrix``, :func:`~supportive.learning.evidence.as_matrix`) but for steps found inside its span in
+    one demonstration only; those ``(demonstration, step)`` are returned apart."""
     members = set(start)
+    columns = np.arange(matrix.shape[1])
     while True:
-        inside: dict[Leaf, list[int]] = {}
-        for d, demo in enumerate(demos):
-            places = [i for i, leaf in enumerate(demo) if leaf in members]
-            if len(places) >= 2:
-                for leaf in demo[places[0] : places[-1] + 1]:
-                    if leaf not in members:
-                        inside.setdefault(leaf, []).append(d)
-        joining = {leaf for leaf, where in inside.items() if len(where) > 1}
+        member = np.isin(matrix, list(members))
+        spanned = member.sum(axis=1) >= 2
+        first = member.argmax(axis=1)
+        last = matrix.shape[1] - 1 - member[:, ::-1].argmax(axis=1)
+        inside = (columns >= first[:, None]) & (columns <= last[:, None]) & ~member & spanned[:, None]
+        rows, places = np.nonzero(inside)
+        steps = matrix[rows, places]
+        counts = np.bincount(steps)
+        joining = set(np.flatnonzero(counts > 1).tolist())
         if not joining:
-            return frozenset(members), [(where[0], leaf) for leaf, where in sorted(inside.items())]
+            found = sorted(zip(steps.tolist(), rows.tolist(), strict=True))  # by step, as the leaves sort
+            return frozenset(members), [(d, i) for i, d in found]
         members |= joining
 
 
@@ -542,7 +597,6 @@ def _interleave(*ranked: list[frozenset[Deviation]]) -> list[frozenset[Deviation
     for group in itertools.zip_longest(*ranked):
         out.extend(candidate for candidate in group if candidate is not None)
     return out
-
 
 
 def _order(deviation: Deviation) -> tuple[int, int, Leaf, str]:

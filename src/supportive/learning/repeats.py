@@ -14,7 +14,7 @@ import bisect
 import dataclasses
 from collections import defaultdict
 
-from supportive.learning.decomposition import Decomposition, Group
+from supportive.learning.decomposition import Decomposition, Group, Shapes
 
 __all__ = ["fold_repeats"]
 
@@ -24,18 +24,7 @@ _CANDIDATE_PERIODS = 8
 
 def fold_repeats(decomposition: Decomposition) -> Decomposition:
     """``decomposition`` with every run of repeated segments in a chain made a clique of instances."""
-    shapes: dict[int, object] = {}
-
-    def shape(node: int) -> object:
-        if node not in shapes:
-            group = decomposition.groups.get(node)
-            if group is None:
-                shapes[node] = ("action", decomposition.leaves[node][0])
-            else:
-                kids = [shape(c) for c in group.children]
-                shapes[node] = ("chain", tuple(kids)) if group.chain else ("clique", tuple(sorted(map(repr, kids))))
-        return shapes[node]
-
+    shape = Shapes(decomposition.leaves, decomposition.groups)  # the shapes before any folding
     groups = dict(decomposition.groups)
     presence = dict(decomposition.presence)
     next_id = max([*groups, len(decomposition.leaves) - 1]) + 1
@@ -45,7 +34,7 @@ def fold_repeats(decomposition: Decomposition) -> Decomposition:
             continue
         children = list(group.children)
         keys = [shape(c) for c in children]
-        where: dict[object, list[int]] = defaultdict(list)
+        where: dict[int, list[int]] = defaultdict(list)
         for i, key in enumerate(keys):
             where[key].append(i)
         out: list[int] = []
@@ -79,12 +68,12 @@ def fold_repeats(decomposition: Decomposition) -> Decomposition:
     return dataclasses.replace(decomposition, groups=groups, presence=presence)
 
 
-def _repeat_at(keys: list[object], start: int, same: list[int]) -> tuple[int, int]:
+def _repeat_at(keys: list[int], start: int, same: list[int]) -> tuple[int, int]:
     """``(period, count)`` of the longest run of equal segments starting at ``start`` (count 1: none);
     ``same`` lists the positions holding the key at ``start``."""
     best = (1, 1)
-    later = same[bisect.bisect_right(same, start) :][:_CANDIDATE_PERIODS]
-    for nxt in later:
+    after = bisect.bisect_right(same, start)
+    for nxt in same[after : after + _CANDIDATE_PERIODS]:
         period = nxt - start
         count = 1
         while start + (count + 1) * period <= len(keys) and (

@@ -9,6 +9,7 @@ backend or the number of workers.
 from __future__ import annotations
 
 import itertools
+import signal
 from abc import ABC, abstractmethod
 from collections.abc import Hashable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -119,7 +120,10 @@ _WORKER_CONTEXT: ScoringContext[Any, Any, Any] | None = None
 
 
 def _install(context: ScoringContext[Any, Any, Any]) -> None:
+    """A worker process's start: keep the context, and ignore Ctrl-C (a terminal sends it to the whole process
+    group: the process that started the pool stops it, and a worker would only print a traceback)."""
     global _WORKER_CONTEXT
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _WORKER_CONTEXT = context
 
 

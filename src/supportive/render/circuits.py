@@ -13,6 +13,7 @@ from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.state import Status, TabletopState
 from supportive.envs.tabletop.world import Move
 from supportive.errors import ExportError, MissingExtraError
+from supportive.render.files import picture_file, picture_path
 
 __all__ = ["ELEMENT_COLOURS", "draw_state", "write_before_after"]
 
@@ -109,12 +110,13 @@ def write_before_after(
     moved: Move | None = None,
     titles: tuple[str, str] = ("before", "after"),
 ) -> Path:
-    """Draw two states side by side and save them as a PNG.
+    """Draw two states side by side and save them as a PNG (``path`` ends in ``.png``), atomically.
 
     Raises:
         MissingExtraError: when matplotlib (the ``plot`` extra) is not installed.
-        ExportError: when the file cannot be written.
+        ExportError: for a path that is a folder or does not end in ``.png``, or that cannot be written.
     """
+    picture_path(path, ".png", "the picture")
     try:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
@@ -132,8 +134,8 @@ def write_before_after(
     figure.tight_layout()
     target = Path(path)
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        figure.savefig(target, dpi=130)
+        with picture_file(target, ".png", "the picture") as temporary:
+            figure.savefig(temporary, dpi=130)
     except OSError as exc:
         raise ExportError(f"{target}: cannot write: {exc.strerror or exc}") from None
     return target

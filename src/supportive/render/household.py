@@ -33,6 +33,7 @@ from rich.table import Table
 from rich.text import Text
 
 from supportive.errors import ExportError, MissingExtraError
+from supportive.render.files import picture_file, picture_path
 from supportive.render.terminal import plain
 from supportive.safety.episode import THRESHOLD, EpisodeResult, Frame
 from supportive.worlds.household.grid_map import Cell, GridMap, Terrain
@@ -323,19 +324,20 @@ def write_gif(
 
     Raises:
         MissingExtraError: when matplotlib (the ``plot`` extra) or pillow is not installed.
-        ExportError: when there are no frames, ``fps`` is below 1, or the file cannot be written.
+        ExportError: when there are no frames, ``fps`` is below 1, or the file cannot be written (a folder, a
+            name not ending in ``.gif``: checked before any drawing; the file is written atomically).
     """
     if not frames:
         raise ExportError("no frames to draw: run the episode with record=True")
     if fps < 1:
         raise ExportError(f"fps must be >= 1, got {fps}")
+    target = picture_path(path, ".gif", "a GIF")
     figure = _figure(grid)
     try:
         from matplotlib.animation import PillowWriter
         from matplotlib.colors import ListedColormap
     except ImportError:
         raise MissingExtraError("drawing an episode as a GIF", "matplotlib", "plot") from None
-    target = Path(path)
     width, height = figure.get_size_inches()
     axes = figure.add_axes((0.02, _BELOW / height, 0.96, grid.rows * _CELL / height))
     axes.set_axis_off()
@@ -359,8 +361,7 @@ def write_gif(
     writer = PillowWriter(fps=fps)
     steps = len(frames)
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        with writer.saving(figure, str(target), dpi):
+        with picture_file(target, ".gif", "a GIF") as temporary, writer.saving(figure, str(temporary), dpi):
             for frame in frames:
                 image.set_data(_codes(grid, frame.candles))
                 novice.set_data([frame.novice[1]], [frame.novice[0]])

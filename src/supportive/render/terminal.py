@@ -56,6 +56,11 @@ def markup_safe(text: str) -> str:
 
 def terminal_console(*, stderr: bool = False, **options: object) -> Console:
     """A console for a command's output: emoji codes off always; highlighting off and long lines soft-wrapped
-    unless ``options`` say otherwise."""
+    unless ``options`` say otherwise. Without a ``width`` option its width is the terminal's (or ``COLUMNS``)
+    when it prints, not when it was made (rich fixes it at creation when ``COLUMNS`` is set then: a console
+    made at import would keep that width for good)."""
     settings: dict[str, object] = {"highlight": False, "soft_wrap": True, **options}
-    return Console(stderr=stderr, emoji=False, **settings)  # type: ignore[arg-type]
+    console = Console(stderr=stderr, emoji=False, **settings)  # type: ignore[arg-type]
+    if "width" not in options:
+        console._width = None  # read again at every print (Console.size)
+    return console

@@ -28,7 +28,7 @@ from supportive.errors import BoardError
 from supportive.service.hub import Hub
 from supportive.service.routes import board, insight, live, social
 from supportive.service.schemas import ErrorOut
-from supportive.service.settings import ServiceSettings
+from supportive.service.settings import ServiceSettings, default_agents
 from supportive.service.state import ServiceState
 from supportive.service.statuses import board_status
 from supportive.service.store import BoardStore
@@ -99,13 +99,20 @@ async def _refuse(send: Send, status: int, detail: str) -> None:
 
 
 def create_app(settings: ServiceSettings) -> FastAPI:
-    """The board service for ``settings`` (its database is created and the board added on first use).
+    """The board service for ``settings`` (its database is created and the board added on first use; the
+    agents asked for are set up: ``app.state.service.setup`` has the tokens made now, to show once).
 
     Raises:
         StoreError: when the database cannot be used.
+        TokenError: for an agent or token the board refuses (an agent asked for with another role, a revoked
+            token given again).
     """
     store = BoardStore(settings.database)
-    store.initialize(settings.board, settings.agents)
+    try:
+        _, setup = store.initialize(settings.board, settings.agents, default_agents())
+    except BaseException:
+        store.close()
+        raise
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -130,7 +137,7 @@ def create_app(settings: ServiceSettings) -> FastAPI:
             )
         },
     )
-    app.state.service = ServiceState(settings, store, Hub())
+    app.state.service = ServiceState(settings, store, Hub(), setup)
     app.add_middleware(_LimitBody, limit=settings.max_body, timeout=settings.client_timeout)
 
     @app.exception_handler(BoardError)

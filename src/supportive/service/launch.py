@@ -1,43 +1,67 @@
-"""Starting a board service from a task file: the settings, the agents' tokens kept beside a SQLite
-database, the URL to open, the server on 127.0.0.1 (:mod:`supportive.service.serving`)."""
+"""Starting a board service from a task file: the settings, the agents and the tokens made now (shown once),
+the URL to open, the server on 127.0.0.1 (:mod:`supportive.service.serving`).
+
+Tokens live in the board's database only, as hashes (:mod:`supportive.service.agents`). An earlier version
+kept a SQLite board's tokens in plain text beside it (``board.db.tokens.json``); the first start of this one
+shows the tokens of that file that still work, this last time, and removes it.
+"""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import socket
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from sqlalchemy.engine import make_url
 from sqlalchemy.exc import ArgumentError
 
-from supportive.errors import FileFormatError, InvalidValueError, StoreError, SupportiveError, naming
-from supportive.io.atomic import atomic_write
+from supportive.errors import InvalidValueError, StoreError, SupportiveError, naming
 from supportive.io.taskfile import parse_task_file
-from supportive.service.settings import DEFAULT_AGENTS, ServiceSettings, board_of, parse_agent
-from supportive.service.store import AgentSpec
+from supportive.service.agents import AgentSetup
+from supportive.service.settings import ServiceSettings, board_of, parse_agent
+from supportive.service.store import BoardStore
 
-__all__ = ["Launch", "free_port", "prepare", "serve"]
+__all__ = ["Launch", "Started", "free_port", "legacy_tokens_file", "prepare", "serve"]
 
 
 @dataclass(frozen=True)
 class Launch:
-    """A service ready to start, and what to tell the people who will use it."""
+    """A service ready to start."""
 
     settings: ServiceSettings
     host: str
     port: int
-    tokens: dict[str, str]
-    tokens_file: Path | None
 
-    def url(self, agent: str | None = None) -> str:
-        """The page's address, signed in as ``agent`` (by default the first lead) when its token is known."""
-        base = f"http://{self.host}:{self.port}/"
-        if agent is None:
-            agent = next((a.id for a in self.settings.agents if a.role == "lead"), None)
-        token = self.tokens.get(agent or "")
-        return f"{base}#token={token}" if token else base
+
+@dataclass(frozen=True)
+class Started:
+    """What starting the service did, to tell the people who will use it.
+
+    Attributes:
+        launch: The service.
+        setup: The agents, and the tokens made now (shown this once).
+        database: The database's URL, any password hidden.
+        retired: Tokens read from an earlier version's plain-text tokens file that still work, by agent (the
+            file is removed once they are shown).
+        retired_file: That file, when there was one.
+    """
+
+    launch: Launch
+    setup: AgentSetup
+    database: str
+    retired: dict[str, str] = field(default_factory=dict)
+    retired_file: Path | None = None
+
+    def url(self) -> str:
+        """The page's address, signed in as the first lead whose token is shown now (else without a token:
+        the page asks for one)."""
+        base = f"http://{self.launch.host}:{self.launch.port}/"
+        shown = {**self.retired, **self.setup.shown}
+        lead = next((a.id for a in self.setup.agents if a.role == "lead" and a.id in shown), None)
+        return f"{base}#token={shown[lead]}" if lead is not None else base
 
 
 def prepare(
@@ -50,15 +74,12 @@ def prepare(
     lead_only: Sequence[str] = (),
     client_timeout: float = 10.0,
 ) -> Launch:
-    """Read the task, make the board and agents, and find the tokens to show (nothing is written yet).
-
-    For a SQLite database the tokens of agents created on first use are kept beside it
-    (``<database>.tokens.json``, readable by its owner only) and read back on later starts; for another
-    database they are shown once, when created (or give them with ``name:kind:role:token``).
+    """Read the task, make the board and check the agents asked for (nothing is written yet, and no token is
+    drawn: an agent's token is made when the agent is, by :func:`serve`).
 
     Raises:
         TaskFileError: for a bad task file.
-        StoreError: for a database URL that cannot be used, or a tokens file that cannot be read.
+        StoreError: for a database URL that cannot be used.
         InvalidValueError: for an agent named twice, or two agents given one token.
     """
     spec = parse_task_file(task)
@@ -66,34 +87,27 @@ def prepare(
         board = board_of(spec, lead_only)
     except SupportiveError as exc:  # about the task file's contents: name the file
         raise naming(exc, task) from None
-    texts = list(agents or DEFAULT_AGENTS)
-    specs = [parse_agent(text) for text in texts]
+    specs = [parse_agent(text) for text in agents]
     names = [agent.id for agent in specs]
     twice = next((name for name in names if names.count(name) > 1), None)
     if twice is not None:
         raise InvalidValueError(f"--agent: {twice!r} is named twice; give each agent once")
-    tokens_file = _tokens_file(database)
-    known = _read_tokens(tokens_file)
-    resolved: list[AgentSpec] = []
-    for agent, text in zip(specs, texts, strict=True):
-        explicit = len(text.split(":")) == 4
-        token = agent.token if explicit or agent.id not in known else known[agent.id]
-        resolved.append(AgentSpec(agent.id, agent.kind, agent.role, token))
-    shared = [a.token for a in resolved]
-    if len(set(shared)) != len(shared):
+    given = [a.token for a in specs if a.token is not None]
+    if len(set(given)) != len(given):
         raise InvalidValueError("--agent: two agents have the same token; give each its own (or none)")
-    settings = ServiceSettings(database, board, tuple(resolved), spec, client_timeout=client_timeout)
-    tokens = {a.id: a.token for a in resolved}
-    return Launch(settings, host, port, tokens, tokens_file)
+    legacy_tokens_file(database)  # checks the URL's shape before anything is said
+    settings = ServiceSettings(database, board, tuple(specs), spec, client_timeout=client_timeout)
+    return Launch(settings, host, port)
 
 
-def serve(launch: Launch, announce: Callable[[], None] = lambda: None) -> None:
-    """Open the database (checked before anything is said: a bad one fails here), keep the tokens beside a
-    SQLite database, call ``announce`` (the command prints the URL and tokens), then serve until SIGTERM or
-    Ctrl-C (:func:`supportive.service.serving.run`).
+def serve(launch: Launch, announce: Callable[[Started], None] = lambda started: None) -> None:
+    """Open the database and set up the agents (checked before anything is said: a bad database or agent
+    fails here), call ``announce`` (the command prints the URL and the tokens made now), then serve until
+    SIGTERM or Ctrl-C (:func:`supportive.service.serving.run`).
 
     Raises:
-        StoreError: when the database cannot be used or the tokens cannot be kept.
+        StoreError: when the database cannot be used.
+        TokenError: for an agent or token the board refuses.
     """
     import gc
 
@@ -101,9 +115,13 @@ def serve(launch: Launch, announce: Callable[[], None] = lambda: None) -> None:
     from supportive.service.serving import run
 
     app = create_app(launch.settings)
-    if launch.tokens_file is not None:
-        _write_tokens(launch.tokens_file, {**_read_tokens(launch.tokens_file), **launch.tokens})
-    announce()
+    state = app.state.service
+    old = legacy_tokens_file(launch.settings.database)
+    retired = _working_tokens(old, state.store) if old is not None and old.is_file() else {}
+    announce(Started(launch, state.setup, state.store.shown_url, retired, old if _exists(old) else None))
+    if old is not None:
+        with contextlib.suppress(OSError):  # plain-text tokens: never kept (announce said so)
+            old.unlink()
     gc.collect()
     gc.freeze()  # start-up objects never need collecting: full collections stay short under load
     run(app, launch.host, launch.port, timeout=launch.settings.client_timeout)
@@ -116,7 +134,13 @@ def free_port() -> int:
         return int(probe.getsockname()[1])
 
 
-def _tokens_file(database: str) -> Path | None:
+def legacy_tokens_file(database: str) -> Path | None:
+    """Where an earlier version kept a SQLite board's tokens in plain text (``<database>.tokens.json``); None
+    for another database.
+
+    Raises:
+        StoreError: for text that is not a database URL.
+    """
     try:
         url = make_url(database)
     except ArgumentError:
@@ -128,20 +152,23 @@ def _tokens_file(database: str) -> Path | None:
     return Path(f"{url.database}.tokens.json")
 
 
-def _read_tokens(path: Path | None) -> dict[str, str]:
-    if path is None or not path.is_file():
-        return {}
+def _exists(path: Path | None) -> bool:
+    return path is not None and path.exists()
+
+
+def _working_tokens(path: Path, store: BoardStore) -> dict[str, str]:
+    """The tokens of an earlier version's tokens file that still sign in as their agent (an unreadable file
+    gives none)."""
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
-        raise StoreError(f"{path}: cannot read the agents' tokens: {exc}") from None
-    return {str(k): str(v) for k, v in data.items()} if isinstance(data, dict) else {}
-
-
-def _write_tokens(path: Path, tokens: dict[str, str]) -> None:
-    """The tokens, written atomically to a file readable by its owner only (whatever mode it had)."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write(path, json.dumps(tokens, indent=2), mode=0o600)
-    except (OSError, FileFormatError) as exc:
-        raise StoreError(f"{path}: cannot write the agents' tokens: {exc}") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+        return {}
+    if not isinstance(data, dict):
+        return {}
+    working = {}
+    for agent, token in data.items():
+        if isinstance(token, str):
+            found = store.agent_for_token(token)
+            if found is not None and found.id == agent:
+                working[str(agent)] = token
+    return working

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import secrets
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -11,18 +10,17 @@ from typing import cast
 from supportive.errors import InvalidValueError, ServiceError
 from supportive.io.values import check_id
 from supportive.learning.learner import learn
-from supportive.service.store import AgentKind, AgentSpec
+from supportive.service.agents import AgentKind, AgentSpec, check_agent_name
+from supportive.service.tables import AGENT_NAME_LENGTH
 from supportive.social.board import ROLES, TaskBoard
 from supportive.tasks.htn import CliqueNode
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["AGENT_NAME_LENGTH", "DEFAULT_AGENTS", "ServiceSettings", "board_of", "parse_agent"]
+__all__ = ["AGENT_NAME_LENGTH", "DEFAULT_AGENTS", "ServiceSettings", "board_of", "default_agents", "parse_agent"]
 
-AGENT_NAME_LENGTH = 64
-"""The longest agent name (the database's column)."""
 
 DEFAULT_AGENTS = ("alice:human:lead", "robot:robot:assistant", "screen:human:observer")
-"""The agents a board starts with unless told otherwise: a human lead, a robot assistant, a screen."""
+"""The agents a new board starts with unless told otherwise: a human lead, a robot assistant, a screen."""
 
 
 @dataclass(frozen=True)
@@ -32,13 +30,17 @@ class ServiceSettings:
     Attributes:
         database: SQLAlchemy URL (``sqlite:///board.db``, ``postgresql+psycopg://user@127.0.0.1/db``).
         board: The board to create on first use.
-        agents: The agents to create on first use (and add later if new).
+        agents: The agents asked for: those the board does not have are added, each with a token (the one
+            given, else a new one, shown once); those it has keep their tokens (and must keep their kind and
+            role). Empty: a board without agents gets :data:`DEFAULT_AGENTS`, a board with agents keeps them.
         spec: The task file, when the board came from one (behaviors, observations, keyframes).
         max_body: The largest request body accepted, bytes.
         workspace: The workbench's width and depth (metres) that hand positions and the force field live in
             (default: the thesis's 1.83 m × 0.762 m Collaborative Workbench).
         client_timeout: Seconds a client has to send a request's head, and then its body
             (:mod:`supportive.service.serving`).
+        token_recheck: Seconds between checks that an open WebSocket's token still works (one revoked while
+            the socket is open is closed with 4401 within this time; every HTTP request is checked anyway).
     """
 
     database: str
@@ -48,6 +50,7 @@ class ServiceSettings:
     max_body: int = 64 * 1024
     workspace: tuple[float, float] = (1.83, 0.762)
     client_timeout: float = 10.0
+    token_recheck: float = 1.0
     static: Path = field(default_factory=lambda: Path(__file__).parent / "static")
 
 
@@ -68,9 +71,14 @@ def board_of(spec: TaskSpec, lead_only: Sequence[str] = ()) -> TaskBoard:
     return TaskBoard.from_node(spec.name, root, spec.texts(), lead_only)
 
 
+def default_agents() -> tuple[AgentSpec, ...]:
+    """:data:`DEFAULT_AGENTS`, parsed (without tokens: each is drawn when the agent is made)."""
+    return tuple(parse_agent(text) for text in DEFAULT_AGENTS)
+
+
 def parse_agent(text: str) -> AgentSpec:
-    """``name:kind:role[:token]`` (kind human or robot; role lead, assistant or observer); a token is drawn at
-    random when none is given.
+    """``name:kind:role[:token]`` (kind human or robot; role lead, assistant or observer); without a token, one
+    is drawn at random when the agent is made (and only then).
 
     Raises:
         SupportiveError: for text of another shape.
@@ -85,13 +93,11 @@ def parse_agent(text: str) -> AgentSpec:
         raise InvalidValueError(
             f"agent {text!r}: expected name:kind:role[:token], kind human or robot, role {', '.join(ROLES)}"
         )
-    try:
-        check_id(parts[0], what="an agent's name")
-        if len(parts[0]) > AGENT_NAME_LENGTH:
-            raise InvalidValueError(f"an agent's name is at most {AGENT_NAME_LENGTH} characters, got {len(parts[0])}")
-        if len(parts) == 4 and parts[3]:
+    check_agent_name(parts[0])
+    if len(parts) == 4 and parts[3]:
+        try:
             check_id(parts[3], what="a token")
-    except ValueError as exc:
-        raise InvalidValueError(f"agent {parts[0][:AGENT_NAME_LENGTH]!r}: {exc}") from None
-    token = parts[3] if len(parts) == 4 and parts[3] else secrets.token_urlsafe(18)
+        except ValueError as exc:
+            raise InvalidValueError(f"agent {parts[0]!r}: {exc}") from None
+    token = parts[3] if len(parts) == 4 and parts[3] else None
     return AgentSpec(parts[0], cast(AgentKind, parts[1]), parts[2], token)

@@ -1,5 +1,6 @@
-"""What a running board service holds: its settings, store, hub of subscribers, the agents' tokens, and the
-authentication every route shares."""
+"""What a running board service holds: its settings, store, hub of subscribers, the agents, and the
+authentication every route shares (a token is looked up in the database on every request, so one revoked by
+``supportive tokens revoke`` in another process is refused at once)."""
 
 from __future__ import annotations
 
@@ -9,10 +10,11 @@ from typing import Annotated
 
 from fastapi import Depends, Header, HTTPException, Query, Request, WebSocket
 
+from supportive.service.agents import Agent, AgentSetup
 from supportive.service.hub import Hub
 from supportive.service.insight import Insight
 from supportive.service.settings import ServiceSettings
-from supportive.service.store import Agent, BoardStore, token_hash
+from supportive.service.store import BoardStore
 from supportive.social.field import ForceField
 
 __all__ = ["ServiceState", "current_agent", "service", "socket_agent"]
@@ -25,7 +27,7 @@ class ServiceState:
     settings: ServiceSettings
     store: BoardStore
     hub: Hub
-    tokens: dict[str, Agent] = field(default_factory=dict)
+    setup: AgentSetup
     insight: Insight = field(init=False)
     forces: ForceField = field(default_factory=ForceField)
     started: float = field(default_factory=time.monotonic)
@@ -34,20 +36,15 @@ class ServiceState:
 
     def __post_init__(self) -> None:
         self.insight = Insight(self.settings.spec)
-        by_id = {agent.id: agent for agent in self.store.agents()}
-        self.agents = by_id
-        self.tokens = {
-            token_hash(spec.token): by_id[spec.id] for spec in self.settings.agents if spec.id in by_id
-        }
+        self.agents = {agent.id: agent for agent in self.setup.agents}
 
     def agent(self, token: str) -> Agent | None:
-        """The agent of a token (tokens of agents created by earlier runs are looked up in the database)."""
-        digest = token_hash(token)
-        agent = self.tokens.get(digest)
-        if agent is None:
-            agent = self.store.agent_for_token(token)
-            if agent is not None:
-                self.tokens[digest] = agent
+        """The agent a token signs in as now, or None (unknown or revoked); asked of the database every time.
+        An agent added while the service runs (``supportive tokens add NAME --kind … --role …``) is known from
+        its first request on."""
+        agent = self.store.agent_for_token(token)
+        if agent is not None and agent.id not in self.agents:
+            self.agents[agent.id] = agent
         return agent
 
 

@@ -12,7 +12,7 @@ from supportive.envs.circuits.board import Board, BoardPose
 from supportive.envs.circuits.goals import CircuitGoal
 from supportive.envs.circuits.layout import LayoutSearch, required_pieces
 from supportive.envs.circuits.pieces import PIECE_TYPES
-from supportive.errors import CircuitError, PlanningError
+from supportive.errors import CircuitError, PlanningError, SearchLimitError
 
 GOAL = CircuitGoal(batteries_in_series=2, switch_controls=True)
 BASE = {"battery": 2, "switch": 1, "led": 1}
@@ -89,5 +89,5 @@ def test_search_limits_and_bad_input() -> None:
         LayoutSearch(6, 5, GOAL, start=(9, 0))
     with pytest.raises(CircuitError, match="unknown"):
         next(LayoutSearch(6, 5, GOAL).loops({"capacitor": 1}))
-    with pytest.raises(PlanningError, match="search nodes"):
+    with pytest.raises(SearchLimitError, match="the circuit search tried 50 pieces, its limit"):
         list(LayoutSearch(7, 6, GOAL, max_pieces=8, node_limit=50).loops({**BASE, "wire2": 3, "wire3": 3}))

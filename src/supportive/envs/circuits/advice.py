@@ -106,7 +106,13 @@ def advise(
     workers: int = 1,
     favoured: int = 3,
 ) -> tuple[SupportAdvice, SupportDecision[Any, Any, Any]]:
-    """The support agent's decision at the scenario's table, and the advice that says it."""
+    """The support agent's decision at the scenario's table, and the advice that says it.
+
+    Raises:
+        SearchLimitError: when the decision would make more duration estimates than the scenario's
+            ``estimate_limit`` (checked before any is made).
+    """
+    scenario.check_decision(plans)
     world = scenario.world
     problem = SupportProblem.of(world, plans)
     with scenario.planner(workers=workers).fit(problem) as planner:
@@ -191,7 +197,12 @@ def simulate(
             heuristic).
         seed: Seeds the support agent's sampling.
         workers: Local processes scoring candidates.
+
+    Raises:
+        SearchLimitError: when each decision would make more duration estimates than the scenario's
+            ``estimate_limit`` (checked before the runs).
     """
+    scenario.check_decision(plans)
     world = scenario.world
     known = tuple(plans)
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from supportive.envs.circuits.board import DIRECTIONS, Board, BoardPose, Point
 from supportive.envs.circuits.goals import CircuitGoal
 from supportive.envs.circuits.pieces import PIECE_TYPES, piece_type
-from supportive.errors import CircuitError, PlanningError
+from supportive.errors import CircuitError, PlanningError, SearchLimitError
 
 __all__ = ["LayoutSearch", "Loop", "Segment", "required_pieces"]
 
@@ -102,7 +102,8 @@ class LayoutSearch:
         goal: What the circuit must do.
         start: The loop's lower-left corner.
         max_pieces: The most pieces a loop may have (even).
-        node_limit: Give up after trying this many pieces in one call of :meth:`loops`.
+        node_limit: Give up after trying this many pieces in one call of :meth:`loops` (raising
+            :class:`~supportive.errors.SearchLimitError`).
 
     Attributes:
         nodes: Pieces tried by the last call of :meth:`loops` (so far, while it is being iterated).
@@ -192,7 +193,7 @@ class LayoutSearch:
                 continue
             self.nodes += 1
             if self.nodes > self.node_limit:
-                raise PlanningError(f"no circuit found within {self.node_limit} search nodes")
+                raise SearchLimitError(f"the circuit search tried {self.node_limit:,} pieces, its limit")
             end, length, sides, closed = step
             if not is_fixed:
                 inventory[kind] -= 1

@@ -11,7 +11,8 @@ A scenario file (YAML or JSON)::
     # pieces: [{id: b1, kind: battery, at: [12, 40], rotation: 0}, ...]
     lead: {speed: 0.33}                     # a fraction of full speed (30 cm/s)
     support: {speed: 1.0}
-    planner: {scheme: conservative, environments: 200, quickest: 15, spread: 15, max_pieces: 6}
+    planner: {scheme: conservative, environments: 200, quickest: 15, spread: 15, max_pieces: 6,
+              search_limit: 250000, estimate_limit: 200000}
 
 Every field but ``name`` and one of ``pieces`` / ``scatter`` has a default (the thesis-size task of
 Figure 3.3). Problems are reported as :class:`~supportive.errors.ScenarioFileError` with the file, line and
@@ -36,7 +37,7 @@ from supportive.envs.tabletop.arms import ArmModel
 from supportive.envs.tabletop.geometry import Rect
 from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.layout import TableLayout
-from supportive.errors import InvalidValueError, PlanningError, ScenarioFileError
+from supportive.errors import InvalidValueError, PlanningError, ScenarioFileError, SearchLimitError
 from supportive.io.safe_load import read_text
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.values import Coordinate
@@ -118,6 +119,8 @@ class PlannerIn(_Strict):
     quickest: Annotated[int, Field(ge=1, le=100_000)] = 15
     spread: Annotated[int, Field(ge=0, le=100_000)] = 15
     max_pieces: Annotated[int, Field(ge=4, le=8)] = 6
+    search_limit: Annotated[int, Field(ge=1_000, le=1_000_000_000)] | None = None
+    estimate_limit: Annotated[int, Field(ge=1_000, le=1_000_000_000)] | None = None
 
 
 class ScenarioIn(_Strict):
@@ -152,6 +155,12 @@ class CircuitScenario:
         spread: Π_T: how many more, spread over the rest.
         max_pieces: Π_T: the largest circuit enumerated.
         description: Words for people.
+        search_limit: Π_T: the most pieces the enumeration of circuits may try (1,000 to 10^9; default
+            250,000, three times what the thesis-size table needs with ``max_pieces`` 6, a few seconds):
+            :meth:`plans` stops there with a one-line error rather than run on for minutes.
+        estimate_limit: The most duration estimates (Algorithm 5) one decision may make: hypothetical
+            environments × known plans (1,000 to 10^9; default 200,000, some 12 s on two cores; the thesis's
+            settings make 6,200). :meth:`check_decision` refuses more before any is made.
     """
 
     name: str
@@ -162,10 +171,43 @@ class CircuitScenario:
     spread: int = 15
     max_pieces: int = 6
     description: str = ""
+    search_limit: int = 250_000
+    estimate_limit: int = 200_000
+
+    def check_decision(self, plans: Sequence[CircuitPlan]) -> None:
+        """Check that a decision over ``plans`` stays within :attr:`estimate_limit` duration estimates.
+
+        Raises:
+            SearchLimitError: when the hypothetical environments times the known plans exceed it; the message
+                says what to change.
+        """
+        estimates = self.environments * len(plans)
+        if estimates > self.estimate_limit:
+            raise SearchLimitError(
+                f"planner: {self.environments:,} hypothetical environments × {len(plans):,} known plans = "
+                f"{estimates:,} duration estimates per decision, more than planner.estimate_limit "
+                f"({self.estimate_limit:,}): lower the environments (--environments or planner.environments), "
+                "planner.quickest or planner.spread, or raise planner.estimate_limit"
+            )
 
     def plans(self) -> tuple[CircuitPlan, ...]:
-        """Π_T for this scenario (see :func:`~supportive.envs.circuits.plans.known_plans`)."""
-        return known_plans(self.world, self.quickest, self.spread, max_pieces=self.max_pieces)
+        """Π_T for this scenario (see :func:`~supportive.envs.circuits.plans.known_plans`).
+
+        Raises:
+            PlanningError: when the pieces allow no circuit that meets the goal.
+            SearchLimitError: when enumerating the circuits tried :attr:`search_limit` pieces before it was
+                complete; the message says what to change.
+        """
+        try:
+            return known_plans(
+                self.world, self.quickest, self.spread, max_pieces=self.max_pieces, search_limit=self.search_limit
+            )
+        except SearchLimitError:
+            raise SearchLimitError(
+                f"planner: the search for circuits of up to {self.max_pieces} pieces stopped at "
+                f"planner.search_limit ({self.search_limit:,} pieces tried) before it had them all: lower "
+                "planner.max_pieces, use fewer pieces, or raise planner.search_limit (some 30,000 pieces a second)"
+            ) from None
 
     def planner(self, **options: Any) -> SupportPlanner[Any, Any, Any]:
         """A support planner with the scenario's scheme and number of environments (``options`` override)."""
@@ -318,6 +360,7 @@ def parse_scenario_string(
         planner.spread,
         planner.max_pieces,
         model.description or goal.text,
+        **{name: value for name in ("search_limit", "estimate_limit") if (value := getattr(planner, name)) is not None},
     )
 
 

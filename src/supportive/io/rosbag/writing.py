@@ -138,7 +138,12 @@ class BagWriter:
         return self.store.types[msgtype](**fields)
 
     def stamp(self, nanoseconds: int) -> object:
-        """A ``builtin_interfaces/msg/Time`` (ROS 1: ``time``) at this time."""
+        """A ``builtin_interfaces/msg/Time`` (ROS 1: ``time``) at this time.
+
+        Raises:
+            BagError: for a time a stamp cannot hold (see :meth:`write`).
+        """
+        self._check_time(nanoseconds)
         sec, nanosec = divmod(nanoseconds, 1_000_000_000)
         return self.message("builtin_interfaces/msg/Time", sec=sec, nanosec=nanosec)
 
@@ -148,13 +153,26 @@ class BagWriter:
         return self.message("std_msgs/msg/Header", stamp=self.stamp(nanoseconds), frame_id=frame_id, **extra)
 
     def write(self, connection: Connection, nanoseconds: int, message: object) -> None:
-        """Write one message, received at ``nanoseconds`` on the bag's clock."""
+        """Write one message, received at ``nanoseconds`` on the bag's clock.
+
+        Raises:
+            BagError: for a time outside 0 to ``2**31 - 1`` seconds (1970 to 2038: what a ROS 2 stamp's signed
+                32-bit seconds hold, and within ROS 1's unsigned ones); the bag is then not made.
+        """
+        self._check_time(nanoseconds)
         writer = self._open()
         msgtype = connection.msgtype
         if isinstance(writer, Writer1):
             writer.write(connection, nanoseconds, self.store.serialize_ros1(message, msgtype))
         else:
             writer.write(connection, nanoseconds, self.store.serialize_cdr(message, msgtype))
+
+    def _check_time(self, nanoseconds: int) -> None:
+        if not 0 <= nanoseconds < 2**31 * 1_000_000_000:
+            raise BagError(
+                f"a message at {nanoseconds / 1e9:,.0f} s: a bag holds times from 0 to 2,147,483,647 s (1970 to 2038)",
+                path=self.path,
+            )
 
     def _open(self) -> Writer1 | Writer2:
         if self._writer is None:

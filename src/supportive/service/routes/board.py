@@ -8,9 +8,9 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Body, Depends, Path, Query, Request, Response
 from starlette.concurrency import run_in_threadpool
 
+from supportive.service.agents import Agent
 from supportive.service.schemas import ProgressIn
 from supportive.service.state import current_agent, service
-from supportive.service.store import Agent
 
 __all__ = ["router"]
 

@@ -8,9 +8,9 @@ from fastapi import APIRouter, Body, Depends, HTTPException, Request
 from starlette.concurrency import run_in_threadpool
 
 from supportive.errors import SupportiveError
+from supportive.service.agents import Agent
 from supportive.service.schemas import ObservationIn
 from supportive.service.state import current_agent, service
-from supportive.service.store import Agent
 
 __all__ = ["router"]
 

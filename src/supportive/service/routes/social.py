@@ -11,9 +11,9 @@ from fastapi import APIRouter, Body, Depends, HTTPException, Query, Request
 from numpy.typing import ArrayLike, NDArray
 
 from supportive.errors import SocialError
+from supportive.service.agents import Agent
 from supportive.service.schemas import HandIn
 from supportive.service.state import current_agent, service
-from supportive.service.store import Agent
 from supportive.social.field import ForceField
 from supportive.social.reading import reading
 

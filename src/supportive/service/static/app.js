@@ -195,7 +195,7 @@ function connect() {
   });
   socket.addEventListener("close", (event) => {
     if (state.socket !== socket) return;
-    if (event.code === 4401) { setConnected(false); return signIn("that token is not known here"); }
+    if (event.code === 4401) { setConnected(false); return signIn("that token is not known here, or was revoked"); }
     scheduleReconnect();
   });
 }

@@ -1,0 +1,288 @@
+"""Ctrl-C and SIGTERM in every long command (issue 25): a real ``supportive`` process is sent the signal while
+it works; it exits with 130 (143 for SIGTERM) and one line saying what it kept and what it did not, prints
+no traceback, and leaves nothing half-written (no output folder it did not finish, no temporary file).
+
+The process starts through a two-line wrapper that says ``READY`` on stderr once ``supportive.cli`` is
+imported (the signal is sent a moment later, while the command works); for the saves, the wrapper also holds
+the write in the middle (``os.fsync`` of the new file, or a bag's third frame) and says ``WRITING``, so the
+signal lands there exactly, as a kill would.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+from supportive import examples
+from supportive.generate import generate_task
+from supportive.io.taskfile import parse_task_file, write_task_file
+from supportive.service.launch import free_port
+
+REPO = Path(__file__).resolve().parents[2]
+BAG = REPO / "examples" / "bags" / "ikea-chair"
+
+WRAPPER = """
+import os, sys, time
+hold = sys.argv[1]
+if hold == "fsync":  # the first os.fsync of a new file (atomic_write, create_new) waits: the middle of a save
+    def held(fd):
+        sys.stderr.write("WRITING\\n"); sys.stderr.flush(); time.sleep(120)
+    os.fsync = held
+elif hold == "bag":  # the third frame of a beliefs bag waits: the middle of writing the bag
+    from supportive.io.rosbag import beliefs
+    write = beliefs.BeliefBag.write
+    def held(self, time_, record):
+        if self.frames == 2:
+            sys.stderr.write("WRITING\\n"); sys.stderr.flush(); time.sleep(120)
+        write(self, time_, record)
+    beliefs.BeliefBag.write = held
+sys.argv = ["supportive", *sys.argv[2:]]
+from supportive.cli import main
+sys.stderr.write("READY\\n"); sys.stderr.flush()
+main()
+"""
+
+
+def interrupt(
+    args: list[str],
+    cwd: Path,
+    *,
+    after: float = 1.0,
+    wait_for: str = "READY",
+    hold: str = "",
+    stdin: str = "",
+    sig: int = signal.SIGINT,
+    group: bool = False,
+    until: Callable[[], bool] = lambda: True,
+) -> tuple[int, str, list[str]]:
+    """Run ``supportive ARGS``; once it has said ``wait_for`` on stderr and ``until()`` holds, wait ``after``
+    seconds and send ``sig`` (to its whole process group with ``group``, as a terminal's Ctrl-C does). Its
+    input stays open after ``stdin`` (a person who types nothing more). Returns the status, stdout and the
+    lines of stderr but ``READY`` and ``WRITING``."""
+    process = subprocess.Popen(
+        [sys.executable, "-c", WRAPPER, hold, *args],
+        cwd=cwd,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=group,
+        env={**os.environ, "COLUMNS": "200"},
+    )
+    assert process.stdin is not None and process.stderr is not None
+    process.stdin.write(stdin)
+    process.stdin.flush()
+    seen: list[str] = []
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        line = process.stderr.readline()
+        assert line, (process.poll(), seen)
+        seen.append(line.rstrip("\n"))
+        if seen[-1] == wait_for:
+            break
+    while not until() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(after)
+    assert process.poll() is None, f"{args} ended before the signal: make it longer"
+    if group:
+        os.killpg(process.pid, sig)
+    else:
+        process.send_signal(sig)
+    out, err = process.communicate(timeout=120)
+    lines = [line for line in [*seen, *err.splitlines()] if line not in ("READY", "WRITING")]
+    return process.returncode, out, lines
+
+
+def progress(line: str) -> bool:
+    """A progress line a long run prints every 5 s when stderr is not a terminal."""
+    return " trials, " in line
+
+
+def assert_stopped(code: int, lines: list[str], sig: int = signal.SIGINT) -> str:
+    """Exit 128 + the signal, one line (after any progress lines), no traceback; the line's statement."""
+    said = [line for line in lines if not progress(line)]
+    assert code == 128 + sig, (code, lines)
+    assert len(said) == 1, lines
+    how = "interrupted (Ctrl-C)" if sig == signal.SIGINT else "stopped (SIGTERM)"
+    assert said[0].startswith(f"supportive: {how}: "), said
+    return said[0].split(": ", 2)[2]
+
+
+def leftovers(folder: Path) -> list[str]:
+    """Temporary files and staging folders anywhere under ``folder``."""
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob(".*") if ".tmp" in p.name or ".partial" in p.name)
+
+
+@pytest.fixture(scope="module")
+def big_task(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A task that takes ``learn`` some seconds and ``evaluate`` a minute."""
+    path = tmp_path_factory.mktemp("interrupt") / "big.yaml"
+    write_task_file(generate_task(1000, 1, demonstrations=40), path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def long_stream(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """48,000 moments of contact events: some seconds of ``infer``."""
+    rows = [json.loads(line) for line in (REPO / "examples" / "ikea-chair-observations.jsonl").read_text().splitlines()]
+    path = tmp_path_factory.mktemp("interrupt") / "long.jsonl"
+    path.write_text("".join(json.dumps({**r, "time": 30 * k + r["time"]}) + "\n" for k in range(1000) for r in rows))
+    return path
+
+
+def nothing_new(tmp_path: Path, before: set[str]) -> None:
+    assert {p.name for p in tmp_path.iterdir()} == before and leftovers(tmp_path) == []
+
+
+CASES: dict[str, Callable[[Path, Path, Path], list[str]]] = {
+    "learn": lambda task, stream, out: ["learn", str(task), "-f", "json", "-o", str(out / "htn.json")],
+    "evaluate": lambda task, stream, out: ["evaluate", str(task)],
+    "generate": lambda task, stream, out: ["generate", "--actions", "100000", "-d", "2", "-o", str(out / "t.yaml")],
+    "infer": lambda task, stream, out: ["infer", "ikea-chair", "-O", str(stream)],
+    "caregiver": lambda task, stream, out: ["caregiver", "--steps", "10000", "--gif", str(out / "e.gif")],
+    "support": lambda task, stream, out: ["support", "two-cells-led", "-e", "3000", "--render", str(out / "t.png")],
+    "workbench-sim": lambda task, stream, out: ["workbench-sim", "--seconds", "3600"],
+    "demo": lambda task, stream, out: ["demo"],
+    "reproduce": lambda task, stream, out: ["reproduce", "edge-reduction", "-o", str(out / "run")],
+    "bag export": lambda task, stream, out: ["bag", "export", str(task), "-o", str(out / "bag")],
+}
+
+
+@pytest.mark.parametrize("command", list(CASES))
+def test_ctrl_c_exits_130_with_one_line_and_writes_nothing(
+    command: str, tmp_path: Path, big_task: Path, long_stream: Path
+) -> None:
+    before = {p.name for p in tmp_path.iterdir()}
+    code, _, lines = interrupt(CASES[command](big_task, long_stream, tmp_path), tmp_path, after=1.0)
+    statement = assert_stopped(code, lines)
+    assert statement.startswith("nothing written") or statement == f"bag {tmp_path / 'bag'} not written", lines
+    nothing_new(tmp_path, before)
+
+
+def test_sigterm_stops_like_ctrl_c_with_status_143(tmp_path: Path, big_task: Path) -> None:
+    code, _, lines = interrupt(["learn", str(big_task), "-o", str(tmp_path / "h.txt")], tmp_path, sig=signal.SIGTERM)
+    assert assert_stopped(code, lines, signal.SIGTERM) == "nothing written"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_path: Path) -> None:
+    """The whole process group gets the signal, the workers too (as from a terminal), while they start and
+    while they run trials."""
+    for after in (0.5, 2.0, 6.0):
+        args = ["reproduce", "edge-reduction", "--workers", "2", "-o", str(tmp_path / "run")]
+        code, _, lines = interrupt(args, tmp_path, after=after, group=True)
+        assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/, once it was running)
+        assert list(tmp_path.iterdir()) == []
+
+
+def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:
+    run = tmp_path / "run"
+    code = subprocess.run([sys.executable, "-m", "supportive.cli", "reproduce", "edge-reduction", "-n", "2", "-o", str(run)],
+                          capture_output=True, check=False).returncode
+    assert code == 0
+    files = {p.name: p.read_bytes() for p in run.iterdir()}
+    code, _, lines = interrupt(["reproduce", "edge-reduction", "-o", str(run)], tmp_path, after=3.0)
+    assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/: once the run had begun)
+    assert {p.name: p.read_bytes() for p in run.iterdir()} == files and leftovers(tmp_path) == []
+
+
+def test_ctrl_c_in_teach_keeps_the_copy_and_says_the_demonstration_was_dropped(tmp_path: Path) -> None:
+    source = tmp_path / "tower.yaml"
+    shutil.copy(examples.path("blocks-tower"), source)
+    copy = tmp_path / "tower.edited.yaml"
+    code, out, lines = interrupt(["teach", str(source)], tmp_path, stdin="red\nyellow\n", until=copy.exists, after=1.0)
+    assert assert_stopped(code, lines) == (
+        f"kept {copy}: 4 demonstrations, 4 when this session began; dropped the unfinished demonstration (2 steps)"
+    )
+    assert copy.read_text() == source.read_text() and "Demonstration 1:" in out
+
+
+def test_ctrl_c_in_chat_keeps_every_change_acknowledged(tmp_path: Path) -> None:
+    said = "When I am attaching the seat, I want you to hold the frames steady.\nyes\n"
+    copy = tmp_path / "c.yaml"
+
+    def saved() -> bool:  # the copy, made, then changed
+        return copy.exists() and copy.read_bytes() != examples.path("ikea-chair").read_bytes()
+
+    code, out, lines = interrupt(["chat", "ikea-chair", "--save", "c.yaml"], tmp_path, stdin=said, until=saved, after=0.5)
+    assert assert_stopped(code, lines) == "kept c.yaml: every change acknowledged is saved in it (1 change this session)"
+    assert "hold" in out and any("hold" in b.text for b in parse_task_file(tmp_path / "c.yaml").behaviors)
+
+
+def test_ctrl_c_while_serving_says_the_board_is_kept(tmp_path: Path) -> None:
+    port = free_port()
+    args = ["serve", "--db", f"sqlite:///{tmp_path / 'b.db'}", "--port", str(port)]
+
+    def serving() -> bool:
+        with socket.socket() as probe:
+            return probe.connect_ex(("127.0.0.1", port)) == 0
+
+    code, out, lines = interrupt(args, tmp_path, until=serving, after=0.2)
+    assert assert_stopped(code, lines) == f"the board stopped; every operation it acknowledged is kept in sqlite:///{tmp_path / 'b.db'}"
+    assert "new token for alice" in out
+
+
+# -- a kill in the middle of a save: the old file or the new one, never a truncated one ------------------
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_a_teach_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path, sig: int) -> None:
+    copy = tmp_path / "tower.edited.yaml"  # carries on in it: the first write is the demonstration's save
+    shutil.copy(examples.path("blocks-tower"), copy)
+    before = copy.read_bytes()
+    order = "red\nyellow\ngreen\nwhite\norange\npurple\nblack\nblue\n"
+    code, _, lines = interrupt(["teach", str(copy)], tmp_path, hold="fsync", wait_for="WRITING", stdin=order, sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == (
+        f"kept {copy}: 4 demonstrations, 4 when this session began; dropped the demonstration being saved (the save "
+        "did not finish)"
+    )
+    assert copy.read_bytes() == before and leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_a_new_working_copy_cut_in_the_middle_is_not_made(tmp_path: Path, sig: int) -> None:
+    args = ["teach", "blocks-tower", "--save", "c.yaml"]
+    code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == "nothing written"
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_a_chat_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path, sig: int) -> None:
+    copy = tmp_path / "c.yaml"  # the copy exists: the first write is the change's save
+    shutil.copy(examples.path("ikea-chair"), copy)
+    before = copy.read_bytes()
+    said = "When I am attaching the seat, I want you to hold the frames steady.\nyes\n"
+    args = ["chat", "ikea-chair", "--save", str(copy)]
+    code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", stdin=said, sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == f"kept {copy}: every change acknowledged is saved in it (0 changes this session)"
+    assert copy.read_bytes() == before and leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_a_bag_import_cut_in_the_middle_leaves_the_old_file(tmp_path: Path, sig: int) -> None:
+    target = tmp_path / "chair.yaml"
+    target.write_text("name: an earlier import\n")
+    args = ["bag", "import", str(BAG), "--segment-topic", "/task/demonstration", "-o", str(target)]
+    code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == f"{target} not written (it is as it was)"
+    assert target.read_text() == "name: an earlier import\n" and leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+def test_a_beliefs_bag_cut_in_the_middle_is_not_left_behind(tmp_path: Path, sig: int) -> None:
+    args = ["infer", "ikea-chair", "--bag", str(BAG), "--write-bag", str(tmp_path / "beliefs")]
+    code, out, lines = interrupt(args, tmp_path, hold="bag", wait_for="WRITING", sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == "nothing written"
+    assert len(out.splitlines()) == 2  # the two frames before the one it stopped in
+    assert list(tmp_path.iterdir()) == []  # neither the bag nor its hidden staging folder
