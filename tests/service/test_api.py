@@ -4,6 +4,7 @@ a refused request leaves the board as it was."""
 from __future__ import annotations
 
 import re
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -284,7 +285,7 @@ def test_insight_tells_the_belief_in_words(client: TestClient, headers: Headers)
 
 def test_the_goal_view_flags_what_the_model_calls_off_script() -> None:
     """The tracker's probability that the step was off-script reaches the page as ``off_script`` (True from
-    :data:`OFF_SCRIPT` on, None when the summary has none; ``surprise`` is shown, not used to flag);
+    the mistake detector's default threshold on, None when the summary has none; ``surprise`` is shown, not used to flag);
     repeated actions keep their occurrence in words."""
     insight = Insight(load("ikea-chair"))
     base = {"step": 3, "subgoals": [["get_seat#2", 0.5]], "subtasks": [], "next": []}
@@ -299,6 +300,45 @@ def test_the_goal_view_flags_what_the_model_calls_off_script() -> None:
         goal = insight.goal()
         assert goal is not None and goal["off_script"] is flagged and goal["surprise"] == extra.get("surprise")
         assert goal["current"][0]["text"] == "pick up the seat (#2)"
+
+
+def contacts(action: str) -> list[str]:
+    """The contact events the chair's task file declares for ``action``."""
+    return [event for event, _ in next(a for a in load("ikea-chair").actions if a.id == action).observations]
+
+
+def test_a_skipped_step_is_raised_with_help_the_robot_can_carry_out(client: TestClient, headers: Headers) -> None:
+    """A demonstration of the chair with "stand the right side frame on the table" skipped: the step after it
+    raises a missing-step mistake in the answer to its observation, on the WebSocket and in ``/api/insight``,
+    with when it was raised, the reminder the robot says, and the skipped step's board node, which the robot
+    can then claim; the steps before it raise nothing."""
+    shown = list(load("ikea-chair").demonstrations[0].actions)
+    skipped = shown.index("place_right_frame")
+    with client.websocket_connect("/api/ws?token=tok-screen") as socket:
+        assert socket.receive_json()["type"] == "snapshot"
+        for action in shown[:skipped]:
+            answer = client.post("/api/observations", headers=headers("alice"), json={"events": contacts(action)})
+            assert answer.status_code == 200 and answer.json()["mistake"] is None
+            assert socket.receive_json()["type"] == "belief"
+        started = time.time()
+        answer = client.post(
+            "/api/observations", headers=headers("alice"), json={"events": contacts(shown[skipped + 1])}
+        )
+        mistake = answer.json()["mistake"]
+        assert socket.receive_json()["type"] == "belief"
+        pushed = socket.receive_json()
+    assert pushed == {"type": "mistake", "mistake": mistake}
+    assert mistake["kind"] == "missing" and mistake["skipped"] == ["place_right_frame"]
+    assert mistake["action"] == shown[skipped + 1] and started <= mistake["raised"] <= time.time()
+    assert mistake["help"]["category"] == "enhancing awareness"
+    assert "standing the right side frame on the table" in mistake["help"]["say"]
+    insight = client.get("/api/insight", headers=headers("screen")).json()
+    assert insight["mistakes"] == [mistake]
+    nodes = {n["id"]: n for n in board(client, headers)["nodes"]}
+    assert [nodes[i]["action"] for i in mistake["nodes"]] == ["place_right_frame"]
+    (node,) = mistake["nodes"]
+    assert client.post(f"/api/nodes/{node}/claim", headers=headers("robot")).status_code == 200
+    assert board(client, headers)["nodes"][int(node[1:])]["owner"] == "robot"
 
 
 def test_suggestions_follow_the_board(client: TestClient, headers: Headers) -> None:

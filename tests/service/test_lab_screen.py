@@ -3,7 +3,8 @@ laptop, in Debian's chromium. Each screenshot is written to test-artifacts/ and 
 agent's "now", what is next and blocked, overall progress, the tree, goal inference, social force) is checked
 against the board and insight the API gives, worked out here independently of the page, and the colours in the
 picture against each agent's. Also: agents' colours apart under colour-vision deficiencies, "no hand data yet",
-off-script steps flagged, an honest connection state, confirmation before claiming the whole task or a
+off-script steps flagged, a mistake shown as soon as the step that caused it is observed, an honest
+connection state, confirmation before claiming the whole task or a
 lead-only subtask, and the API docs offline."""
 
 from __future__ import annotations
@@ -359,6 +360,31 @@ def test_off_script_steps_are_flagged_and_a_payload_without_surprise_still_shows
         expect(page.get_by_test_id("off-script")).to_contain_text("surprise 0.92")
         expect(page.get_by_test_id("goal-recent").locator("li.flagged")).to_have_text("⚠ pick up the seat")
         snap(page, "lab-screen-off-script")
+
+
+def test_a_mistake_is_on_the_screen_within_one_update_of_the_step_that_caused_it(
+    open_page: Callable[..., Page], board_server: Any, headers: Headers, snap: Callable[..., Any]
+) -> None:
+    """The chair built with "stand the right side frame on the table" skipped: once the step after it is
+    observed, and with nothing sent after it, the screen lists the mistake the service raised (its kind,
+    the reminder the robot says, the board node it concerns)."""
+    url = board_server.url
+    spec = load("ikea-chair")
+    contacts = {a.id: [event for event, _ in a.observations] for a in spec.actions}
+    shown = list(spec.demonstrations[0].actions)
+    skipped = shown.index("place_right_frame")
+    page = open_page(url, "tok-screen")
+    for action in [*shown[:skipped], shown[skipped + 1]]:
+        answer = httpx.post(f"{url}/api/observations", headers=headers("robot"), json={"events": contacts[action]})
+        assert answer.status_code == 200
+    mistake = answer.json()["mistake"]
+    assert mistake is not None and mistake["kind"] == "missing"
+    shown_mistake = page.get_by_test_id("mistake")
+    expect(shown_mistake).to_have_count(1)
+    expect(shown_mistake).to_have_attribute("data-kind", "missing")
+    expect(shown_mistake).to_have_attribute("data-nodes", " ".join(mistake["nodes"]))
+    expect(shown_mistake.locator(".say")).to_have_text(mistake["help"]["say"])
+    snap(page, "lab-screen-mistake")
 
 
 def test_while_disconnected_the_controls_are_off_and_a_banner_says_so(

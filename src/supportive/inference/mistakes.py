@@ -217,13 +217,43 @@ class MistakeDetector:
     def update(self, events: Iterable[str]) -> StepVerdict | None:
         """Take one moment's contact events into account (``events.last`` is then the belief); when the most
         probable subgoal under way changes to a new one, judge its action as the step just started (None
-        otherwise)."""
+        otherwise).
+
+        Contacts cannot tell a step from a *twin* that touches the same things (two pegs pushed into the same
+        frame): when the person moves on from a step, its twins that the new step needs and that are not
+        done yet are taken as done, one after the other, before the new step is judged (a twin truly skipped
+        is not seen; docs/inference.md)."""
         belief = self.events.update(events)
         subgoal = int(np.argmax(belief.subgoals)) if belief.subgoals.size and belief.subgoals.max() > 0 else None
         if subgoal is None or subgoal == self._current:
             return None
-        self._current = subgoal
+        previous, self._current = self._current, subgoal
+        if previous is not None:
+            for twin in self._twins(previous, subgoal):
+                self.observe(self._requirements.leaves[twin][0])
         return self.observe(self._requirements.leaves[subgoal][0])
+
+    def _twins(self, left: int, entered: int) -> list[int]:
+        """The leaves not done yet that the ``entered`` leaf needs (its prerequisites, and the rest of a
+        subtask it would interrupt) and whose contacts are those of the leaf just ``left``, in task order."""
+        observations = self.hmm.observations
+        if observations is None:
+            return []
+        rows = observations.action_index
+        leaves = self._requirements.leaves
+
+        def contacts(leaf: int) -> np.ndarray | None:
+            row = rows.get(leaves[leaf][0])
+            return None if row is None else observations.table[row]
+
+        mine = contacts(left)
+        done = self._done_leaves()
+        done[left] = True  # the step just left counts as done while its twins are sought
+        needed = {i for i in self._requirements.prerequisites[entered] if not done[i]}
+        needed |= set(self._requirements.interrupted(entered, done))
+        if mine is None:
+            return []
+        return [i for i in sorted(needed) if (other := contacts(i)) is not None and np.array_equal(other, mine)]
 
     def finish(self) -> StepVerdict:
         """The task has ended: the required steps never done are missing."""

@@ -14,7 +14,8 @@ carry out and a sentence it says:
   done → *task progression guidance*: a warning before it (:func:`warning_for`).
 
 Steps are named by their text in the task file ("place the red block"), as what the person does ("placing
-the red block", :func:`~supportive.language.wording.gerund`).
+the red block", :func:`~supportive.language.wording.gerund`); a sentence names at most :data:`NAMED` of them
+and counts the rest.
 
 >>> texts = {"sugar": "add sugar", "pour": "pour the water"}
 >>> from supportive.inference.mistakes import StepVerdict
@@ -126,10 +127,18 @@ def _doing(action: str, texts: Mapping[str, str]) -> str:
     return gerund(texts.get(action) or action.replace("_", " "))
 
 
+NAMED = 3
+"""The most steps a sentence names; more are counted ("a, b, c and 4 more steps"): a robot that reads out
+twenty steps is not heard."""
+
+
 def _listing(items: Sequence[str]) -> str:
-    """``a``, ``a and b``, ``a, b and c``."""
+    """``a``, ``a and b``, ``a, b and c``; past :data:`NAMED` items, the first ones and how many more."""
     if len(items) <= 1:
         return "".join(items)
+    if len(items) > NAMED:
+        rest = len(items) - NAMED
+        return f"{', '.join(items[:NAMED])} and {rest} more step{'s' if rest > 1 else ''}"
     return f"{', '.join(items[:-1])} and {items[-1]}"
 
 

@@ -1,9 +1,12 @@
 """What the robot thinks, for the board's page: the goal-inference belief (§2.1.7, when the task's actions
-declare contact-event observations and it has demonstrations to learn from) and the supportive behaviors
-(§3.3) whose start condition holds in the board's current state and whose stop condition does not."""
+declare contact-event observations and it has demonstrations to learn from), the mistakes it noticed with the
+help it offers (:class:`~supportive.inference.mistakes.MistakeDetector`, :mod:`supportive.language.help`) and
+the supportive behaviors (§3.3) whose start condition holds in the board's current state and whose stop
+condition does not."""
 
 from __future__ import annotations
 
+import time
 from collections import deque
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -11,7 +14,9 @@ from numbers import Real
 from typing import Any
 
 from supportive.errors import ServiceError
-from supportive.inference import END_LABEL, ObservationModel, ProgressFilter, ProgressHMM
+from supportive.inference import END_LABEL, ObservationModel, ProgressHMM
+from supportive.inference.mistakes import DEFAULT_THRESHOLD, MistakeDetector, StepVerdict
+from supportive.language.help import mistake_record
 from supportive.language.states import TaskStates
 from supportive.learning.learner import learn
 from supportive.social.board import TaskBoard
@@ -21,8 +26,8 @@ __all__ = ["Insight"]
 
 RECENT = 6
 """How many of the latest observed steps the goal view lists."""
-OFF_SCRIPT = 0.5
-"""A step is shown off-script when the tracker's probability that it was (``off_script``) is at least this."""
+MISTAKES_KEPT = 20
+"""How many of the latest mistakes ``/api/insight`` lists (the newest first)."""
 
 
 @dataclass
@@ -30,9 +35,10 @@ class Insight:
     """The belief and the suggestions of one board's task (None / empty when the task cannot give them)."""
 
     spec: TaskSpec | None
-    filter: ProgressFilter | None = field(default=None, init=False)
     latest: dict[str, Any] | None = field(default=None, init=False)
     recent: deque[dict[str, Any]] = field(default_factory=lambda: deque(maxlen=RECENT), init=False)
+    mistakes: deque[dict[str, Any]] = field(default_factory=lambda: deque(maxlen=MISTAKES_KEPT), init=False)
+    raised: int = field(default=0, init=False)
 
     @cached_property
     def states(self) -> TaskStates | None:
@@ -50,25 +56,33 @@ class Insight:
             return None
         return ProgressHMM(learn(spec).htn_, ObservationModel.from_spec(spec)).fit()
 
+    @cached_property
+    def detector(self) -> MistakeDetector | None:
+        """The mistake detector over the tracker's model (its tracker of contact events is the belief this
+        view shows), when there is goal inference."""
+        return None if self.model is None else MistakeDetector(self.model)
+
     @property
     def inference(self) -> bool:
         """Whether goal inference is configured."""
         return self.model is not None
 
-    def observe(self, events: list[str]) -> dict[str, Any]:
-        """Feed one moment's contact events to the filter; the belief after it.
+    def observe(self, events: list[str], board: TaskBoard | None = None) -> dict[str, Any]:
+        """Feed one moment's contact events to the tracker; the belief after it. A step the detector judges
+        a mistake is kept (:attr:`mistakes`, :meth:`latest_mistake`) with the help it calls for and, given
+        the ``board``, the nodes that help concerns which are not done yet.
 
         Raises:
             ServiceError: when the task has no goal inference.
         """
-        if self.model is None:
+        detector = self.detector
+        if detector is None:
             raise ServiceError(
                 "this board's task has no goal inference (no observations or no demonstrations)"
             )
-        if self.filter is None:
-            self.filter = self.model.filter()
-        belief = self.filter.update(set(events))
-        summary = self.filter.summary(belief)
+        verdict = detector.update(set(events))
+        belief = detector.events.last
+        summary = detector.events.summary(belief)
         surprise = getattr(belief, "surprise", None)  # reported by filters that model off-script steps
         if "surprise" not in summary and surprise is not None:
             summary["surprise"] = surprise
@@ -79,7 +93,27 @@ class Insight:
             self.recent.append(
                 {"step": goal["step"], "action": top["action"], "text": top["text"], "off_script": goal["off_script"]}
             )
+        if verdict is not None and verdict.mistake:
+            self._raise(verdict, board)
         return self.latest
+
+    def latest_mistake(self) -> dict[str, Any] | None:
+        """The mistake raised last, None before any."""
+        return self.mistakes[0] if self.mistakes else None
+
+    def _raise(self, verdict: StepVerdict, board: TaskBoard | None) -> None:
+        """Keep a mistake: the verdict, the help (:func:`~supportive.language.help.mistake_record`), when it
+        was raised (Unix seconds) and the board nodes of the steps it names that are not done yet (what the
+        robot can take on to help: fetch for a prerequisite, a reminder for a skipped step)."""
+        texts = self.spec.texts() if self.spec is not None else {}
+        self.raised += 1
+        record: dict[str, Any] = {"id": self.raised, "raised": time.time(), **mistake_record(verdict, texts)}
+        record["text"] = texts.get(verdict.action, verdict.action)
+        named = set(verdict.prerequisites) | set(verdict.skipped)
+        record["nodes"] = (
+            [n.id for n in board.nodes if n.action in named and not n.done and not n.lead_only] if board else []
+        )
+        self.mistakes.appendleft(record)
 
     def suggestions(self, board: TaskBoard) -> list[dict[str, str]]:
         """The behaviors that may run now: their start condition holds, their stop condition does not, and
@@ -107,8 +141,9 @@ class Insight:
     def goal(self) -> dict[str, Any] | None:
         """The latest belief for people: the likely enclosing subtasks, current and next actions with their
         text, the filter's ``surprise`` (None when the model does not report one) and whether the step was
-        off-script (the model's own ``off_script`` flag, else a ``surprise`` of :data:`OFF_SCRIPT` or more),
-        and the latest steps' most likely actions; None before any observation."""
+        off-script (the tracker's probability that it was, ``off_script``, at least the mistake detector's
+        default threshold, :data:`~supportive.inference.mistakes.DEFAULT_THRESHOLD`; None when the model
+        does not say), and the latest steps' most likely actions; None before any observation."""
         latest = self.latest
         if latest is None:
             return None
@@ -129,7 +164,7 @@ class Insight:
         if isinstance(surprise, Real) and not isinstance(surprise, bool):
             surprise = float(surprise)  # plain JSON, whatever number type the filter gives
         chance = latest.get("off_script")
-        flagged = None if chance is None else float(chance) >= OFF_SCRIPT
+        flagged = None if chance is None else float(chance) >= DEFAULT_THRESHOLD
         return {
             "step": latest.get("step"),
             "subtasks": [{"name": str(n), "probability": float(p)} for n, p in latest.get("subtasks", [])],

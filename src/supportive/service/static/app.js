@@ -191,7 +191,7 @@ function connect() {
   socket.addEventListener("message", (event) => {
     const data = JSON.parse(event.data);
     if (data.board) show(data.board);
-    if (data.type === "belief") pollInsight();
+    if (data.type === "belief" || data.type === "mistake") pollInsight();
   });
   socket.addEventListener("close", (event) => {
     if (state.socket !== socket) return;

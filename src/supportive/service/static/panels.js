@@ -6,6 +6,7 @@ import { agentNow, blocked, overall, upNext } from "./model.js";
 import { el } from "./tree.js";
 
 const SHOWN = 4;
+const MISTAKES_SHOWN = 2;  // the newest mistakes the goal view lists
 const OFF_SCRIPT = 0.5;
 const MAX_TABLE_HEIGHT = 190;  // px: the social view leaves the goal view its room
 const NEGLIGIBLE = 0.005;  // belief entries below this (but the first) are left out  // a numeric `surprise` at or above this flags the step as off-script
@@ -133,6 +134,7 @@ export function renderGoal(target, data) {
     flag.dataset.testid = "off-script";
     parts.push(flag);
   }
+  if (data.mistakes && data.mistakes.length) parts.push(mistakeList(data.mistakes));
   if (goal.recent && goal.recent.some((step) => step.off_script)) {
     const list = el("ol", "recent");
     list.dataset.testid = "goal-recent";
@@ -146,6 +148,24 @@ export function renderGoal(target, data) {
   parts.push(...bars("Doing now", goal.current, "goal-current", 3));
   parts.push(...bars("Next", goal.next, "goal-next", 3));
   target.replaceChildren(...parts);
+}
+
+// The newest mistakes noticed: when each was raised, its kind, and what the robot says and offers to do.
+function mistakeList(mistakes) {
+  const list = el("ol", "mistakes");
+  list.dataset.testid = "mistakes";
+  for (const mistake of mistakes.slice(0, MISTAKES_SHOWN)) {
+    const li = el("li", "mistake");
+    li.dataset.testid = "mistake";
+    li.dataset.kind = mistake.kind || "";
+    li.dataset.nodes = (mistake.nodes || []).join(" ");
+    const when = new Date(1000 * Number(mistake.raised)).toLocaleTimeString([], { hour12: false });
+    li.append(el("span", "when", when), el("span", "kind", mistake.kind || "mistake"));
+    const say = mistake.help ? mistake.help.say : `${mistake.text}: a mistake`;
+    li.append(el("span", "say", say));
+    list.append(li);
+  }
+  return list;
 }
 
 function offScript(goal) {
