@@ -22,9 +22,9 @@ import supportive
 from supportive.errors import NotFittedError
 from supportive.estimator import Estimator
 from supportive.evaluation.baselines import Bigram, MaskedBigram, MostFrequentNotDone
-from supportive.inference.bigram import TransitionCounts
 from supportive.examples import load
 from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM, StepPredictor
+from supportive.inference.bigram import TransitionCounts
 from supportive.inference.synthetic import synthetic_stream
 from supportive.language.demonstrated import BehaviorRecorder
 from supportive.language.states import TaskStates
