@@ -50,7 +50,8 @@ def test_block_task_shapes() -> None:
 def test_examples_learn_and_admit_their_demonstrations(name: str) -> None:
     spec = examples.load(name)
     learner = learn(spec)
-    assert all(learner.htn_.admits(d) for d in spec.action_sequences())
+    correct = [d.actions for d in spec.demonstrations if not d.labelled]  # a labelled mistake is not a way to do it
+    assert correct and all(learner.htn_.admits(d) for d in correct)
     stats = learner.stats_.as_dict()
     assert stats["demonstrations"] == len(spec.demonstrations)
     assert stats["task_graph"]["paths"] >= len({tuple(d) for d in spec.action_sequences()})
