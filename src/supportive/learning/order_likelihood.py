@@ -106,7 +106,7 @@ class OrderLikelihood:
         weighted by that root's orders, walking through the ``skippable`` roots as if absent."""
         successors = self._successors
         terminal = set(top.terminal)
-        if not skippable:  # one state at a time: the set of roots done fixes how many are left
+        if skippable <= top.free:  # skipping only forbids: one state at a time, the roots done fix what is left
             return math.prod(counts[i] for i in performed) * self._plain(top, frozenset(performed))
 
         def closed(states: Iterable[int]) -> frozenset[int]:
