@@ -8,7 +8,7 @@ import json
 from typing import Any
 
 from supportive.cli.output import out, say
-from supportive.evaluation.mistakes import MistakeEvaluation
+from supportive.evaluation.mistakes import KIND_HEADERS, MistakeEvaluation, kind_rows
 from supportive.render.tables import fitted_table
 
 __all__ = ["print_mistakes"]
@@ -35,13 +35,7 @@ def print_mistakes(evaluation: MistakeEvaluation, title: str, *, as_json: bool, 
     ]
     headers = ["method", "precision", "recall", "F1", "flagged on clean", "not-visible labels flagged"]
     out.print(fitted_table(out, "mistakes (overall)", headers, rows, numeric=range(1, 6)))
-    rows = [
-        [name, kind, str(k["claimed"]), f"{k['precision']:.3f}", str(k["positives"]), f"{k['recall']:.3f}", f"{k['f1']:.3f}"]
-        for name, m in methods.items()
-        for kind, k in m["kinds"].items()
-    ]
-    headers = ["method", "kind", "claimed", "precision", "positives", "recall", "F1"]
-    out.print(fitted_table(out, "per kind", headers, rows, numeric=range(2, 7)))
+    out.print(fitted_table(out, "per kind", list(KIND_HEADERS), kind_rows(methods), numeric=range(2, 7)))
     delay = methods["progress-aware"]["missing_delay"]
     if delay["found"]:
         say(f"missing steps found by the detector: {delay['found']}, caught {delay['mean']} steps after their place on average (median {delay['median']})")

@@ -45,12 +45,14 @@ from supportive.tasks.spec import Demonstration, TaskSpec
 
 __all__ = [
     "DETECTOR",
+    "KIND_HEADERS",
     "METHODS",
     "VISIBLE",
     "MethodScores",
     "MistakeEvaluation",
     "detection_model",
     "evaluate_mistakes",
+    "kind_rows",
 ]
 
 DETECTOR = "progress-aware"
@@ -309,7 +311,7 @@ def _score(demo: Demonstration, flags: list[Flag], scores: MethodScores, positiv
         right = (performed and positive[step]) or bool(hits) or bool(late & set(named))
         scores.flagged += 1
         scores.right += right
-        claim = kind or (label if performed and positive[step] else "missing" if hits else None)
+        claim = kind  # a method that names no kind claims none (its recall per kind still counts)
         if claim is not None:
             record = scores._kind(claim)
             record[0] += 1
@@ -332,3 +334,20 @@ def _score(demo: Demonstration, flags: list[Flag], scores: MethodScores, positiv
         scores.found += len(skipped) - len(pending)
         missing[2] += len(skipped)
         missing[3] += len(skipped) - len(pending)
+
+
+KIND_HEADERS = ("method", "kind", "claimed", "precision", "positives", "recall", "F1")
+"""The columns of :func:`kind_rows`."""
+
+
+def kind_rows(methods: Mapping[str, Mapping[str, Any]]) -> list[list[str]]:
+    """The per-kind table of :meth:`MistakeEvaluation.as_dict`'s ``methods``, one row per method and kind
+    (precision and F1 "–" for a kind the method never claimed: it names no kind, or not that one)."""
+    rows = []
+    for name, method in methods.items():
+        for kind, k in method["kinds"].items():
+            claimed = int(k["claimed"])
+            precision = f"{k['precision']:.3f}" if claimed else "–"
+            f1 = f"{k['f1']:.3f}" if claimed else "–"
+            rows.append([name, kind, str(claimed), precision, str(k["positives"]), f"{k['recall']:.3f}", f1])
+    return rows

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from supportive.evaluation.mistakes import DETECTOR
+from supportive.evaluation.mistakes import DETECTOR, KIND_HEADERS, kind_rows
 from supportive.experiments.mistake_detection.measure import KINDS, POSITIVES, SIZES, TEST, TRAIN
 from supportive.experiments.plotting import new_figure, save_png
 from supportive.experiments.readings import Finding
@@ -65,16 +65,10 @@ def report(metrics: Mapping[str, Any]) -> str:
                 ],
             ),
             "",
-            "Per kind (precision counts the flags a method gives that kind; the baselines name none but order):",
+            "Per kind (recall: the positives of that kind a method flags; precision: of the flags naming that",
+            "kind, the right ones — the precondition check names order, the unseen bigram no kind):",
             "",
-            *markdown_table(
-                ["method", "kind", "claimed", "precision", "positives", "recall", "F1"],
-                [
-                    [name, kind, str(k["claimed"]), f"{k['precision']:.3f}", str(k["positives"]), f"{k['recall']:.3f}", f"{k['f1']:.3f}"]
-                    for name, m in cc["methods"].items()
-                    for kind, k in m["kinds"].items()
-                ],
-            ),
+            *markdown_table(list(KIND_HEADERS), kind_rows(cc["methods"])),
             "",
             f"Missing steps the detector found: {cc['methods'][DETECTOR]['missing_delay']['found']}, caught on average",
             f"{cc['methods'][DETECTOR]['missing_delay']['mean']} steps after their place (0: at the step done instead).",
