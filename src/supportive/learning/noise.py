@@ -170,6 +170,7 @@ class _Search:
         self._scores: dict[frozenset[Deviation], float] = {}
         self._fits: dict[frozenset[Deviation], FittedStructure] = {}
         self._found: dict[frozenset[Deviation], list[frozenset[Deviation]]] = {}
+        self._orders: dict[object, int] = {}  # counted orders of top levels, shared by the readings scored
 
     # ------------------------------------------------------------------ search
     def run(self) -> SlipResult:
@@ -476,7 +477,7 @@ class _Search:
         if cached is not None:
             return cached
         cleaned = self._cleaned(slips)
-        reading = OrderLikelihood(self._fit(slips).htn())
+        reading = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)
         by_demo: dict[int, list[Deviation]] = {}
         for slip in slips:
             by_demo.setdefault(slip.demonstration, []).append(slip)

@@ -26,17 +26,25 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, nullable, to_leaves
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, nullable, to_leaves
 
 __all__ = ["OrderLikelihood"]
 
 
 class OrderLikelihood:
-    """The two-step reading of ``htn`` (see the module docstring)."""
+    """The two-step reading of ``htn`` (see the module docstring).
 
-    def __init__(self, htn: HTN) -> None:
+    ``shared``: a dict that readings of several hierarchies may share, where the orders of a partial top
+    level are kept by what decides them (the top level's order automaton, each root's number of orders,
+    which roots are performed and which may be skipped): hierarchies learned from nearly the same
+    demonstrations often share their top level, and counting its orders is the costly part."""
+
+    def __init__(self, htn: HTN, *, shared: dict[object, int] | None = None) -> None:
         self.htn = htn
         self._orders: dict[frozenset[Leaf], int] = {}
+        self._shared = shared if shared is not None else {}
+        top = htn.top_level
+        self._successors = top.successors() if top is not None else {}
 
     def log_probability(self, leaves: Sequence[Leaf]) -> float:
         """Natural log of the probability of the execution ``leaves``; ``-inf`` when the hierarchy does not
@@ -47,9 +55,9 @@ class OrderLikelihood:
         orders = self._orders.get(done)
         if orders is None:
             orders = self._orders[done] = self._count(done)
-        return sum(_choice(node, done) for root in self.htn.roots for node in _performed_parents(root, done)) - math.log(
-            orders
-        )
+        return sum(
+            _choice(node, done) for root in self.htn.roots for node in _performed_parents(root, done)
+        ) - math.log(orders)
 
     def log_probability_of_actions(self, actions: Sequence[str]) -> float:
         """:meth:`log_probability` of an execution given as action ids (the k-th performance of an action
@@ -83,14 +91,27 @@ class OrderLikelihood:
         top = self.htn.top_level
         if top is None:
             return math.prod(c for c in counts if c)
-        performed = {i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves)}
+        performed = sorted(i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves))
         skippable = {i for i, root in enumerate(self.htn.roots) if i not in performed and nullable(root)}
-        successors = top.successors()
+        key = (top, tuple(counts), tuple(performed), frozenset(skippable))
+        known = self._shared.get(key)
+        if known is None:
+            known = self._shared[key] = self._walk(top, counts, performed, skippable)
+        return known
+
+    def _walk(
+        self, top: TopLevel, counts: Sequence[int], performed: Sequence[int], skippable: set[int]
+    ) -> int:
+        """The orders of a partial top level: paths of its automaton through the ``performed`` roots, each
+        weighted by that root's orders, walking through the ``skippable`` roots as if absent."""
+        successors = self._successors
         terminal = set(top.terminal)
+        if skippable <= top.free:  # skipping only forbids: one state at a time, the roots done fix what is left
+            return math.prod(counts[i] for i in performed) * self._plain(top, frozenset(performed))
 
         def closed(states: Iterable[int]) -> frozenset[int]:
             seen, stack = set(states), list(states)
-            while stack:
+            while skippable and stack:
                 for root, nxt in successors.get(stack.pop(), {}).items():
                     if root in skippable and nxt not in seen:
                         seen.add(nxt)
@@ -100,18 +121,42 @@ class OrderLikelihood:
         memo: dict[tuple[frozenset[int], int], int] = {}
 
         def paths(states: frozenset[int], left: int) -> int:
-            key = (states, left)
-            if key not in memo:
+            total = memo.get((states, left))
+            if total is None:
                 total = int(left == 0 and not terminal.isdisjoint(states))
                 if left:
                     for root in performed:
-                        after = [nxt for state in states for r, nxt in successors.get(state, {}).items() if r == root]
+                        after = {
+                            nxt
+                            for state in states
+                            if (nxt := successors.get(state, {}).get(root)) is not None
+                        }
                         if after:
                             total += counts[root] * paths(closed(after), left - 1)
-                memo[key] = total
-            return memo[key]
+                memo[(states, left)] = total
+            return total
 
         return paths(closed(top.initial), len(performed))
+
+    def _plain(self, top: TopLevel, performed: frozenset[int]) -> int:
+        """The root orders of a top level that perform exactly ``performed`` (each path is one order: no
+        root is skipped)."""
+        successors = self._successors
+        terminal = set(top.terminal)
+        memo: dict[int, int] = {}
+
+        def paths(state: int, left: int) -> int:
+            total = memo.get(state)
+            if total is None:
+                total = int(left == 0 and state in terminal)
+                if left:
+                    for root, nxt in successors.get(state, {}).items():
+                        if root in performed:
+                            total += paths(nxt, left - 1)
+                memo[state] = total
+            return total
+
+        return sum(paths(state, len(performed)) for state in top.initial)
 
 
 def _nodes(node: Node) -> list[Node]:

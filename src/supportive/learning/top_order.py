@@ -81,7 +81,8 @@ def precedence_top_level(
                 frontier.append(after)
             edges.append((number[done], i, number[after]))
     terminal = tuple(sorted(n for done, n in number.items() if done & need == need))
-    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)))
+    free = frozenset(i for i, root in enumerate(roots) if root not in required)  # in no one's preds, nor needed
+    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free)
 
 
 def seen_top_level(roots: Sequence[int], sequences: Sequence[Sequence[int]]) -> TopLevel:

@@ -534,6 +534,10 @@ class TopLevel:
     terminal: tuple[int, ...]
     edges: tuple[tuple[int, int, int], ...]
     counts: Counts | None = field(default=None, compare=False, repr=False)
+    free: frozenset[int] = field(default=frozenset(), compare=False, repr=False)
+    """Roots (indices) whose being done never lets another root be done or the task end: leaving one out
+    of an execution admits the same orders of the rest as passing through it would (the optional roots of
+    a partial order of roots; a hint for counting orders, not part of the language)."""
 
     def successors(self) -> dict[int, dict[int, int]]:
         """``state -> {root index -> next state}``."""
