@@ -22,6 +22,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+from tests.conftest import CliRunner
 
 from supportive import examples
 from supportive.generate import generate_task
@@ -286,3 +287,22 @@ def test_a_beliefs_bag_cut_in_the_middle_is_not_left_behind(tmp_path: Path, sig:
     assert assert_stopped(code, lines, sig) == "nothing written"
     assert len(out.splitlines()) == 2  # the two frames before the one it stopped in
     assert list(tmp_path.iterdir()) == []  # neither the bag nor its hidden staging folder
+
+
+def test_an_error_a_library_raises_from_a_ctrl_c_is_an_interruption(
+    cli: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A library that turns a KeyboardInterrupt into an error of its own (``raise … from``) is still an
+    interruption: 130 and the one line, no traceback (a Ctrl-C under load once landed in such a place)."""
+    import supportive.io.taskfile as taskfile
+
+    def parse(*args: object, **kwargs: object) -> None:
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise RuntimeError("parsing stopped") from exc
+
+    monkeypatch.setattr(taskfile, "parse_task_file", parse)
+    code, out, err = cli(["learn", "blocks-v"])
+    assert code == 130 and out == ""
+    assert err.strip().splitlines() == ["supportive: interrupted (Ctrl-C): nothing written"]

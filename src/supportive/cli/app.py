@@ -113,7 +113,12 @@ def _run() -> int:
     command = typer.main.get_command(app)
     _plain_placeholders(command)
     try:
-        code = command.main(standalone_mode=False)
+        try:
+            code = command.main(standalone_mode=False)
+        except Exception as exc:  # a library turned the interruption into an error of its own ("from" it)
+            if _interrupted(exc):
+                return INTERRUPTED
+            raise
     except KeyboardInterrupt:  # before the command started (typer turns one inside it into 130)
         return INTERRUPTED
     except typer.Abort:
@@ -139,3 +144,14 @@ def _run() -> int:
     return code if isinstance(code, int) else 0
 
 
+def _interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` was raised because of a Ctrl-C or SIGTERM: a ``KeyboardInterrupt`` among its causes
+    and contexts."""
+    seen: set[int] = set()
+    current: BaseException | None = exc
+    while current is not None and id(current) not in seen:
+        if isinstance(current, KeyboardInterrupt):
+            return True
+        seen.add(id(current))
+        current = current.__cause__ or current.__context__
+    return False
