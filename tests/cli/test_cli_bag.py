@@ -235,7 +235,7 @@ def test_beliefs_written_back_equal_infer_on_the_same_events(
 
 
 def test_a_skipped_step_is_a_mistake_in_the_printed_lines_and_the_belief_bag(tmp_path: Path, cli: CliRunner) -> None:
-    frames = frames_of_chair(seed=7, skip="peg_left_rear")
+    frames = frames_of_chair(seed=7, skip="place_left_frame")
     bag = tmp_path / "rec"
     with BagWriter(bag, "mcap") as writer:
         write_contact_frames(writer, frames)
@@ -245,8 +245,9 @@ def test_a_skipped_step_is_a_mistake_in_the_printed_lines_and_the_belief_bag(tmp
     records = [json.loads(line) for line in printed.splitlines()]
     judged = [r["mistake"] for r in records if "mistake" in r]
     flagged = [m for m in judged if m["mistake"]]
-    assert flagged and flagged[0]["kind"] == "missing" and "peg_left_rear" in flagged[0]["skipped"]
-    assert flagged[0]["help"]["category"] == "enhancing awareness" and "left frame's rear hole" in flagged[0]["help"]["say"]
+    assert flagged and flagged[0]["kind"] == "missing" and "place_left_frame" in flagged[0]["skipped"]
+    assert flagged[0]["help"]["category"] == "enhancing awareness"
+    assert "standing the left side frame on the table" in flagged[0]["help"]["say"]
     topics = read_topics(out)
     assert [m.data for _, m in topics["/supportive/mistake/probability"]] == [m["probability"] for m in judged]
     assert [json.loads(m.data) for _, m in topics["/supportive/mistake"]] == flagged

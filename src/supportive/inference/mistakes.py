@@ -220,12 +220,16 @@ class MistakeDetector:
         otherwise).
 
         Contacts cannot tell a step from a *twin* that touches the same things (two pegs pushed into the same
-        frame): when the person moves on from a step, its twins that the new step needs and that are not
-        done yet are taken as done, one after the other, before the new step is judged (a twin truly skipped
-        is not seen; docs/inference.md)."""
+        frame): when the person moves on from a step, its twins that the new step needs (its prerequisites,
+        and the rest of a subtask it would interrupt) and that are not done yet are taken as done, in task
+        order, before the new step is judged (a twin truly skipped is not seen; docs/inference.md). The most
+        probable subgoal going back to a step already done is taken for the contacts flickering, not for a
+        repeat (a repeated step is seen from known actions)."""
         belief = self.events.update(events)
         subgoal = int(np.argmax(belief.subgoals)) if belief.subgoals.size and belief.subgoals.max() > 0 else None
         if subgoal is None or subgoal == self._current:
+            return None
+        if self._done_leaves()[subgoal]:  # back to a step already done: the contacts flicker, not a repeat
             return None
         previous, self._current = self._current, subgoal
         if previous is not None:
