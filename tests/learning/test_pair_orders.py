@@ -42,6 +42,22 @@ def _brute_force(htn: HTN) -> np.ndarray:
     return np.divide(first, both, out=np.zeros_like(first), where=both > 0)
 
 
+def sampled_demonstrations(rng: np.random.Generator, kind: str, skips: bool) -> list[list[str]]:
+    """Eight demonstrations of a random 6-step task of ``kind`` (a partial order, or an ``ikea``/``uniform``
+    chain/clique structure), drawn uniformly; with ``skips``, every third loses a step (optional steps and
+    roots)."""
+    if kind == "partial order":
+        task = random_partial_order(6, rng, chains=int(rng.integers(2, 4)), cross=int(rng.integers(0, 3)))
+        demos = [list(task.sample(rng)) for _ in range(8)]
+    else:
+        structure = random_structure(6, rng, profile=kind)  # type: ignore[arg-type]
+        demos = [[a for a, _ in sample_ordering(structure, rng)] for _ in range(8)]
+    if skips:
+        for demo in demos[::3]:
+            demo.pop(int(rng.integers(len(demo))))
+    return demos
+
+
 @settings(max_examples=40, deadline=None)
 @given(
     seed=st.integers(0, 10_000),
@@ -50,16 +66,7 @@ def _brute_force(htn: HTN) -> np.ndarray:
     skips=st.booleans(),
 )
 def test_order_probabilities_equal_counting_every_execution(seed: int, kind: str, mode: str, skips: bool) -> None:
-    rng = np.random.default_rng(seed)
-    if kind == "partial order":
-        task = random_partial_order(6, rng, chains=int(rng.integers(2, 4)), cross=int(rng.integers(0, 3)))
-        demos = [list(task.sample(rng)) for _ in range(8)]
-    else:
-        structure = random_structure(6, rng, profile=kind)  # type: ignore[arg-type]
-        demos = [[a for a, _ in sample_ordering(structure, rng)] for _ in range(8)]
-    if skips:  # optional steps and roots
-        for demo in demos[::3]:
-            demo.pop(int(rng.integers(len(demo))))
+    demos = sampled_demonstrations(np.random.default_rng(seed), kind, skips)
     htn = HTNLearner(mode=mode, alternatives=0).fit(demos).htn_  # type: ignore[arg-type]
     leaves, before = order_probabilities(htn)
     assert leaves == htn.leaves

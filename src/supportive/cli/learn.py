@@ -50,6 +50,13 @@ class Profile(StrEnum):
     uniform = "uniform"
 
 
+DetectorThreshold = Annotated[
+    float | None,
+    typer.Option("--threshold", min=0.0, max=1.0, callback=finite, help="The detector's threshold (--mistakes; default: its own)."),
+]
+"""``--threshold`` of ``evaluate --mistakes`` and ``captaincook --mistakes``."""
+
+
 def learn(
     file: Annotated[
         Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
@@ -183,12 +190,7 @@ def evaluate(
         bool,
         typer.Option("--mistakes", help="Score online mistake detection on the file's labelled steps instead."),
     ] = False,
-    threshold: Annotated[
-        float | None,
-        typer.Option(
-            "--threshold", min=0.0, max=1.0, callback=finite, help="The detector's threshold (--mistakes; default: its own)."
-        ),
-    ] = None,
+    threshold: DetectorThreshold = None,
 ) -> None:
     """Cross-validate your demonstrations: does the hierarchy learned from the others admit the one held out
     (with a ground-truth structure: recall and precision of its orderings), and how well the progress-aware
@@ -281,12 +283,7 @@ def captaincook(
             "--mistakes", help="Score online mistake detection on every recording's labels instead (slow: minutes)."
         ),
     ] = False,
-    threshold: Annotated[
-        float | None,
-        typer.Option(
-            "--threshold", min=0.0, max=1.0, callback=finite, help="The detector's threshold (--mistakes; default: its own)."
-        ),
-    ] = None,
+    threshold: DetectorThreshold = None,
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph. With --mistakes: leave each
