@@ -211,7 +211,6 @@ class ProgressFilter:
         self.subtask_labels = tuple(node.name or node.kind for node in self.layout.nodes)
         self.enclosing_labels = ("(top level)", *self.subtask_labels)
         self.actions = tuple(dict.fromkeys(a for a, _ in self.leaves))
-        self._action_code = {a: i for i, a in enumerate(self.actions)}
         self._by_action: dict[str, list[int]] = defaultdict(list)
         for i, (action, _) in enumerate(self.leaves):
             self._by_action[action].append(i)

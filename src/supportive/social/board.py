@@ -179,14 +179,6 @@ class TaskBoard:
         """The (action, occurrence) leaves completed so far: the task's state."""
         return frozenset((n.action, n.occurrence) for n in self.nodes if n.done and n.action is not None)
 
-    def claimable_by(self, ident: str, agent: str, role: Role) -> bool:
-        """Whether ``agent`` could claim ``ident`` now."""
-        try:
-            self.claim(ident, agent, role)
-        except BoardError:
-            return False
-        return True
-
     # -- changing ----------------------------------------------------------------------------------------------
 
     def claim(self, ident: str, agent: str, role: Role) -> TaskBoard:

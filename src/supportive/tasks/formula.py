@@ -170,6 +170,9 @@ _GRAMMAR = r"""
 
 
 class _ToDNF(Transformer[Token, DNF]):
+    """The parse tree as a :class:`DNF`: lark calls each method by the name of its rule (or alias) in
+    ``_GRAMMAR``, so none of them is called by name in Python."""
+
     def never(self, _: list[object]) -> DNF:
         return DNF(())
 

@@ -96,11 +96,6 @@ class TeachingSession:
         return tuple(self._queries)
 
     @property
-    def in_progress(self) -> bool:
-        """True between :meth:`begin` and :meth:`end`."""
-        return self._done is not None
-
-    @property
     def done(self) -> tuple[str, ...]:
         """Actions performed so far in the current demonstration."""
         return tuple(self._done or ())

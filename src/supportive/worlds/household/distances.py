@@ -15,7 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import shortest_path
 
-from supportive.worlds.household.grid_map import Cell, GridMap, Terrain
+from supportive.worlds.household.grid_map import Cell, GridMap
 
 __all__ = ["UNREACHABLE", "CellGraph", "MapDistances"]
 
@@ -102,7 +102,3 @@ class MapDistances:
             steps = self.novice.to_any(self.approaches(hazard))
             out[hazard] = np.where(steps == UNREACHABLE, UNREACHABLE, steps + 1).astype(np.int32)
         return out
-
-    def walkable_for_caregiver(self, cell: Cell) -> bool:
-        """True when the caregiver may stand on ``cell``."""
-        return cell in self.caregiver.index and self.grid.at(cell) in (Terrain.FLOOR, Terrain.STAIRS)
