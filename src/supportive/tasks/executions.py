@@ -23,10 +23,24 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, nullable, shape
+from supportive.tasks.nodes import ActionNode, ChainNode, Leaf, Node, TopLevel, nullable, shape
 
-__all__ = ["Executions", "Progress", "Table"]
+__all__ = ["Executions", "Hierarchy", "Progress", "Table"]
+
+
+class Hierarchy(Protocol):
+    """What the machine reads of a hierarchy (an :class:`~supportive.tasks.htn.HTN`): its roots and, for a
+    partial one, its top level."""
+
+    @property
+    def roots(self) -> tuple[Node, ...]:
+        """The top-level nodes; one when the hierarchy is complete."""
+
+    @property
+    def top_level(self) -> TopLevel | None:
+        """How a partial hierarchy's roots follow one another (``None`` when it is complete)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,9 +78,9 @@ class Executions:
         htn: A complete hierarchy or a partial one with its ``top_level``.
     """
 
-    def __init__(self, htn: HTN) -> None:
+    def __init__(self, htn: Hierarchy) -> None:
         self.htn = htn
-        self.leaves: tuple[Leaf, ...] = htn.leaves
+        self.leaves: tuple[Leaf, ...] = tuple(leaf for root in htn.roots for leaf in root.leaves)
         self.index: dict[Leaf, int] = {leaf: i for i, leaf in enumerate(self.leaves)}
         self.masks: list[int] = []
         self.nullables: list[bool] = []

@@ -10,26 +10,41 @@ carries how often each choice was made in the demonstrations (``counts``, :class
 it rests on (``support``, :class:`Support`); neither takes part in equality.
 
 The same classes describe a ground-truth ``structure`` from a task file and a learned hierarchy.
+
+The node classes and :class:`TopLevel` are defined in :mod:`supportive.tasks.nodes` (re-exported here); this module
+holds what they mean (counting, sampling, admitting) and the :class:`HTN`, whose executions
+:mod:`supportive.tasks.executions` runs.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
-from collections import Counter
 from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
 from supportive.errors import TaskModelError
 from supportive.seeding import Seed, rng_from
-
-if TYPE_CHECKING:
-    from supportive.tasks.executions import Executions
+from supportive.tasks.executions import Executions
+from supportive.tasks.nodes import (
+    ActionNode,
+    ChainNode,
+    CliqueNode,
+    Counts,
+    Leaf,
+    Node,
+    Support,
+    TopLevel,
+    canonical,
+    leaf_actions,
+    nullable,
+    shape,
+    to_leaves,
+    with_children,
+)
 
 __all__ = [
     "HTN",
@@ -60,196 +75,6 @@ __all__ = [
     "to_leaves",
     "with_children",
 ]
-
-Leaf: TypeAlias = tuple[str, int]
-"""A performed subgoal: (action id, occurrence)."""
-
-
-@dataclass(frozen=True)
-class Counts:
-    """How often each choice at a node was made in the demonstrations it was learned from.
-
-    Attributes:
-        performed: Demonstrations in which the node was performed (at least one of its leaves done).
-        skipped: Demonstrations in which an optional node was skipped (0 for a required node).
-        first: For a clique (and a partial hierarchy's top level): times each child came first.
-        after: For a clique: ``after[i][j]`` is how often child ``j`` directly followed child ``i``.
-    """
-
-    performed: int = 0
-    skipped: int = 0
-    first: tuple[int, ...] = ()
-    after: tuple[tuple[int, ...], ...] = ()
-
-    def as_dict(self) -> dict[str, object]:
-        """Plain-data form (the ``"counts"`` of the HTN JSON); empty parts are left out."""
-        data: dict[str, object] = {"performed": self.performed}
-        if self.skipped:
-            data["skipped"] = self.skipped
-        if self.first:
-            data["first"] = list(self.first)
-        if self.after:
-            data["after"] = [list(row) for row in self.after]
-        return data
-
-
-@dataclass(frozen=True)
-class Support:
-    """The evidence a learned node rests on.
-
-    Attributes:
-        demonstrations: Demonstrations that show the node (perform at least one of its leaves).
-        orders_seen: Distinct orders of its children seen in them (1 for a leaf).
-        orders: Orders of its children the node admits (``k!`` for a clique of ``k``, 1 for a chain).
-        observed: True when every order it admits was seen ("observed in full"); False when it was inferred
-            (a clique accepted from commuting pairs, say).
-    """
-
-    demonstrations: int
-    orders_seen: int
-    orders: int
-    observed: bool
-
-    def as_dict(self) -> dict[str, object]:
-        """Plain-data form (the ``"support"`` of the HTN JSON)."""
-        return {
-            "demonstrations": self.demonstrations,
-            "orders_seen": self.orders_seen,
-            "orders": self.orders,
-            "observed": "full" if self.observed else "inferred",
-        }
-
-
-
-@dataclass(frozen=True)
-class ActionNode:
-    """A primitive subgoal."""
-
-    action: str
-    occurrence: int = 1
-    optional: bool = False
-    counts: Counts | None = field(default=None, compare=False, repr=False)
-    support: Support | None = field(default=None, compare=False, repr=False)
-    kind: Literal["action"] = field(default="action", init=False, repr=False)
-
-    @property
-    def leaf(self) -> Leaf:
-        """The (action, occurrence) pair this leaf stands for."""
-        return (self.action, self.occurrence)
-
-    @cached_property
-    def leaves(self) -> tuple[Leaf, ...]:
-        """The leaves under this node, depth first."""
-        return ((self.action, self.occurrence),)
-
-    @property
-    def label(self) -> str:
-        """The action id, with ``#k`` for a repeated action's k-th performance."""
-        return self.action if self.occurrence == 1 else f"{self.action}#{self.occurrence}"
-
-
-@dataclass(frozen=True)
-class ChainNode:
-    """Children performed in this order (an order-invariant subtask)."""
-
-    children: tuple[Node, ...]
-    name: str | None = field(default=None, compare=False)
-    optional: bool = False
-    counts: Counts | None = field(default=None, compare=False, repr=False)
-    support: Support | None = field(default=None, compare=False, repr=False)
-    kind: Literal["chain"] = field(default="chain", init=False, repr=False)
-
-    @cached_property
-    def leaves(self) -> tuple[Leaf, ...]:
-        """The leaves under this node, depth first."""
-        return tuple(leaf for child in self.children for leaf in child.leaves)
-
-
-@dataclass(frozen=True)
-class CliqueNode:
-    """Children performed in any order, none interleaved with another (an order-agnostic subtask)."""
-
-    children: tuple[Node, ...]
-    name: str | None = field(default=None, compare=False)
-    optional: bool = False
-    counts: Counts | None = field(default=None, compare=False, repr=False)
-    support: Support | None = field(default=None, compare=False, repr=False)
-    kind: Literal["clique"] = field(default="clique", init=False, repr=False)
-
-    @cached_property
-    def leaves(self) -> tuple[Leaf, ...]:
-        """The leaves under this node, depth first."""
-        return tuple(leaf for child in self.children for leaf in child.leaves)
-
-
-Node: TypeAlias = ActionNode | ChainNode | CliqueNode
-
-
-def to_leaves(actions: Iterable[str]) -> tuple[Leaf, ...]:
-    """Number the performances of each action: ``["a", "b", "a"] -> (("a", 1), ("b", 1), ("a", 2))``."""
-    seen: Counter[str] = Counter()
-    out = []
-    for action in actions:
-        seen[action] += 1
-        out.append((action, seen[action]))
-    return tuple(out)
-
-
-def leaf_actions(node: Node) -> tuple[str, ...]:
-    """The action ids under ``node``, depth first (repeats included)."""
-    return tuple(action for action, _ in node.leaves)
-
-
-def with_children(node: ChainNode | CliqueNode, children: Iterable[Node], **changes: Any) -> ChainNode | CliqueNode:
-    """A copy of ``node`` with other children, keeping its name, optional flag, counts and support unless
-    ``changes`` sets them."""
-    return dataclasses.replace(node, children=tuple(children), **changes)
-
-
-def nullable(node: Node) -> bool:
-    """True when ``node`` may be performed as nothing: it is optional, or every child of it may be."""
-    if node.optional:
-        return True
-    return not isinstance(node, ActionNode) and all(nullable(child) for child in node.children)
-
-
-def canonical(node: Node) -> tuple[object, ...]:
-    """A hashable form that is equal for equivalent hierarchies.
-
-    Names, counts and support are ignored, clique children are unordered, and a chain nested directly in a
-    chain is merged into it (both mean the same order), per invariant 3 of the design. An optional node is
-    wrapped as ``("optional", form)`` (so an optional chain is not merged into its parent).
-    """
-    form = _canonical(node)
-    return ("optional", form) if node.optional else form
-
-
-def _canonical(node: Node) -> tuple[object, ...]:
-    if isinstance(node, ActionNode):
-        return ("action", node.action, node.occurrence)
-    if isinstance(node, ChainNode):
-        items: list[object] = []
-        for child in node.children:
-            form = canonical(child)
-            if form[0] == "chain":
-                items.extend(form[1])  # type: ignore[arg-type]
-            else:
-                items.append(form)
-        return ("chain", tuple(items))
-    return ("clique", frozenset(canonical(child) for child in node.children))
-
-
-def shape(node: Node, *, optional: bool = True) -> object:
-    """The structure of ``node`` with occurrence numbers left out (and optional flags, unless ``optional``):
-    equal for the instances of one repeated subtask (the k legs of a table)."""
-    if isinstance(node, ActionNode):
-        form: object = ("action", node.action)
-    elif isinstance(node, ChainNode):
-        form = ("chain", tuple(shape(c, optional=optional) for c in node.children))
-    else:
-        form = ("clique", tuple(sorted((shape(c, optional=optional) for c in node.children), key=repr)))
-    return ("optional", form) if optional and node.optional else form
-
 
 def _counts(node: Node) -> tuple[int, bool]:
     """``(non-empty sequences node admits, whether it may also be performed as nothing)``."""
@@ -377,8 +202,6 @@ def admits(node: Node, leaves: Sequence[Leaf]) -> bool:
     >>> admits(ChainNode((ActionNode("a"), ActionNode("b", optional=True), ActionNode("c"))), [("a", 1), ("c", 1)])
     True
     """
-    from supportive.tasks.executions import Executions
-
     return Executions(HTN("", (node,))).accepts_leaves(leaves)
 
 
@@ -526,41 +349,6 @@ def mean_action_depth(roots: Sequence[Node]) -> float:
 
 
 @dataclass(frozen=True)
-class TopLevel:
-    """How the roots of a partial hierarchy may follow one another: the learned task graph at the level where
-    compaction stopped (§2.1.5.2). States are numbered; an edge ``(src, r, dst)`` performs ``roots[r]``."""
-
-    initial: tuple[int, ...]
-    terminal: tuple[int, ...]
-    edges: tuple[tuple[int, int, int], ...]
-    counts: Counts | None = field(default=None, compare=False, repr=False)
-    free: frozenset[int] = field(default=frozenset(), compare=False, repr=False)
-    """Roots (indices) whose being done never lets another root be done or the task end: leaving one out
-    of an execution admits the same orders of the rest as passing through it would (the optional roots of
-    a partial order of roots; a hint for counting orders, not part of the language)."""
-
-    def successors(self) -> dict[int, dict[int, int]]:
-        """``state -> {root index -> next state}``."""
-        out: dict[int, dict[int, int]] = {}
-        for src, root, dst in self.edges:
-            out.setdefault(src, {})[root] = dst
-        return out
-
-    def count_orderings(self, weights: Sequence[int] | None = None) -> int:
-        """How many root orders this top level allows (exact, by dynamic programming); with ``weights``, each
-        root performed on a path counts ``weights[root]`` times (its own orderings, say)."""
-        out = self.successors()
-        terminal = set(self.terminal)
-        memo: dict[int, int] = {}
-        order = sorted(out.keys() | terminal | {d for e in out.values() for d in e.values()})
-        for state in _reverse_topological(order, out):
-            memo[state] = int(state in terminal) + sum(
-                (weights[root] if weights is not None else 1) * memo[dst] for root, dst in out.get(state, {}).items()
-            )
-        return sum(memo.get(s, int(s in terminal)) for s in self.initial)
-
-
-@dataclass(frozen=True)
 class HTN:
     """A learned (or given) Clique/Chain HTN.
 
@@ -588,8 +376,6 @@ class HTN:
     @cached_property
     def executions(self) -> Executions:
         """The executions this HTN admits, as a state machine (see :class:`~supportive.tasks.executions.Executions`)."""
-        from supportive.tasks.executions import Executions
-
         return Executions(self)
 
     def admits(self, actions: Sequence[str]) -> bool:
@@ -643,24 +429,3 @@ class HTN:
     def mean_action_depth(self) -> float:
         """Mean depth of a primitive (see :func:`mean_action_depth`)."""
         return mean_action_depth(self.roots)
-
-
-def _reverse_topological(states: Sequence[int], out: dict[int, dict[int, int]]) -> list[int]:
-    """``states`` ordered so that every state comes after all states it leads to (the graph is a DAG)."""
-    order: list[int] = []
-    seen: set[int] = set()
-    for root in states:
-        if root in seen:
-            continue
-        seen.add(root)
-        stack = [(root, iter(out.get(root, {}).values()))]
-        while stack:
-            state, children = stack[-1]
-            child = next(children, None)
-            if child is None:
-                order.append(state)
-                stack.pop()
-            elif child not in seen:
-                seen.add(child)
-                stack.append((child, iter(out.get(child, {}).values())))
-    return order
