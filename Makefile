@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-fast lint bench serve system clean example-bags
+.PHONY: demo test test-fast lint bench serve system clean example-bags architecture
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -35,7 +35,7 @@ demo: $(VENV)/.demo
 
 # Lint, types (src and tests) and the import-layer contract first, then the suite.
 test: $(VENV)/.dev system
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks tools
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q -n auto
@@ -48,7 +48,7 @@ serve: $(VENV)/.server
 	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000
 
 lint: $(VENV)/.dev
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks tools
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 
@@ -69,7 +69,11 @@ bench: $(VENV)/.dev
 # The example bags in examples/bags/, made again from the bundled task files (the same messages every time).
 example-bags: $(VENV)/.dev
 	rm -rf examples/bags/ikea-chair examples/bags/workbench-blocks
-	$(BIN)/python -m supportive.examples.recordings examples/bags
+	$(BIN)/python -m supportive.inference.example_bags examples/bags
+
+# docs/architecture.md's layers, contracts and import graph, drawn again from pyproject.toml and the code.
+architecture: $(VENV)/.dev
+	$(BIN)/python tools/architecture.py
 
 clean:
 	rm -rf $(VENV) .pytest_cache .mypy_cache .ruff_cache .hypothesis

@@ -14,7 +14,7 @@ import pytest
 from rosbags.highlevel import AnyReader
 
 from supportive import examples
-from supportive.examples.recordings import EXAMPLES, write_example_bags
+from supportive.inference.example_bags import EXAMPLES, write_example_bags
 from supportive.io.rosbag import BagWriter, Storage, write_contact_frames
 from supportive.io.rosbag.writing import LATCHED
 from supportive.io.taskfile import dump_task, parse_task_file, task_to_dict, write_task_file

@@ -97,7 +97,6 @@ class Support:
         }
 
 
-
 @dataclass(frozen=True)
 class ActionNode:
     """A primitive subgoal."""
@@ -177,7 +176,9 @@ def leaf_actions(node: Node) -> tuple[str, ...]:
     return tuple(action for action, _ in node.leaves)
 
 
-def with_children(node: ChainNode | CliqueNode, children: Iterable[Node], **changes: Any) -> ChainNode | CliqueNode:
+def with_children(
+    node: ChainNode | CliqueNode, children: Iterable[Node], **changes: Any
+) -> ChainNode | CliqueNode:
     """A copy of ``node`` with other children, keeping its name, optional flag, counts and support unless
     ``changes`` sets them."""
     return dataclasses.replace(node, children=tuple(children), **changes)
@@ -258,7 +259,8 @@ class TopLevel:
         order = sorted(out.keys() | terminal | {d for e in out.values() for d in e.values()})
         for state in _reverse_topological(order, out):
             memo[state] = int(state in terminal) + sum(
-                (weights[root] if weights is not None else 1) * memo[dst] for root, dst in out.get(state, {}).items()
+                (weights[root] if weights is not None else 1) * memo[dst]
+                for root, dst in out.get(state, {}).items()
             )
         return sum(memo.get(s, int(s in terminal)) for s in self.initial)
 

@@ -1,6 +1,6 @@
 """The thesis's chair and workbench examples as ROS 2 bags (MCAP), made from the bundled task files.
 
-``python -m supportive.examples.recordings DIR`` (``make example-bags``) writes ``DIR/ikea-chair`` and
+``python -m supportive.inference.example_bags DIR`` (``make example-bags``) writes ``DIR/ikea-chair`` and
 ``DIR/workbench-blocks``: every demonstration after a marker on ``/task/demonstration``
 (``supportive_msgs/msg/Demonstration``: id and agent), each action on ``/task/action`` (``std_msgs/msg/String``)
 one second after the one before; the chair's bag also holds what an observer would have seen during its first
