@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import supportive
-from supportive.errors import NotFittedError
+from supportive.errors import LearningError, NotFittedError
 from supportive.estimator import Estimator
 from supportive.evaluation.baselines import Bigram, MaskedBigram, MostFrequentNotDone
 from supportive.examples import load
@@ -246,6 +246,96 @@ def test_a_refit_is_independent_of_earlier_fits(case: Case) -> None:
     fresh = case.fit_b(case.make())
     assert _same(case.learned(refitted), case.learned(fresh))
     assert {k for k in vars(refitted) if k.endswith("_")} == {k for k in vars(fresh) if k.endswith("_")}
+
+
+class _Broken:
+    """An argument a fit cannot read: any use of it raises."""
+
+    def __getattr__(self, name: str) -> Any:
+        raise _Planted(name)
+
+    def __iter__(self) -> Any:
+        raise _Planted("__iter__")
+
+    def __len__(self) -> int:
+        raise _Planted("__len__")
+
+
+class _Planted(Exception):
+    pass
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_a_failed_fit_leaves_the_estimator_unfitted(case: Case) -> None:
+    estimator = case.fit_a(case.make())
+    with pytest.raises(Exception):  # noqa: B017 - whatever each fit raises on an unreadable argument
+        estimator.fit(_Broken())
+    assert not estimator.fitted
+    assert [name for name in vars(estimator) if name.endswith("_")] == []
+    with pytest.raises(NotFittedError):
+        case.use(estimator)
+    assert _same(case.learned(case.fit_b(estimator)), case.learned(case.fit_b(case.make())))
+
+
+def test_after_a_failed_fit_partial_fit_starts_afresh() -> None:
+    learner = HTNLearner()
+    with pytest.raises(LearningError, match="no demonstrations"):
+        learner.fit([], "t")
+    assert not learner.fitted
+    learner.partial_fit(["a", "b"])
+    assert learner.task_graph_.demonstrations and learner.htn_.admits(["a", "b"])
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_get_params_gives_every_setting_and_makes_an_unfitted_copy(case: Case) -> None:
+    estimator = case.fit_a(case.make())
+    params = estimator.get_params()
+    init = type(estimator).__init__
+    names = [n for n in inspect.signature(init).parameters if n != "self"] if init is not object.__init__ else []
+    assert list(params)[: len(names)] == names
+    copy = type(estimator)(**params)
+    assert not copy.fitted
+    assert all(_same(copy.get_params()[name], params[name]) for name in names)
+    assert _same(case.learned(case.fit_b(copy)), case.learned(case.fit_b(estimator)))
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_set_params_changes_settings_and_refuses_unknown_names(case: Case) -> None:
+    estimator = case.make()
+    params = estimator.get_params(deep=False)
+    assert estimator.set_params(**params) is estimator
+    assert all(_same(estimator.get_params()[name], value) for name, value in params.items())
+    with pytest.raises(LearningError, match="no setting 'colour'"):
+        estimator.set_params(colour="red")
+
+
+def test_set_params_checks_values_as_init_does() -> None:
+    predictor = StepPredictor()
+    assert predictor.set_params(backoff=0.3, slip=0.05).get_params()["backoff"] == 0.3
+    assert predictor.slip == 0.05
+    for bad in ({"backoff": 1.0}, {"slip": 2.0}, {"slip_rate": 0.9}, {"mode": "sideways"}):
+        with pytest.raises(LearningError):
+            StepPredictor(**bad)
+        with pytest.raises(LearningError):
+            predictor.set_params(**bad)
+    assert predictor.get_params()["backoff"] == 0.3 and predictor.slip == 0.05, "a refused value changed nothing"
+
+
+def test_settings_are_named_parameters() -> None:
+    with pytest.raises(TypeError, match="named parameters"):
+
+        class Loose(Estimator):
+            def __init__(self, **settings: Any) -> None:
+                self.settings = settings
+
+
+@pytest.mark.parametrize("kind", [FlatHMM, HierarchicalHMM, ProgressHMM])
+@pytest.mark.parametrize("mean_duration", [float("nan"), float("inf"), 0.5])
+def test_a_mean_duration_that_is_no_number_of_steps_is_refused_at_once(
+    kind: type[FlatHMM] | type[HierarchicalHMM] | type[ProgressHMM], mean_duration: float
+) -> None:
+    with pytest.raises(LearningError, match=f"mean_duration .* got {mean_duration}"):
+        kind(A_HTN, EVENTS, mean_duration=mean_duration)
 
 
 def test_every_estimator_is_checked() -> None:

@@ -4,6 +4,7 @@ figures ``evaluate`` reports (expected calibration error, reliability table)."""
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -54,7 +55,7 @@ def test_the_back_off_is_the_bigram_mixed_in() -> None:
 
 
 @pytest.mark.parametrize("settings", [{"backoff": 1.0}, {"smoothing": 0.0}, {"calibration_folds": 1}])
-def test_bad_settings_are_refused(settings: dict[str, float]) -> None:
+def test_bad_settings_are_refused(settings: dict[str, Any]) -> None:
     with pytest.raises(LearningError):
         StepPredictor(**settings)
 

@@ -179,7 +179,7 @@ def evaluate_task(
     *,
     k: int | None = None,
     seed: Seed = 0,
-    settings: dict[str, object] | None = None,
+    predictor: StepPredictor | None = None,
     progress: Callable[[], None] | None = None,
 ) -> Evaluation:
     """Cross-validate ``spec``'s demonstrations (see the module docstring).
@@ -188,7 +188,8 @@ def evaluate_task(
         spec: A task with at least two demonstrations.
         k: Folds (None: leave one out).
         seed: Seeds the folds.
-        settings: :class:`~supportive.inference.predictor.StepPredictor` settings.
+        predictor: An unfitted :class:`~supportive.inference.predictor.StepPredictor` whose settings every fold
+            uses (each fits a copy); None: the defaults.
         progress: Called once per held-out demonstration.
     """
     demos = list(spec.demonstrations)
@@ -203,8 +204,8 @@ def evaluate_task(
         if not training:
             continue
         result.folds += 1
-        predictor = StepPredictor(**(settings or {})).fit(spec.with_demonstrations(training))
-        htn = predictor.learner_.htn_
+        fitted = StepPredictor(**(predictor or StepPredictor()).get_params()).fit(spec.with_demonstrations(training))
+        htn = fitted.learner_.htn_
         baselines = {name: cls().fit(training) for name, cls in BASELINES.items()}
         most: Counter[str] = Counter()
         for demo in training:
@@ -214,7 +215,7 @@ def evaluate_task(
             actions = demos[index].actions
             result.held_out += 1
             result.admitted += htn.admits(actions)
-            _score_demo(actions, predictor, baselines, most, result.prediction)
+            _score_demo(actions, fitted, baselines, most, result.prediction)
             if progress is not None:
                 progress()
         if truth is not None and valid is not None:

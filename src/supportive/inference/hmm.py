@@ -15,6 +15,7 @@ its leaves.
 from __future__ import annotations
 
 import itertools
+import math
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Sequence
 from functools import cached_property
@@ -29,7 +30,7 @@ from supportive.inference.transitions import FlatTransitions, HierarchicalTransi
 from supportive.tasks.htn import HTN, ActionNode, Leaf
 from supportive.tasks.naming import named
 
-__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
+__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM", "check_mean_duration", "fitted_events"]
 
 
 class Belief:
@@ -69,6 +70,17 @@ class Belief:
         """Probability of each subgoal being the next one started."""
         total = self._arriving.sum()
         return self._arriving / total if total > 0 else self._arriving
+
+
+def check_mean_duration(mean_duration: float) -> None:
+    """Refuse a ``mean_duration`` no goal model can use: it is in steps, a finite number of at least 1 (NaN
+    and infinity included: they would pass a comparison and break the filter later).
+
+    Raises:
+        LearningError: naming the value.
+    """
+    if not (math.isfinite(mean_duration) and mean_duration >= 1.0):
+        raise LearningError(f"mean_duration is in steps and must be a finite number of at least 1, got {mean_duration}")
 
 
 def fitted_events(
@@ -118,8 +130,7 @@ class _SubgoalHMM(Estimator, ABC):
         *,
         mean_duration: float = 5.0,
     ) -> None:
-        if mean_duration < 1.0:
-            raise LearningError(f"mean_duration is in steps and must be at least 1, got {mean_duration}")
+        check_mean_duration(mean_duration)
         self.htn = htn
         self.observations = observations
         self.mean_duration = mean_duration

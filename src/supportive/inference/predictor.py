@@ -1,6 +1,6 @@
 """What comes next: a next-step predictor over action ids, learned from demonstrations.
 
-``StepPredictor(**settings).fit(demonstrations)`` learns the hierarchy and its frequencies with
+``StepPredictor().fit(demonstrations)`` learns the hierarchy and its frequencies with
 :class:`~supportive.learning.learner.HTNLearner`; ``next_step(prefix)`` runs the progress-aware tracker
 (:class:`~supportive.inference.tracker.ProgressFilter`) over the known actions of ``prefix`` and returns the
 probability of each action id being done next, plus ``"<end>"`` for "the task is finished"; the
@@ -30,8 +30,8 @@ from supportive.errors import LearningError
 from supportive.estimator import Estimator
 from supportive.inference.bigram import Bigram
 from supportive.inference.tracker import END_LABEL, ProgressFilter, ProgressHMM
-from supportive.learning.learner import DemonstrationLike, HTNLearner
-from supportive.tasks.htn import HTN
+from supportive.learning.learner import DemonstrationLike, HTNLearner, Mode
+from supportive.tasks.htn import HTN, ActionNode
 from supportive.tasks.spec import Demonstration, TaskSpec
 
 __all__ = ["END_LABEL", "Calibration", "PredictionSession", "StepPredictor"]
@@ -41,12 +41,6 @@ _LEARNER = (
     "order_support", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
 )
 _TRACKER = ("slip", "restart", "max_states", "beam")
-_OWN = ("smoothing", "backoff", "smoothing_grid", "backoff_grid", "calibration_folds")
-_DEFAULTS: dict[str, Any] = {
-    "smoothing_grid": (1.0, 0.25, 4.0),
-    "backoff_grid": (0.1, 0.0, 0.01, 0.03, 0.2, 0.35, 0.5),
-    "calibration_folds": 5,
-}
 
 
 @dataclass(frozen=True)
@@ -83,15 +77,20 @@ class StepPredictor(Estimator):
     """Next-step prediction (see the module docstring).
 
     Args:
-        **settings: Learner settings (see :class:`HTNLearner`: ``mode``, ``slips``, ``slip_margin``,
-            ``slip_rate``, ``slip_rate_weight``, ``max_slip_candidates``, ``evidence``, ``order_support``,
-            ``subtask_demonstrations``, ``selection_folds``, ``selection_demonstrations``), tracker settings
-            (see :class:`ProgressHMM`: ``slip``, ``restart``, ``max_states``, ``beam``) and the predictor's own:
-            ``smoothing`` (pseudo-counts per option of every choice, above 0) and ``backoff`` (the bigram's
-            weight, in [0, 1)), each fitted when not given; ``smoothing_grid`` and ``backoff_grid`` (the
-            values tried, the first used when there is too little to fit on; defaults ``(1, 0.25, 4)`` and
-            ``(0.1, 0, 0.01, 0.03, 0.2, 0.35, 0.5)``); ``calibration_folds`` (at most this many folds, at
-            least 2; default 5).
+        mode, slips, slip_margin, slip_rate, slip_rate_weight, max_slip_candidates, evidence, order_support,
+            subtask_demonstrations, selection_folds, selection_demonstrations: The hierarchy learner's settings
+            (see :class:`HTNLearner`); None (the default) keeps the learner's own default.
+        slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
+            default.
+        smoothing: Pseudo-counts per option of every choice, above 0; None: fitted.
+        backoff: The bigram's weight, in [0, 1); None: fitted.
+        smoothing_grid, backoff_grid: The values tried when fitting them (the first used when there is too
+            little to fit on).
+        calibration_folds: At most this many folds, at least 2.
+
+    Raises:
+        LearningError: for a setting the learner, the tracker or the predictor refuses (at once, not at
+            ``fit``).
 
     Attributes (after ``fit``):
         learner_: The fitted hierarchy learner.
@@ -100,21 +99,66 @@ class StepPredictor(Estimator):
         calibration_: How ``smoothing`` and ``backoff`` were chosen.
     """
 
-    def __init__(self, **settings: Any) -> None:
-        unknown = sorted(set(settings) - set(_LEARNER) - set(_TRACKER) - set(_OWN))
-        if unknown:
-            raise TypeError(f"StepPredictor got unknown setting(s): {', '.join(unknown)}")
-        smoothing, backoff = settings.get("smoothing"), settings.get("backoff")
+    def __init__(
+        self,
+        *,
+        mode: Mode | None = None,
+        slips: bool | None = None,
+        slip_margin: float | None = None,
+        slip_rate: float | None = None,
+        slip_rate_weight: float | None = None,
+        max_slip_candidates: int | None = None,
+        evidence: float | None = None,
+        order_support: int | None = None,
+        subtask_demonstrations: int | None = None,
+        selection_folds: int | None = None,
+        selection_demonstrations: int | None = None,
+        slip: float | None = None,
+        restart: bool | None = None,
+        max_states: int | None = None,
+        beam: int | None = None,
+        smoothing: float | None = None,
+        backoff: float | None = None,
+        smoothing_grid: tuple[float, ...] = (1.0, 0.25, 4.0),
+        backoff_grid: tuple[float, ...] = (0.1, 0.0, 0.01, 0.03, 0.2, 0.35, 0.5),
+        calibration_folds: int = 5,
+    ) -> None:
         if smoothing is not None and not smoothing > 0:
             raise LearningError(f"smoothing must be above 0, got {smoothing}")
         if backoff is not None and not 0.0 <= backoff < 1.0:
             raise LearningError(f"backoff must be in [0, 1), got {backoff}")
-        if int(settings.get("calibration_folds", 2)) < 2:
+        if not smoothing_grid or not all(v > 0 for v in smoothing_grid):
+            raise LearningError(f"smoothing_grid must hold values above 0, got {smoothing_grid}")
+        if not backoff_grid or not all(0.0 <= v < 1.0 for v in backoff_grid):
+            raise LearningError(f"backoff_grid must hold values in [0, 1), got {backoff_grid}")
+        if calibration_folds < 2:
             raise LearningError("calibration_folds must be at least 2")
-        self.settings = dict(settings)
+        self.mode = mode
+        self.slips = slips
+        self.slip_margin = slip_margin
+        self.slip_rate = slip_rate
+        self.slip_rate_weight = slip_rate_weight
+        self.max_slip_candidates = max_slip_candidates
+        self.evidence = evidence
+        self.order_support = order_support
+        self.subtask_demonstrations = subtask_demonstrations
+        self.selection_folds = selection_folds
+        self.selection_demonstrations = selection_demonstrations
+        self.slip = slip
+        self.restart = restart
+        self.max_states = max_states
+        self.beam = beam
+        self.smoothing = smoothing
+        self.backoff = backoff
+        self.smoothing_grid = smoothing_grid
+        self.backoff_grid = backoff_grid
+        self.calibration_folds = calibration_folds
+        self._learner()  # the learner and the tracker check their settings now, not at fit
+        self._hmm(HTN("", (ActionNode("a"),)), 1.0, build=False)
 
-    def _setting(self, name: str) -> Any:
-        return self.settings.get(name, _DEFAULTS.get(name))
+    def _given(self, names: tuple[str, ...]) -> dict[str, Any]:
+        """The settings among ``names`` that were given (not None)."""
+        return {name: getattr(self, name) for name in names if getattr(self, name) is not None}
 
     def fit(self, demonstrations: TaskSpec | Iterable[DemonstrationLike]) -> Self:
         """Learn the hierarchy, its frequencies, the back-off and the tracker from demonstrations (a task spec
@@ -150,22 +194,24 @@ class StepPredictor(Estimator):
     def _learner(self, reading: str | None = None) -> HTNLearner:
         """The hierarchy learner; ``reading`` fixes its mode (the folds of the calibration keep the reading
         chosen on all the demonstrations rather than choosing again)."""
-        settings = {k: v for k, v in self.settings.items() if k in _LEARNER}
+        settings = self._given(_LEARNER)
         if reading is not None:
             settings["mode"] = reading
         return HTNLearner(alternatives=0, **settings)
 
-    def _hmm(self, htn: HTN, smoothing: float) -> ProgressHMM:
-        tracker = {k: v for k, v in self.settings.items() if k in _TRACKER}
-        return ProgressHMM(htn, smoothing=smoothing, **tracker).fit()
+    def _hmm(self, htn: HTN, smoothing: float, *, build: bool = True) -> ProgressHMM:
+        """The tracker's model over ``htn``, fitted unless ``build`` is False (then only its settings are
+        checked)."""
+        hmm = ProgressHMM(htn, smoothing=smoothing, **self._given(_TRACKER))
+        return hmm.fit() if build else hmm
 
     def _calibrate(self, demos: Sequence[DemonstrationLike]) -> Calibration:
         """Choose ``smoothing`` and ``backoff`` by the held-out log-likelihood of the next step."""
-        smoothings = [self.settings["smoothing"]] if "smoothing" in self.settings else list(self._setting("smoothing_grid"))
-        backoffs = [self.settings["backoff"]] if "backoff" in self.settings else list(self._setting("backoff_grid"))
+        smoothings = [self.smoothing] if self.smoothing is not None else list(self.smoothing_grid)
+        backoffs = [self.backoff] if self.backoff is not None else list(self.backoff_grid)
         if len(demos) < 3 or (len(smoothings) == 1 and len(backoffs) == 1):
             return Calibration(float(smoothings[0]), float(backoffs[0]))
-        k = min(int(self._setting("calibration_folds")), len(demos))
+        k = min(self.calibration_folds, len(demos))
         weights = np.asarray(backoffs, dtype=float)
         totals = np.zeros((len(smoothings), len(weights)))
         steps = 0

@@ -33,7 +33,7 @@ import numpy as np
 
 from supportive.errors import LearningError
 from supportive.estimator import Estimator
-from supportive.inference.hmm import Belief, fitted_events
+from supportive.inference.hmm import Belief, check_mean_duration, fitted_events
 from supportive.inference.observations import ObservationModel
 from supportive.inference.progress_matrices import ProgressMatrices
 from supportive.inference.transitions import TaskLayout
@@ -151,8 +151,7 @@ class ProgressHMM(Estimator):
         max_states: int = 50_000,
         beam: int = 2_000,
     ) -> None:
-        if mean_duration < 1.0:
-            raise LearningError(f"mean_duration is in steps and must be at least 1, got {mean_duration}")
+        check_mean_duration(mean_duration)
         if not 0.0 < slip < 1.0:
             raise LearningError(f"slip must be a probability in (0, 1), got {slip}")
         if beam < 1 or max_states < 1:
