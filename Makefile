@@ -35,7 +35,7 @@ demo: $(VENV)/.demo
 
 # Lint, types (src and tests) and the import-layer contract first, then the suite.
 test: $(VENV)/.dev system
-	$(BIN)/ruff check src tests benchmarks tools
+	$(BIN)/ruff check src tests benchmarks tools conftest.py
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q -n auto
@@ -48,7 +48,7 @@ serve: $(VENV)/.server
 	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000
 
 lint: $(VENV)/.dev
-	$(BIN)/ruff check src tests benchmarks tools
+	$(BIN)/ruff check src tests benchmarks tools conftest.py
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 

@@ -112,6 +112,7 @@ def planted(copy: Path, request: pytest.FixtureRequest) -> Iterator[Path]:
         file.write_text(original, encoding="utf-8")
 
 
+@pytest.mark.slow  # one lint-imports run each (about a second): the whole suite runs them, test-fast does not
 @pytest.mark.parametrize(
     ("contract", "planted"),
     PLANTED,

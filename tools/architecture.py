@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import functools
 import sys
 import tomllib
 from collections import defaultdict
@@ -73,21 +74,44 @@ def modules(src: Path) -> dict[str, Path]:
     return out
 
 
-def _targets(
-    node: ast.Import | ast.ImportFrom, module: str, is_package: bool, known: dict[str, Path]
-) -> Iterator[str]:
+@dataclass(frozen=True)
+class _Statement:
+    """One ``import`` statement as written: ``import names`` (``source`` None) or ``from source import names``
+    (``level`` dots before it)."""
+
+    names: tuple[str, ...]
+    source: str | None
+    level: int
+    line: int
+
+
+@functools.cache
+def _statements(text: str) -> tuple[_Statement, ...]:
+    """Every import statement in a module's text, at any depth (parsed once per distinct text)."""
+    out = []
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, ast.Import):
+            out.append(_Statement(tuple(a.name for a in node.names), None, 0, node.lineno))
+        elif isinstance(node, ast.ImportFrom):
+            out.append(
+                _Statement(tuple(a.name for a in node.names), node.module or "", node.level, node.lineno)
+            )
+    return tuple(out)
+
+
+def _targets(statement: _Statement, module: str, is_package: bool, known: dict[str, Path]) -> Iterator[str]:
     """The modules one statement imports: for ``from X import a``, ``X.a`` when that is a module, else ``X``."""
-    if isinstance(node, ast.Import):
-        yield from (alias.name for alias in node.names)
+    if statement.source is None:
+        yield from statement.names
         return
-    if node.level:
+    if statement.level:
         base = module.split(".") if is_package else module.split(".")[:-1]
-        base = base[: len(base) - (node.level - 1)]
-        source = ".".join([*base, *([node.module] if node.module else [])])
+        base = base[: len(base) - (statement.level - 1)]
+        source = ".".join([*base, *([statement.source] if statement.source else [])])
     else:
-        source = node.module or ""
-    for alias in node.names:
-        submodule = f"{source}.{alias.name}"
+        source = statement.source
+    for name in statement.names:
+        submodule = f"{source}.{name}"
         yield submodule if submodule in known else source
 
 
@@ -104,18 +128,15 @@ def imports(src: Path) -> list[Import]:
     stdlib = sys.stdlib_module_names
     out: set[Import] = set()
     for module, file in known.items():
-        tree = ast.parse(file.read_text(encoding="utf-8"), filename=str(file))
-        for node in ast.walk(tree):
-            if not isinstance(node, ast.Import | ast.ImportFrom):
-                continue
-            for target in _targets(node, module, file.name == "__init__.py", known):
+        for statement in _statements(file.read_text(encoding="utf-8")):
+            for target in _targets(statement, module, file.name == "__init__.py", known):
                 top = target.partition(".")[0]
                 if top == PACKAGE:
                     imported = _internal(target, known)
                     if imported != module:
-                        out.add(Import(module, imported, node.lineno, True))
+                        out.add(Import(module, imported, statement.line, True))
                 elif top and top not in stdlib:
-                    out.add(Import(module, top, node.lineno, False))
+                    out.add(Import(module, top, statement.line, False))
     return sorted(out)
 
 

@@ -164,18 +164,20 @@ def test_ctrl_c_exits_130_with_one_line_and_writes_nothing(
     command: str, tmp_path: Path, big_task: Path, long_stream: Path
 ) -> None:
     before = {p.name for p in tmp_path.iterdir()}
-    code, _, lines = interrupt(CASES[command](big_task, long_stream, tmp_path), tmp_path, after=1.0)
+    code, _, lines = interrupt(CASES[command](big_task, long_stream, tmp_path), tmp_path, after=0.5)
     statement = assert_stopped(code, lines)
     assert statement.startswith("nothing written") or statement == f"bag {tmp_path / 'bag'} not written", lines
     nothing_new(tmp_path, before)
 
 
 def test_sigterm_stops_like_ctrl_c_with_status_143(tmp_path: Path, big_task: Path) -> None:
-    code, _, lines = interrupt(["learn", str(big_task), "-o", str(tmp_path / "h.txt")], tmp_path, sig=signal.SIGTERM)
+    args = ["learn", str(big_task), "-o", str(tmp_path / "h.txt")]
+    code, _, lines = interrupt(args, tmp_path, sig=signal.SIGTERM, after=0.5)
     assert assert_stopped(code, lines, signal.SIGTERM) == "nothing written"
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_path: Path) -> None:
     """The whole process group gets the signal, the workers too (as from a terminal), while they start and
     while they run trials."""
@@ -186,6 +188,7 @@ def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_pa
         assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:
     run = tmp_path / "run"
     code = subprocess.run([sys.executable, "-m", "supportive.cli", "reproduce", "edge-reduction", "-n", "2", "-o", str(run)],
@@ -234,9 +237,13 @@ def test_ctrl_c_while_serving_says_the_board_is_kept(tmp_path: Path) -> None:
 
 
 # -- a kill in the middle of a save: the old file or the new one, never a truncated one ------------------
+# Each save is cut once: Ctrl-C and SIGTERM take one path (cli.interrupt turns both into the same stop), so the
+# two signals alternate over the saves rather than each save being cut twice: every save is cut by one, and
+# each signal cuts both a save over an existing file (Ctrl-C: teach, chat; SIGTERM: bag import) and the making
+# of something new (Ctrl-C: the beliefs bag; SIGTERM: the working copy).
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("sig", [signal.SIGINT], ids=["ctrl-c"])
 def test_a_teach_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path, sig: int) -> None:
     copy = tmp_path / "tower.edited.yaml"  # carries on in it: the first write is the demonstration's save
     shutil.copy(examples.path("blocks-tower"), copy)
@@ -250,7 +257,7 @@ def test_a_teach_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path
     assert copy.read_bytes() == before and leftovers(tmp_path) == []
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("sig", [signal.SIGTERM], ids=["sigterm"])
 def test_a_new_working_copy_cut_in_the_middle_is_not_made(tmp_path: Path, sig: int) -> None:
     args = ["teach", "blocks-tower", "--save", "c.yaml"]
     code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
@@ -258,7 +265,7 @@ def test_a_new_working_copy_cut_in_the_middle_is_not_made(tmp_path: Path, sig: i
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("sig", [signal.SIGINT], ids=["ctrl-c"])
 def test_a_chat_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path, sig: int) -> None:
     copy = tmp_path / "c.yaml"  # the copy exists: the first write is the change's save
     shutil.copy(examples.path("ikea-chair"), copy)
@@ -270,7 +277,7 @@ def test_a_chat_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path,
     assert copy.read_bytes() == before and leftovers(tmp_path) == []
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("sig", [signal.SIGTERM], ids=["sigterm"])
 def test_a_bag_import_cut_in_the_middle_leaves_the_old_file(tmp_path: Path, sig: int) -> None:
     target = tmp_path / "chair.yaml"
     target.write_text("name: an earlier import\n")
@@ -280,7 +287,7 @@ def test_a_bag_import_cut_in_the_middle_leaves_the_old_file(tmp_path: Path, sig:
     assert target.read_text() == "name: an earlier import\n" and leftovers(tmp_path) == []
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("sig", [signal.SIGINT], ids=["ctrl-c"])
 def test_a_beliefs_bag_cut_in_the_middle_is_not_left_behind(tmp_path: Path, sig: int) -> None:
     args = ["infer", "ikea-chair", "--bag", str(BAG), "--write-bag", str(tmp_path / "beliefs")]
     code, out, lines = interrupt(args, tmp_path, hold="bag", wait_for="WRITING", sig=sig, after=0.2)
