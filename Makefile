@@ -40,7 +40,7 @@ test: $(VENV)/.dev system
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q -n auto
 
-# The edit-test loop: the suite without the tests marked slow, on every core.
+# The edit-test loop: the suite without the tests marked slow (by a marker, or in SLOW in conftest.py), on every core.
 test-fast: $(VENV)/.dev
 	$(BIN)/pytest -q -n auto -m "not slow"
 

@@ -1,6 +1,12 @@
-"""The doctests (``--doctest-modules`` over ``src``) run from an empty folder and must leave it empty: they name
-bundled files through ``supportive.examples``, never by a path relative to the repository, and write nothing
-where they run (issue 17). Checked in the suite's own run of the doctests, not by running them twice."""
+"""The whole suite's rules, for ``tests/`` and the doctests in ``src/`` alike.
+
+* The doctests (``--doctest-modules`` over ``src``) run from an empty folder and must leave it empty: they name
+  bundled files through ``supportive.examples``, never by a path relative to the repository, and write nothing
+  where they run (issue 17). Checked in the suite's own run of the doctests, not by running them twice.
+* The ``slow`` tier: besides the tests marked ``@pytest.mark.slow`` where they are, every test of the modules
+  in :data:`SLOW` (and the single tests named there) is marked slow here, in one list. ``make test`` runs
+  every test; ``make test-fast`` (``-m "not slow"``) leaves these out for the edit-test loop.
+"""
 
 from __future__ import annotations
 
@@ -10,6 +16,42 @@ from pathlib import Path
 
 import pytest
 from _pytest.doctest import DoctestItem
+
+SLOW = {
+    # real processes, browsers, databases or whole experiment runs: seconds to minutes each
+    "tests/cli/test_interrupt.py": "a real `supportive` process per test, sent a signal while it works",
+    "tests/cli/test_cli_output.py": "every command's output at several terminal widths",
+    "tests/test_missing_extras.py": "a fresh interpreter per command, its extra refused",
+    "tests/test_new_user.py": "every README command",
+    "tests/service/test_browser.py": "chromium against a running board",
+    "tests/service/test_lab_screen.py": "chromium against a running board",
+    "tests/service/test_faults.py": "ten thousand operations; servers killed and restarted",
+    "tests/fuzz/test_schemathesis.py": "the HTTP API fuzzed from its schema against a running server",
+    "tests/experiments/test_reproduce_cli.py": "`reproduce all`: every experiment",
+    "tests/experiments/test_active_learning.py": "whole experiment runs",
+    "tests/experiments/test_support_tamp.py": "whole experiment runs",
+    "tests/experiments/test_goal_inference.py": "whole experiment runs, one on a local Dask cluster",
+    "tests/experiments/test_execution.py": "experiment runs on local Dask clusters",
+    "tests/experiments/test_docs_numbers.py": "fresh runs of the experiments the docs quote",
+    "tests/language/test_embeddings.py": "loads a sentence-embedding model (torch)",
+    "tests/io/test_safe_load.py::test_the_largest_benchmark_task_passes_the_limits": "the largest benchmark task",
+    "tests/envs/tabletop/test_world_and_team.py::test_prohibited_operators_are_never_chosen": "many team runs",
+    "tests/fuzz/test_fuzz.py::test_malformed_observation_streams_get_one_line": "a command per generated stream",
+}
+"""Test modules (``path``) and single tests (``path::function``) of the ``slow`` tier, with why."""
+
+ROOT = Path(__file__).resolve().parent
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark the tests :data:`SLOW` names ``slow``."""
+    for item in items:
+        path = Path(item.path).resolve()
+        if not path.is_relative_to(ROOT):
+            continue
+        module = path.relative_to(ROOT).as_posix()
+        if module in SLOW or f"{module}::{getattr(item, 'originalname', item.name)}" in SLOW:
+            item.add_marker(pytest.mark.slow)
 
 
 @pytest.fixture(scope="session")

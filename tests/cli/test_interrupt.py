@@ -177,7 +177,6 @@ def test_sigterm_stops_like_ctrl_c_with_status_143(tmp_path: Path, big_task: Pat
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.slow
 def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_path: Path) -> None:
     """The whole process group gets the signal, the workers too (as from a terminal), while they start and
     while they run trials."""
@@ -188,7 +187,6 @@ def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_pa
         assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.slow
 def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:
     run = tmp_path / "run"
     code = subprocess.run([sys.executable, "-m", "supportive.cli", "reproduce", "edge-reduction", "-n", "2", "-o", str(run)],
