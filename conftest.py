@@ -5,7 +5,8 @@
   where they run (issue 17). Checked in the suite's own run of the doctests, not by running them twice.
 * The ``slow`` tier: besides the tests marked ``@pytest.mark.slow`` where they are, every test of the modules
   in :data:`SLOW` (and the single tests named there) is marked slow here, in one list. ``make test`` runs
-  every test; ``make test-fast`` (``-m "not slow"``) leaves these out for the edit-test loop.
+  every test, the slow ones first (so that the longest do not run alone at the end on one core);
+  ``make test-fast`` (``-m "not slow"``) leaves them out for the edit-test loop.
 """
 
 from __future__ import annotations
@@ -44,7 +45,9 @@ ROOT = Path(__file__).resolve().parent
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Mark the tests :data:`SLOW` names ``slow``."""
+    """Mark the tests :data:`SLOW` names ``slow``, and run every slow test first: with pytest-xdist the long
+    ones then start while the short ones fill the other workers, instead of one long test running alone at
+    the end (the order is otherwise kept, so a module's tests stay together)."""
     for item in items:
         path = Path(item.path).resolve()
         if not path.is_relative_to(ROOT):
@@ -52,6 +55,7 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         module = path.relative_to(ROOT).as_posix()
         if module in SLOW or f"{module}::{getattr(item, 'originalname', item.name)}" in SLOW:
             item.add_marker(pytest.mark.slow)
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
 @pytest.fixture(scope="session")
