@@ -17,6 +17,7 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -65,11 +66,12 @@ def interrupt(
     sig: int = signal.SIGINT,
     group: bool = False,
     until: Callable[[], bool] = lambda: True,
+    printed: str = "",
 ) -> tuple[int, str, list[str]]:
-    """Run ``supportive ARGS``; once it has said ``wait_for`` on stderr and ``until()`` holds, wait ``after``
-    seconds and send ``sig`` (to its whole process group with ``group``, as a terminal's Ctrl-C does). Its
-    input stays open after ``stdin`` (a person who types nothing more). Returns the status, stdout and the
-    lines of stderr but ``READY`` and ``WRITING``."""
+    """Run ``supportive ARGS``; once it has said ``wait_for`` on stderr, ``until()`` holds and it has printed
+    ``printed`` on stdout, wait ``after`` seconds and send ``sig`` (to its whole process group with ``group``,
+    as a terminal's Ctrl-C does). Its input stays open after ``stdin`` (a person who types nothing more).
+    Returns the status, stdout and the lines of stderr but ``READY`` and ``WRITING``."""
     process = subprocess.Popen(
         [sys.executable, "-c", WRAPPER, hold, *args],
         cwd=cwd,
@@ -80,9 +82,18 @@ def interrupt(
         start_new_session=group,
         env={**os.environ, "COLUMNS": "200"},
     )
-    assert process.stdin is not None and process.stderr is not None
+    assert process.stdin is not None and process.stderr is not None and process.stdout is not None
     process.stdin.write(stdin)
     process.stdin.flush()
+    output: list[str] = []  # stdout, read as it comes (a thread, so that stderr can be read meanwhile)
+    stdout = process.stdout
+
+    def read() -> None:
+        for line in iter(stdout.readline, ""):
+            output.append(line)
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
     seen: list[str] = []
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
@@ -91,7 +102,7 @@ def interrupt(
         seen.append(line.rstrip("\n"))
         if seen[-1] == wait_for:
             break
-    while not until() and time.monotonic() < deadline:
+    while not (until() and printed in "".join(output)) and time.monotonic() < deadline:
         time.sleep(0.05)
     time.sleep(after)
     assert process.poll() is None, f"{args} ended before the signal: make it longer"
@@ -99,9 +110,12 @@ def interrupt(
         os.killpg(process.pid, sig)
     else:
         process.send_signal(sig)
-    out, err = process.communicate(timeout=120)
+    process.stdin.close()  # as communicate() would
+    err = process.stderr.read()
+    process.wait(timeout=120)
+    reader.join(timeout=120)
     lines = [line for line in [*seen, *err.splitlines()] if line not in ("READY", "WRITING")]
-    return process.returncode, out, lines
+    return process.returncode, "".join(output), lines
 
 
 def progress(line: str) -> bool:
@@ -216,7 +230,8 @@ def test_ctrl_c_in_chat_keeps_every_change_acknowledged(tmp_path: Path) -> None:
     def saved() -> bool:  # the copy, made, then changed
         return copy.exists() and copy.read_bytes() != examples.path("ikea-chair").read_bytes()
 
-    code, out, lines = interrupt(["chat", "ikea-chair", "--save", "c.yaml"], tmp_path, stdin=said, until=saved, after=0.5)
+    args = ["chat", "ikea-chair", "--save", "c.yaml"]
+    code, out, lines = interrupt(args, tmp_path, stdin=said, until=saved, printed="hold", after=0.2)
     assert assert_stopped(code, lines) == "kept c.yaml: every change acknowledged is saved in it (1 change this session)"
     assert "hold" in out and any("hold" in b.text for b in parse_task_file(tmp_path / "c.yaml").behaviors)
 
