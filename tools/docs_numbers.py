@@ -1,0 +1,340 @@
+"""Write the numbers the docs quote from the commands and experiments that produce them.
+
+A generated passage sits between ``<!-- numbers:NAME -->`` and ``<!-- /numbers:NAME -->`` in docs/*.md or
+README.md; :data:`BLOCKS` says how each one is made: from a file of recorded results in ``docs/results/``
+(the output of a run too long for ``make test``; ``make docs-results`` runs them again and rewrites the files),
+from ``benchmarks/results/`` (``make bench``) or by running a quick command.
+
+    python tools/docs_numbers.py            # rewrite every block (make docs-numbers)
+    python tools/docs_numbers.py --check    # exit 1 naming every block that would change (the tests run this)
+
+Numbers quoted outside a block are checked against a fresh small run by a test instead (the ``small-runs``
+table of docs/experiments.md: tests/experiments/test_docs_numbers.py; the others: tests/test_docs_numbers.py).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from statistics import mean
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "docs" / "results"
+BENCHMARKS = ROOT / "benchmarks" / "results"
+_BLOCK = re.compile(r"<!-- numbers:(?P<name>[a-z0-9-]+) -->\n(?P<body>.*?)<!-- /numbers:(?P=name) -->", re.S)
+_OPEN = re.compile(r"<!-- /?numbers:(?P<name>[^ ]*) -->")
+
+
+@dataclass(frozen=True)
+class Block:
+    """How one generated passage is made.
+
+    Attributes:
+        source: Where its numbers come from, in words (a results file and the command that writes it).
+        make: The passage's markdown, ending with a newline.
+        runs_command: Whether ``make`` runs a command (seconds) rather than reading a file.
+    """
+
+    source: str
+    make: Callable[[], str]
+    runs_command: bool = False
+
+
+def documents() -> list[Path]:
+    """The files that may hold generated blocks: README.md and docs/*.md."""
+    return [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+
+
+def block_names(text: str) -> list[str]:
+    """The names of the blocks in ``text``, in order.
+
+    Raises:
+        ValueError: for a marker without its partner or a name used twice.
+    """
+    names = [m.group("name") for m in _BLOCK.finditer(text)]
+    markers = [m.group("name") for m in _OPEN.finditer(text)]
+    if len(markers) != 2 * len(names):
+        raise ValueError(f"unmatched numbers markers: {sorted(set(markers) - set(names)) or markers}")
+    if len(set(names)) != len(names):
+        raise ValueError(f"a block name used twice: {names}")
+    return names
+
+
+def render(text: str, made: Mapping[str, str]) -> str:
+    """``text`` with every block's body replaced by ``made[name]``."""
+    return _BLOCK.sub(lambda m: f"<!-- numbers:{m['name']} -->\n{made[m['name']]}<!-- /numbers:{m['name']} -->", text)
+
+
+def where() -> dict[str, Path]:
+    """Each block's name and the document it is in.
+
+    Raises:
+        ValueError: for a block :data:`BLOCKS` does not know, one in two documents, or one in none.
+    """
+    found: dict[str, Path] = {}
+    for path in documents():
+        for name in block_names(path.read_text(encoding="utf-8")):
+            if name not in BLOCKS:
+                raise ValueError(f"{path.relative_to(ROOT)}: unknown numbers block {name!r}")
+            if name in found:
+                raise ValueError(f"numbers block {name!r} in {found[name].name} and {path.name}")
+            found[name] = path
+    missing = sorted(set(BLOCKS) - set(found))
+    if missing:
+        raise ValueError(f"numbers blocks in no document: {missing}")
+    return found
+
+
+def stale(names: list[str] | None = None) -> list[str]:
+    """The blocks (all, or ``names``) whose text differs from what they would be made from now."""
+    located = where()
+    chosen = sorted(located) if names is None else names
+    return [n for n in chosen if _current(located[n], n) != BLOCKS[n].make()]
+
+
+def write_all() -> list[Path]:
+    """Rewrite every block; the documents that changed."""
+    located = where()
+    made = {name: block.make() for name, block in BLOCKS.items()}
+    changed = []
+    for path in sorted(set(located.values())):
+        text = path.read_text(encoding="utf-8")
+        new = render(text, made)
+        if new != text:
+            path.write_text(new, encoding="utf-8")
+            changed.append(path)
+    return changed
+
+
+def _current(path: Path, name: str) -> str:
+    for match in _BLOCK.finditer(path.read_text(encoding="utf-8")):
+        if match["name"] == name:
+            return match["body"]
+    raise ValueError(f"{path.name}: no block {name!r}")
+
+
+# --- sources ---------------------------------------------------------------------------------------------
+
+
+def _json(path: Path) -> Any:
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+def _command(*args: str) -> str:
+    """The standard output of ``supportive ARGS`` (200 columns, so no line wraps), run from the repository."""
+    env = {**os.environ, "COLUMNS": "200", "NO_COLOR": "1", "TERM": "dumb"}
+    done = subprocess.run(
+        [sys.executable, "-m", "supportive.cli", *args], cwd=ROOT, env=env, capture_output=True, text=True, check=False
+    )
+    if done.returncode:
+        raise RuntimeError(f"supportive {' '.join(args)} failed ({done.returncode}): {done.stderr.strip()}")
+    return done.stdout
+
+
+def _f(value: float, digits: int = 3) -> str:
+    return f"{value:.{digits}f}"
+
+
+# --- CaptainCook4D: `supportive captaincook --json` > docs/results/captaincook.json ---------------------------
+
+
+def _captaincook() -> list[dict[str, Any]]:
+    recipes: list[dict[str, Any]] = _json(RESULTS / "captaincook.json")
+    return recipes
+
+
+def captaincook_precedence() -> str:
+    """docs/exports.md: the means over the recipes, where recall falls below 1 and the lowest precision."""
+    recipes = _captaincook()
+    below = [r for r in recipes if r["recall"] < 1]
+    lowest = min(recipes, key=lambda r: r["precision"])
+    misses = ", ".join(f"`{r['recipe']}` ({_f(r['recall'])})" for r in below) or "none"
+    admitted = sum(r["admits_demonstrations"] for r in recipes)
+    return (
+        f"Measured: mean precision {_f(mean(r['precision'] for r in recipes))}, "
+        f"recall {_f(mean(r['recall'] for r in recipes))}, F1 {_f(mean(r['f1'] for r in recipes))} over the "
+        f"{len(recipes)} recipes; {admitted} of {len(recipes)} learned models admit all their recordings. Recall is "
+        f"below 1 in {len(below)} recipes: {misses}. Precision is lowest in `{lowest['recipe']}` "
+        f"({_f(lowest['precision'])}).\n"
+    )
+
+
+def captaincook_edges() -> str:
+    """docs/learning.md: task-graph edge F1, full and 5-shot, the means over the recipes."""
+    recipes = _captaincook()
+    full = mean(r["edges"]["f1"] for r in recipes)
+    few = mean(r["edges_5_shot"]["f1"] for r in recipes)
+    return f"{_f(full)} full, {_f(few)} 5-shot\n"
+
+
+# --- the learning benchmark: `make bench` > benchmarks/results/learn.json ---------------------------------
+
+
+def _seconds(value: float) -> str:
+    if value >= 10:
+        return f"{value:.0f} s"
+    if value >= 1:
+        return f"{value:.2f} s"
+    milliseconds = value * 1000
+    return f"{milliseconds:.3g} ms" if milliseconds < 100 else f"{milliseconds:.0f} ms"
+
+
+def learn_benchmark() -> str:
+    """docs/exports.md: each case's median time beside the strict learner's and its goal, if it has one."""
+    cases = _json(BENCHMARKS / "learn.json")["cases"]
+    rows = ["| case | actions | default learner | strict | ratio | goal |", "|---|---:|---:|---:|---:|---|"]
+    ratios = []
+    for name, case in cases.items():
+        strict, ratio = case["strict"]["median_seconds"], case["general_over_strict"]
+        comparable = ratio <= _COMPARABLE
+        ratios += [ratio] if comparable else []
+        goal = case["goal_seconds"]
+        met = "–" if goal is None else f"{_seconds(goal)}: {'met' if case['meets_goal'] else '**not met**'}"
+        rows.append(
+            f"| `{name}` | {case['actions']:,} | {_seconds(case['median_seconds'])} | {_seconds(strict)} | "
+            f"{f'{ratio:.1f}×' if comparable else '—'} | {met} |"
+        )
+    return "\n".join(rows) + (
+        f"\n\nWhere the two are comparable (a ratio under {_COMPARABLE}×), the default learner takes "
+        f"{min(ratios):.1f}–{max(ratios):.1f}× the strict one's time.\n"
+    )
+
+
+_COMPARABLE = 100  # a larger ratio means the learners did different work (the slip search), shown as "—"
+
+
+# --- `supportive reproduce all`: docs/results/summary.json ---------------------------------------------------
+
+
+def _summary() -> dict[str, Any]:
+    summary: dict[str, Any] = _json(RESULTS / "summary.json")
+    return summary
+
+
+def reproduce_all_trials() -> str:
+    """docs/experiments.md: the seed and each experiment's trials in the recorded run."""
+    summary = _summary()
+    counts = ", ".join(f"{name} {count}" for name, count in sorted(summary["trials"].items()))
+    return f"(seed {summary['seed']}, each experiment's default trials: {counts})\n"
+
+
+def reproduce_all_summary() -> str:
+    """docs/experiments.md: the summary table, as ``summary.md`` renders it."""
+    from supportive.experiments import findings_table
+
+    rows = [(e["experiment"], e["reference"], e["findings"]) for e in _summary()["experiments"] if e["findings"]]
+    return findings_table(rows) + "\n"
+
+
+# --- edge-reduction: `supportive reproduce edge-reduction` metrics.json > docs/results/edge-reduction.json -----
+
+
+def _edge_report_tables() -> Iterator[str]:
+    """The markdown tables of edge-reduction's report, built from the recorded metrics."""
+    from supportive.experiments import get
+
+    report = get("edge-reduction").report(_json(RESULTS / "edge-reduction.json"))
+    for table in re.findall(r"(?:^\|.*\|\n)+", report + "\n", re.M):
+        yield table
+
+
+def _edge_table(header: str) -> str:
+    for table in _edge_report_tables():
+        if table.startswith(header):
+            return table
+    raise ValueError(f"edge-reduction's report has no table starting {header!r}")
+
+
+def edge_reduction_depth() -> str:
+    """docs/experiments.md: mean depth of a primitive per model."""
+    return _edge_table("| model | tasks | mean |")
+
+
+def edge_reduction_bins() -> str:
+    """docs/experiments.md: edges per task by size bin."""
+    return _edge_table("| subgoals |")
+
+
+def edge_reduction_totals() -> str:
+    """docs/experiments.md: edges over all tasks, per model."""
+    return _edge_table("| model | tasks | complete |")
+
+
+def edge_reduction_counts() -> str:
+    """docs/experiments.md: how many learned hierarchies are complete, and inside the thesis's depth range."""
+    metrics = _json(RESULTS / "edge-reduction.json")
+    tasks = metrics["tasks"]
+    low, high = metrics["thesis"]["mean_action_depth"]["min"], metrics["thesis"]["mean_action_depth"]["max"]
+    learned = metrics["models"]["learned"]
+    inside = sum(low <= t["learned"]["depth"] <= high for t in tasks)
+    orderings = metrics["all_orderings"]
+    sizes = [t["subgoals"] for t in tasks if "all_orderings" in t and t["all_orderings"]]
+    return (
+        f"Learned from 4 paths, {learned['complete']} of {len(tasks)} hierarchies are complete and {inside} of "
+        f"{len(tasks)} tasks have a depth inside {low}–{high}. From all orderings ({orderings['qualified']} tasks, "
+        f"with {min(sizes)}–{max(sizes)} subgoals; the larger ones admit more than {orderings['limit']:,} orderings) "
+        f"the learner recovered **{orderings['recovered']} of {orderings['qualified']}** structures exactly.\n"
+    )
+
+
+def edge_reduction_learned() -> str:
+    """docs/learning.md: complete hierarchies and mean depth, learned from 4 paths, beside the truth's."""
+    metrics = _json(RESULTS / "edge-reduction.json")
+    learned, truth = metrics["models"]["learned"], metrics["models"]["ground_truth"]
+    return (
+        f"complete hierarchies {learned['complete']} of {learned['tasks']}, mean action depth "
+        f"{learned['depth']['mean']:.2f} (ground truth {truth['depth']['mean']:.2f}; the thesis reports "
+        f"{metrics['thesis']['mean_action_depth']['mean']} for its CC-HTNs).\n"
+    )
+
+
+# --- quick commands -------------------------------------------------------------------------------------------
+
+
+def support_two_cells_led() -> str:
+    """docs/support.md: `supportive support two-cells-led --simulate`, its first lines (a few favoured plans)."""
+    lines = _command("support", "two-cells-led", "--simulate").splitlines()
+    favoured = [i for i, line in enumerate(lines) if line.startswith("  favours")]
+    kept = lines[: favoured[0] + 1] + ["  ..."] + lines[favoured[-1] + 1 :] if len(favoured) > 1 else lines
+    return "```console\n$ supportive support two-cells-led --simulate\n" + "\n".join(kept) + "\n```\n"
+
+
+BLOCKS: dict[str, Block] = {
+    "captaincook-precedence": Block("docs/results/captaincook.json (supportive captaincook --json)", captaincook_precedence),
+    "captaincook-edges": Block("docs/results/captaincook.json (supportive captaincook --json)", captaincook_edges),
+    "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
+    "reproduce-all-trials": Block("docs/results/summary.json (supportive reproduce all)", reproduce_all_trials),
+    "reproduce-all-summary": Block("docs/results/summary.json (supportive reproduce all)", reproduce_all_summary),
+    "edge-reduction-depth": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_depth),
+    "edge-reduction-counts": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_counts),
+    "edge-reduction-bins": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_bins),
+    "edge-reduction-totals": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_totals),
+    "edge-reduction-learned": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_learned),
+    "support-two-cells-led": Block("supportive support two-cells-led --simulate", support_two_cells_led, True),
+}
+
+
+def main(argv: list[str]) -> int:
+    """``--check``: 1 and the stale blocks' names when any would change, else 0; no argument: rewrite them."""
+    if argv == ["--check"]:
+        names = stale()
+        for name in names:
+            print(f"docs numbers out of date: {name} ({BLOCKS[name].source}); run `make docs-numbers`")
+        return 1 if names else 0
+    if argv:
+        print("usage: python tools/docs_numbers.py [--check]", file=sys.stderr)
+        return 2
+    for path in write_all():
+        print(f"rewrote {path.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
