@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-fast lint bench serve system clean example-bags
+.PHONY: demo test test-fast lint bench serve system clean example-bags docs-numbers docs-results
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -35,7 +35,7 @@ demo: $(VENV)/.demo
 
 # Lint, types (src and tests) and the import-layer contract first, then the suite.
 test: $(VENV)/.dev system
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks tools
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 	$(BIN)/pytest -q -n auto
@@ -48,7 +48,7 @@ serve: $(VENV)/.server
 	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000
 
 lint: $(VENV)/.dev
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks tools
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 
@@ -65,6 +65,20 @@ bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_service.py
 	$(BIN)/python benchmarks/bench_social.py
 	$(BIN)/python benchmarks/bench_rosbag.py
+
+# The numbers the docs quote between <!-- numbers:NAME --> markers, written again from the recorded results
+# (docs/results/, benchmarks/results/) and quick commands; `make test` fails while one is out of date.
+docs-numbers: $(VENV)/.dev
+	$(BIN)/python tools/docs_numbers.py
+
+# The recorded results those numbers come from, made again (minutes: every experiment's full run, CaptainCook4D).
+docs-results: $(VENV)/.dev
+	$(BIN)/supportive reproduce all --workers 2 --output out/reproduce
+	cp out/reproduce/summary.json docs/results/summary.json
+	cp out/reproduce/edge-reduction/metrics.json docs/results/edge-reduction.json
+	$(BIN)/supportive captaincook --json > out/captaincook.json
+	mv out/captaincook.json docs/results/captaincook.json
+	$(BIN)/python tools/docs_numbers.py
 
 # The example bags in examples/bags/, made again from the bundled task files (the same messages every time).
 example-bags: $(VENV)/.dev

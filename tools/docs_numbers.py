@@ -69,7 +69,9 @@ def block_names(text: str) -> list[str]:
 
 def render(text: str, made: Mapping[str, str]) -> str:
     """``text`` with every block's body replaced by ``made[name]``."""
-    return _BLOCK.sub(lambda m: f"<!-- numbers:{m['name']} -->\n{made[m['name']]}<!-- /numbers:{m['name']} -->", text)
+    return _BLOCK.sub(
+        lambda m: f"<!-- numbers:{m['name']} -->\n{made[m['name']]}<!-- /numbers:{m['name']} -->", text
+    )
 
 
 def where() -> dict[str, Path]:
@@ -131,7 +133,12 @@ def _command(*args: str) -> str:
     """The standard output of ``supportive ARGS`` (200 columns, so no line wraps), run from the repository."""
     env = {**os.environ, "COLUMNS": "200", "NO_COLOR": "1", "TERM": "dumb"}
     done = subprocess.run(
-        [sys.executable, "-m", "supportive.cli", *args], cwd=ROOT, env=env, capture_output=True, text=True, check=False
+        [sys.executable, "-m", "supportive.cli", *args],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
     )
     if done.returncode:
         raise RuntimeError(f"supportive {' '.join(args)} failed ({done.returncode}): {done.stderr.strip()}")
@@ -229,7 +236,9 @@ def reproduce_all_summary() -> str:
     """docs/experiments.md: the summary table, as ``summary.md`` renders it."""
     from supportive.experiments import findings_table
 
-    rows = [(e["experiment"], e["reference"], e["findings"]) for e in _summary()["experiments"] if e["findings"]]
+    rows = [
+        (e["experiment"], e["reference"], e["findings"]) for e in _summary()["experiments"] if e["findings"]
+    ]
     return findings_table(rows) + "\n"
 
 
@@ -241,8 +250,7 @@ def _edge_report_tables() -> Iterator[str]:
     from supportive.experiments import get
 
     report = get("edge-reduction").report(_json(RESULTS / "edge-reduction.json"))
-    for table in re.findall(r"(?:^\|.*\|\n)+", report + "\n", re.M):
-        yield table
+    yield from re.findall(r"(?:^\|.*\|\n)+", report + "\n", re.M)
 
 
 def _edge_table(header: str) -> str:
@@ -275,7 +283,7 @@ def edge_reduction_counts() -> str:
     learned = metrics["models"]["learned"]
     inside = sum(low <= t["learned"]["depth"] <= high for t in tasks)
     orderings = metrics["all_orderings"]
-    sizes = [t["subgoals"] for t in tasks if "all_orderings" in t and t["all_orderings"]]
+    sizes = [t["subgoals"] for t in tasks if t.get("all_orderings")]
     return (
         f"Learned from 4 paths, {learned['complete']} of {len(tasks)} hierarchies are complete and {inside} of "
         f"{len(tasks)} tasks have a depth inside {low}–{high}. From all orderings ({orderings['qualified']} tasks, "
@@ -302,22 +310,27 @@ def support_two_cells_led() -> str:
     """docs/support.md: `supportive support two-cells-led --simulate`, its first lines (a few favoured plans)."""
     lines = _command("support", "two-cells-led", "--simulate").splitlines()
     favoured = [i for i, line in enumerate(lines) if line.startswith("  favours")]
-    kept = lines[: favoured[0] + 1] + ["  ..."] + lines[favoured[-1] + 1 :] if len(favoured) > 1 else lines
+    kept = [*lines[: favoured[0] + 1], "  ...", *lines[favoured[-1] + 1 :]] if len(favoured) > 1 else lines
     return "```console\n$ supportive support two-cells-led --simulate\n" + "\n".join(kept) + "\n```\n"
 
 
+_CAPTAINCOOK = "docs/results/captaincook.json (supportive captaincook --json)"
+_SUMMARY = "docs/results/summary.json (supportive reproduce all)"
+_EDGES = "docs/results/edge-reduction.json (supportive reproduce edge-reduction)"
 BLOCKS: dict[str, Block] = {
-    "captaincook-precedence": Block("docs/results/captaincook.json (supportive captaincook --json)", captaincook_precedence),
-    "captaincook-edges": Block("docs/results/captaincook.json (supportive captaincook --json)", captaincook_edges),
+    "captaincook-precedence": Block(_CAPTAINCOOK, captaincook_precedence),
+    "captaincook-edges": Block(_CAPTAINCOOK, captaincook_edges),
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
-    "reproduce-all-trials": Block("docs/results/summary.json (supportive reproduce all)", reproduce_all_trials),
-    "reproduce-all-summary": Block("docs/results/summary.json (supportive reproduce all)", reproduce_all_summary),
-    "edge-reduction-depth": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_depth),
-    "edge-reduction-counts": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_counts),
-    "edge-reduction-bins": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_bins),
-    "edge-reduction-totals": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_totals),
-    "edge-reduction-learned": Block("docs/results/edge-reduction.json (reproduce edge-reduction)", edge_reduction_learned),
-    "support-two-cells-led": Block("supportive support two-cells-led --simulate", support_two_cells_led, True),
+    "reproduce-all-trials": Block(_SUMMARY, reproduce_all_trials),
+    "reproduce-all-summary": Block(_SUMMARY, reproduce_all_summary),
+    "edge-reduction-depth": Block(_EDGES, edge_reduction_depth),
+    "edge-reduction-counts": Block(_EDGES, edge_reduction_counts),
+    "edge-reduction-bins": Block(_EDGES, edge_reduction_bins),
+    "edge-reduction-totals": Block(_EDGES, edge_reduction_totals),
+    "edge-reduction-learned": Block(_EDGES, edge_reduction_learned),
+    "support-two-cells-led": Block(
+        "supportive support two-cells-led --simulate", support_two_cells_led, True
+    ),
 }
 
 

@@ -1,0 +1,125 @@
+"""The numbers the docs quote are the ones their commands and experiments give.
+
+Every ``<!-- numbers:NAME -->`` block of README.md and docs/*.md must be what ``tools/docs_numbers.py`` (``make
+docs-numbers``) writes now; the recorded results it reads (``docs/results/``) must be what their commands give
+on a fresh run (the long ones marked slow; CaptainCook4D where the dataset is, as in CI: ``../shared``).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+from supportive.experiments import get, run_experiment
+from supportive.experiments.output import dump_json
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _tool() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("docs_numbers", ROOT / "tools" / "docs_numbers.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up
+    spec.loader.exec_module(module)
+    return module
+
+
+tool = _tool()
+QUICK = sorted(n for n, b in tool.BLOCKS.items() if not b.runs_command)
+COMMANDS = sorted(n for n, b in tool.BLOCKS.items() if b.runs_command)
+
+
+def test_every_block_is_in_one_document() -> None:
+    located = tool.where()
+    assert sorted(located) == sorted(tool.BLOCKS)
+    assert {p.name for p in located.values()} >= {"experiments.md", "exports.md", "learning.md", "support.md"}
+
+
+@pytest.mark.parametrize("name", QUICK)
+def test_a_block_from_recorded_results_is_up_to_date(name: str) -> None:
+    assert tool.stale([name]) == [], f"{name}: run `make docs-numbers` ({tool.BLOCKS[name].source})"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", COMMANDS)
+def test_a_block_from_a_command_is_up_to_date(name: str) -> None:
+    assert tool.stale([name]) == [], f"{name}: run `make docs-numbers` ({tool.BLOCKS[name].source})"
+
+
+def test_a_changed_number_is_found_and_written_back(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    doc = tmp_path / "docs" / "x.md"
+    doc.parent.mkdir()
+    (tmp_path / "README.md").write_text("# r\n", encoding="utf-8")
+    doc.write_text("a\n<!-- numbers:n -->\n0.939\n<!-- /numbers:n -->\nb\n", encoding="utf-8")
+    monkeypatch.setattr(tool, "ROOT", tmp_path)
+    monkeypatch.setattr(tool, "BLOCKS", {"n": tool.Block("test", lambda: "0.938\n")})
+    assert tool.stale() == ["n"]
+    assert tool.main(["--check"]) == 1
+    assert tool.main([]) == 0
+    assert doc.read_text(encoding="utf-8") == "a\n<!-- numbers:n -->\n0.938\n<!-- /numbers:n -->\nb\n"
+    assert tool.stale() == []
+
+
+@pytest.mark.parametrize(
+    ("text", "problem"),
+    [
+        ("<!-- numbers:a -->\nx\n", "unmatched"),
+        ("<!-- numbers:a -->\n<!-- /numbers:a -->\n<!-- numbers:a -->\n<!-- /numbers:a -->\n", "twice"),
+    ],
+)
+def test_broken_markers_are_refused(text: str, problem: str) -> None:
+    with pytest.raises(ValueError, match=problem):
+        tool.block_names(text)
+
+
+def test_a_block_no_generator_knows_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "README.md").write_text("<!-- numbers:ghost -->\n<!-- /numbers:ghost -->\n", encoding="utf-8")
+    monkeypatch.setattr(tool, "ROOT", tmp_path)
+    with pytest.raises(ValueError, match="unknown numbers block 'ghost'"):
+        tool.where()
+
+
+def _recorded(name: str) -> object:
+    return json.loads((tool.RESULTS / name).read_text(encoding="utf-8"))
+
+
+def test_the_recorded_summary_holds_the_recorded_edge_reduction_run() -> None:
+    """summary.json's edge-reduction findings are what the experiment finds in the recorded metrics.json."""
+    metrics = _recorded("edge-reduction.json")
+    assert isinstance(metrics, dict)
+    summary = _recorded("summary.json")
+    assert isinstance(summary, dict)
+    entry = next(e for e in summary["experiments"] if e["experiment"] == "edge-reduction")
+    findings = get("edge-reduction").findings
+    assert findings is not None
+    assert entry["findings"] == [f.as_json() for f in findings(metrics)]
+    assert summary["trials"]["edge-reduction"] == metrics["trials"] and summary["seed"] == metrics["seed"]
+
+
+@pytest.mark.slow
+def test_the_recorded_edge_reduction_run_is_what_a_fresh_run_gives() -> None:
+    recorded = _recorded("edge-reduction.json")
+    assert isinstance(recorded, dict)
+    result = run_experiment("edge-reduction", seed=recorded["seed"], progress=False)
+    assert dump_json(result.metrics) == (tool.RESULTS / "edge-reduction.json").read_text(encoding="utf-8")
+
+
+@pytest.mark.slow
+def test_the_recorded_captaincook_scores_are_what_the_command_gives() -> None:
+    from supportive.errors import DatasetError
+    from supportive.experiments.captaincook.recipes import captaincook_report
+    from supportive.io.captaincook import load_captaincook
+
+    try:
+        recipes = load_captaincook()
+    except DatasetError as exc:
+        pytest.skip(f"CaptainCook4D not here ({exc}); CI has it in ../shared")
+    fresh = json.loads(json.dumps([r.as_dict() for r in captaincook_report(recipes)]))
+    assert fresh == _recorded("captaincook.json")
