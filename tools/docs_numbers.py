@@ -28,7 +28,7 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "docs" / "results"
 BENCHMARKS = ROOT / "benchmarks" / "results"
-_BLOCK = re.compile(r"<!-- numbers:(?P<name>[a-z0-9-]+) -->\n(?P<body>.*?)<!-- /numbers:(?P=name) -->", re.S)
+_BLOCK = re.compile(r"<!-- numbers:(?P<name>[a-z0-9-]+) -->(?P<body>.*?)<!-- /numbers:(?P=name) -->", re.S)
 _OPEN = re.compile(r"<!-- /?numbers:(?P<name>[^ ]*) -->")
 
 
@@ -38,13 +38,20 @@ class Block:
 
     Attributes:
         source: Where its numbers come from, in words (a results file and the command that writes it).
-        make: The passage's markdown, ending with a newline.
+        make: The passage's markdown: lines ending with a newline, or a phrase for an inline block.
         runs_command: Whether ``make`` runs a command (seconds) rather than reading a file.
+        inline: Whether the block sits inside a line (``… <!-- numbers:x -->0.9<!-- /numbers:x --> …``)
+            rather than on lines of its own.
     """
 
     source: str
     make: Callable[[], str]
     runs_command: bool = False
+    inline: bool = False
+
+    def body(self) -> str:
+        """What goes between the markers."""
+        return self.make() if self.inline else "\n" + self.make()
 
 
 def documents() -> list[Path]:
@@ -70,7 +77,7 @@ def block_names(text: str) -> list[str]:
 def render(text: str, made: Mapping[str, str]) -> str:
     """``text`` with every block's body replaced by ``made[name]``."""
     return _BLOCK.sub(
-        lambda m: f"<!-- numbers:{m['name']} -->\n{made[m['name']]}<!-- /numbers:{m['name']} -->", text
+        lambda m: f"<!-- numbers:{m['name']} -->{made[m['name']]}<!-- /numbers:{m['name']} -->", text
     )
 
 
@@ -98,13 +105,13 @@ def stale(names: list[str] | None = None) -> list[str]:
     """The blocks (all, or ``names``) whose text differs from what they would be made from now."""
     located = where()
     chosen = sorted(located) if names is None else names
-    return [n for n in chosen if _current(located[n], n) != BLOCKS[n].make()]
+    return [n for n in chosen if _current(located[n], n) != BLOCKS[n].body()]
 
 
 def write_all() -> list[Path]:
     """Rewrite every block; the documents that changed."""
     located = where()
-    made = {name: block.make() for name, block in BLOCKS.items()}
+    made = {name: block.body() for name, block in BLOCKS.items()}
     changed = []
     for path in sorted(set(located.values())):
         text = path.read_text(encoding="utf-8")
@@ -147,6 +154,38 @@ def _command(*args: str) -> str:
 
 def _f(value: float, digits: int = 3) -> str:
     return f"{value:.{digits}f}"
+
+
+_FIELD = re.compile(r"\{(?P<path>[\w./-]+)(?:\|(?P<unit>ms|us|k|pct))?(?::(?P<format>[^}]*))?\}")
+_SCALE = {"ms": 1e3, "us": 1e6, "k": 1e-3, "pct": 100.0}
+
+
+def filled(template: str, data: Mapping[str, Any]) -> str:
+    """``template`` with each ``{a.b.c|unit:format}`` replaced by ``data["a"]["b"]["c"]``, scaled by the unit
+    (``ms``, ``us``: seconds to milli-/microseconds; ``k``: thousands; ``pct``: a share in per cent) and formatted.
+
+    >>> filled("{x.y|ms:.1f} ms, {n:,}", {"x": {"y": 0.01234}, "n": 1904})
+    '12.3 ms, 1,904'
+    """
+
+    def value(match: re.Match[str]) -> str:
+        item: Any = data
+        for key in match["path"].split("."):
+            item = item[key]
+        if match["unit"]:
+            item = item * _SCALE[match["unit"]]
+        return format(item, match["format"] or "")
+
+    return _FIELD.sub(value, template)
+
+
+def from_benchmark(name: str, template: str) -> Block:
+    """An inline block: ``template`` filled from ``benchmarks/results/NAME.json``."""
+    return Block(
+        f"benchmarks/results/{name}.json (make bench)",
+        lambda: filled(template, _json(BENCHMARKS / f"{name}.json")),
+        inline=True,
+    )
 
 
 # --- CaptainCook4D: `supportive captaincook --json` > docs/results/captaincook.json ---------------------------
@@ -328,6 +367,64 @@ BLOCKS: dict[str, Block] = {
     "edge-reduction-bins": Block(_EDGES, edge_reduction_bins),
     "edge-reduction-totals": Block(_EDGES, edge_reduction_totals),
     "edge-reduction-learned": Block(_EDGES, edge_reduction_learned),
+    "bench-service": from_benchmark(
+        "service",
+        "**{claim_release.ops_per_second:,.0f} operations/s, p50 {claim_release.p50_ms:.1f} ms, p90 {claim_release.p90_ms:.1f} ms, p99 {claim_release.p99_ms:.1f} ms** (targets ≥ {targets.ops_per_second:.0f} ops/s and p99 < {targets.p99_ms:.0f} ms)",
+    ),
+    "bench-social-update": from_benchmark(
+        "social",
+        "{update_plus_ellipse.median_seconds|us:.1f} µs median, {update_plus_ellipse.p99_seconds|us:.1f} µs p99 (target {target_seconds|us:.0f} µs)",
+    ),
+    "bench-social": from_benchmark(
+        "social",
+        "| `update` + `ellipse()`, {samples_in_window} samples in the window (target {target_seconds|us:.0f} µs) | {update_plus_ellipse.median_seconds|us:.1f} µs | {update_plus_ellipse.p99_seconds|us:.1f} µs |\n| peer, measured in the same run: deque → `numpy.array`, `numpy.cov`, `numpy.linalg.eigh` per update | {peer_update_plus_ellipse.median_seconds|us:.1f} µs | {peer_update_plus_ellipse.p99_seconds|us:.1f} µs |\n| `field` at {field.points:,} points, one agent | {field.one_agent.median_seconds|ms:.2f} ms | |\n| `field` at {field.points:,} points, three agents combined | {field.three_agents.median_seconds|ms:.2f} ms | |\n| `PeerPolicy.decide` over the example's six subtasks | {peer_role_decision.median_seconds|us:.0f} µs | |",
+    ),
+    "bench-rosbag": from_benchmark(
+        "rosbag",
+        "| `read_contact_frames` (what `infer --bag` consumes) | **{ours.seconds:.2f}** ({ours.frames_per_second|k:,.0f},000 frames/s) | **{rss_above_baseline_mb.ours:.0f} MB** ({ours.peak_rss_mb:.0f} MB in all, = the baseline) | **{ours.tracemalloc_peak_mb:.1f} MB** |\n| a naive peer: deserialize every message into a list first | {naive_peer.seconds:.2f} | {rss_above_baseline_mb.naive_peer:.0f} MB | {naive_peer.tracemalloc_peak_mb:.0f} MB |",
+    ),
+    "bench-rosbag-bag": from_benchmark(
+        "rosbag",
+        "({bag.frames:,}\n`ContactFrame`s, a {bag.size_mb:.0f} MB MCAP bag)",
+    ),
+    "bench-caregiver": from_benchmark(
+        "caregiver",
+        "20 episodes, default reading, one core: {experiment.seconds_one_process:.1f} s (target {experiment.target_seconds:.0f} s);\n                # the full default run on 2 workers: {full_run.seconds_two_workers:.1f} s at load ≈ 3–4 (target {full_run.target_seconds:.0f} s);\n                # one decision on the {decision.map} map: median {decision.median_seconds|ms:.2f} ms, p99 {decision.p99_seconds|ms:.2f} ms (target {decision.target_seconds|ms:.0f} ms)",
+    ),
+    "bench-active-learning": from_benchmark(
+        "experiments",
+        "{active_learning.trials} trials: {active_learning.in_process_seconds:.1f} s in one\nprocess and {active_learning.workers_2_seconds:.1f} s with 2 workers",
+    ),
+    "bench-progress": from_benchmark(
+        "inference",
+        "one contact-event update {cases.ikea-100-subgoals.update_seconds.progress|us:.0f} µs at 100 subgoals ({cases.ikea-100-subgoals.progress_states} states),\n{cases.ikea-1000-subgoals.update_seconds.progress|us:.0f} µs at 1,000 ({cases.ikea-1000-subgoals.progress_states:,} states); the hierarchical HMM {cases.ikea-100-subgoals.update_seconds.hierarchical|us:.0f} µs and {cases.ikea-1000-subgoals.update_seconds.hierarchical|us:.0f} µs in the same run",
+    ),
+    "bench-hmm": from_benchmark(
+        "inference",
+        "10 subgoals {cases.ikea-10-subgoals.update_seconds.hierarchical|us:.1f} µs\n(flat {cases.ikea-10-subgoals.update_seconds.flat|us:.1f} µs); 100 subgoals {cases.ikea-100-subgoals.update_seconds.hierarchical|us:.1f} µs (flat {cases.ikea-100-subgoals.update_seconds.flat|us:.1f} µs; goal < {cases.ikea-100-subgoals.goal_update_seconds|us:.0f} µs); 1,000 subgoals {cases.ikea-1000-subgoals.update_seconds.hierarchical|us:.1f} µs (flat {cases.ikea-1000-subgoals.update_seconds.flat|us:.1f} µs; goal\n< {cases.ikea-1000-subgoals.goal_update_seconds|ms:.0f} ms)",
+    ),
+    "bench-language": from_benchmark(
+        "language",
+        "target {target_seconds|ms:.0f} ms; {per_utterance.gc_as_is.samples} timings, one other process busy on one of the two\n  cores) takes a median {per_utterance.gc_as_is.median_seconds|ms:.2f} ms with a p99 of {per_utterance.gc_as_is.p99_seconds|ms:.1f} ms and a maximum of {per_utterance.gc_as_is.max_seconds|ms:.0f} ms; with the start-up objects frozen\n  (`gc.freeze()`) a median {per_utterance.gc_frozen.median_seconds|ms:.2f} ms, p99 {per_utterance.gc_frozen.p99_seconds|ms:.1f} ms, maximum {per_utterance.gc_frozen.max_seconds|ms:.1f} ms",
+    ),
+    "bench-language-accuracy": from_benchmark(
+        "language",
+        "On {utterances} held-out chair\n  utterances written by hand (`{held_out}`): **top-1 {accuracy.top1:.2f}, top-3 {accuracy.top3:.2f}**",
+    ),
+    "bench-language-table": from_benchmark(
+        "language",
+        "| bag of words, naive Bayes (the thesis's) | {accuracy.top1:.3f} | {accuracy.top3:.3f} | {per_utterance.gc_as_is.median_seconds|ms:.2f} ms |\n| sentence embeddings | {embeddings_peer.top1:.3f} | {embeddings_peer.top3:.3f} | {embeddings_peer.per_utterance.median_seconds|ms:.1f} ms |",
+    ),
+    "bench-cover": from_benchmark(
+        "cover",
+        "an exact cover takes a median {runs.exact/ilp.median_seconds|ms:.0f} ms (max {runs.exact/ilp.max_seconds|ms:.0f} ms), the thesis's full coverage with\nirrelevant states allowed {runs.exact/ilp_full_allow_irrelevant.median_seconds|ms:.0f} ms (max {runs.exact/ilp_full_allow_irrelevant.max_seconds:.2f} s), a partial cover {runs.exact/ilp_partial.median_seconds|ms:.0f} ms, ESPRESSO {runs.exact/espresso.median_seconds|ms:.0f} ms; with {setup.noise|pct:.0f} % of the labels\nflipped (no exact cover) a partial cover takes a median {runs.noisy/ilp_partial.median_seconds|ms:.0f} ms (max {runs.noisy/ilp_partial.max_seconds:.2f} s), all under the {target_seconds:.0f} s target, and\nis more faithful than ESPRESSO's (precision {runs.noisy/ilp_partial.mean_precision:.2f} / recall {runs.noisy/ilp_partial.mean_recall:.2f} in {runs.noisy/ilp_partial.mean_formula_literals:.0f} literals against {runs.noisy/espresso_partial.mean_precision:.2f} / {runs.noisy/espresso_partial.mean_recall:.2f} in {runs.noisy/espresso_partial.mean_formula_literals:.0f})",
+    ),
+    "bench-support": from_benchmark(
+        "support",
+        "200 environments {environments.200.one_process.median_seconds:.2f} s median, {environments.200.one_process.max_seconds:.2f} s max on one core (target {target_seconds_200:.0f} s); with 2 workers {environments.200.two_workers.median_seconds:.2f} s, a {environments.200.speedup_two_workers}×\nspeed-up; 400 environments {environments.400.one_process.median_seconds:.2f} s → {environments.400.two_workers.median_seconds:.2f} s ({environments.400.speedup_two_workers}×); 800: {environments.800.one_process.median_seconds:.2f} s → {environments.800.two_workers.median_seconds:.2f} s ({environments.800.speedup_two_workers}×",
+    ),
+    "bench-hmm-speedup": from_benchmark("inference", "{cases.ikea-1000-subgoals.hierarchical_speedup_over_flat:.1f}"),
+    "bench-hmmlearn": from_benchmark("inference", "{cases.ikea-100-subgoals.hmmlearn.rescore_prefix_10000_seconds:.1f}"),
     "support-two-cells-led": Block(
         "supportive support two-cells-led --simulate", support_two_cells_led, True
     ),
