@@ -423,8 +423,12 @@ BLOCKS: dict[str, Block] = {
         "support",
         "200 environments {environments.200.one_process.median_seconds:.2f} s median, {environments.200.one_process.max_seconds:.2f} s max on one core (target {target_seconds_200:.0f} s); with 2 workers {environments.200.two_workers.median_seconds:.2f} s, a {environments.200.speedup_two_workers}×\nspeed-up; 400 environments {environments.400.one_process.median_seconds:.2f} s → {environments.400.two_workers.median_seconds:.2f} s ({environments.400.speedup_two_workers}×); 800: {environments.800.one_process.median_seconds:.2f} s → {environments.800.two_workers.median_seconds:.2f} s ({environments.800.speedup_two_workers}×",
     ),
-    "bench-hmm-speedup": from_benchmark("inference", "{cases.ikea-1000-subgoals.hierarchical_speedup_over_flat:.1f}"),
-    "bench-hmmlearn": from_benchmark("inference", "{cases.ikea-100-subgoals.hmmlearn.rescore_prefix_10000_seconds:.1f}"),
+    "bench-hmm-speedup": from_benchmark(
+        "inference", "{cases.ikea-1000-subgoals.hierarchical_speedup_over_flat:.1f}"
+    ),
+    "bench-hmmlearn": from_benchmark(
+        "inference", "{cases.ikea-100-subgoals.hmmlearn.rescore_prefix_10000_seconds:.1f}"
+    ),
     "support-two-cells-led": Block(
         "supportive support two-cells-led --simulate", support_two_cells_led, True
     ),
