@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-fast lint bench serve system clean example-bags docs-numbers docs-results
+.PHONY: demo test test-fast lint bench serve system clean example-bags docs-numbers docs-results docs-verify
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -71,11 +71,17 @@ bench: $(VENV)/.dev
 docs-numbers: $(VENV)/.dev
 	$(BIN)/python tools/docs_numbers.py
 
+# The docs-numbers tests with the recorded full runs made again and compared, the one of a minute included.
+docs-verify: $(VENV)/.dev
+	SUPPORTIVE_DOCS_VERIFY=1 $(BIN)/pytest -q -n 0 tests/test_docs_numbers.py
+
 # The recorded results those numbers come from, made again (minutes: every experiment's full run, CaptainCook4D).
 docs-results: $(VENV)/.dev
 	$(BIN)/supportive reproduce all --workers 2 --output out/reproduce
 	cp out/reproduce/summary.json docs/results/summary.json
 	cp out/reproduce/edge-reduction/metrics.json docs/results/edge-reduction.json
+	cp out/reproduce/active-learning-blocks/metrics.json docs/results/active-learning-blocks.json
+	cp out/reproduce/captaincook/metrics.json docs/results/captaincook-curves.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
 	mv out/captaincook.json docs/results/captaincook.json
 	$(BIN)/python tools/docs_numbers.py

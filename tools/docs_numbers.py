@@ -14,12 +14,13 @@ table of docs/experiments.md: tests/experiments/test_docs_numbers.py; the others
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import re
 import subprocess
 import sys
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from statistics import mean
@@ -281,37 +282,48 @@ def reproduce_all_summary() -> str:
     return findings_table(rows) + "\n"
 
 
-# --- edge-reduction: `supportive reproduce edge-reduction` metrics.json > docs/results/edge-reduction.json -----
+# --- one experiment's full run: its metrics.json > docs/results/FILE, its report.md made from them --------
 
 
-def _edge_report_tables() -> Iterator[str]:
-    """The markdown tables of edge-reduction's report, built from the recorded metrics."""
+def _report(experiment: str, file: str) -> str:
+    """The experiment's ``report.md`` made from the recorded ``metrics.json``."""
     from supportive.experiments import get
 
-    report = get("edge-reduction").report(_json(RESULTS / "edge-reduction.json"))
-    yield from re.findall(r"(?:^\|.*\|\n)+", report + "\n", re.M)
+    return get(experiment).report(_json(RESULTS / file))
 
 
-def _edge_table(header: str) -> str:
-    for table in _edge_report_tables():
-        if table.startswith(header):
-            return table
-    raise ValueError(f"edge-reduction's report has no table starting {header!r}")
+def report_table(experiment: str, file: str, header: str) -> Block:
+    """The table of ``experiment``'s report (from ``docs/results/FILE``) whose header starts with ``header``."""
+
+    def make() -> str:
+        for table in re.findall(r"(?:^\|.*\|\n)+", _report(experiment, file) + "\n", re.M):
+            if table.startswith(header):
+                return str(table)
+        raise ValueError(f"{experiment}'s report has no table starting {header!r}")
+
+    return Block(f"docs/results/{file} (supportive reproduce {experiment})", make)
 
 
-def edge_reduction_depth() -> str:
-    """docs/experiments.md: mean depth of a primitive per model."""
-    return _edge_table("| model | tasks | mean |")
+def report_part(experiment: str, file: str, first: str, stop: str) -> Block:
+    """The lines of ``experiment``'s report from the heading ``first`` up to the heading ``stop``, its
+    headings two levels down (they sit under a section of the docs)."""
+
+    def make() -> str:
+        text = _report(experiment, file)
+        part = text[text.index(f"\n{first}") + 1 : text.index(f"\n{stop}") + 1]
+        return re.sub(r"^## ", "#### ", part, flags=re.M)
+
+    return Block(f"docs/results/{file} (supportive reproduce {experiment})", make)
 
 
-def edge_reduction_bins() -> str:
-    """docs/experiments.md: edges per task by size bin."""
-    return _edge_table("| subgoals |")
+def digest(file: str) -> Block:
+    """An inline block: the recorded file's sha256, shortened as the docs quote it (``922beaf9…9856cb71``)."""
 
+    def make() -> str:
+        full = hashlib.sha256((RESULTS / file).read_bytes()).hexdigest()
+        return f"`{full[:8]}…{full[-8:]}`"
 
-def edge_reduction_totals() -> str:
-    """docs/experiments.md: edges over all tasks, per model."""
-    return _edge_table("| model | tasks | complete |")
+    return Block(f"docs/results/{file}", make, inline=True)
 
 
 def edge_reduction_counts() -> str:
@@ -362,10 +374,21 @@ BLOCKS: dict[str, Block] = {
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
     "reproduce-all-trials": Block(_SUMMARY, reproduce_all_trials),
     "reproduce-all-summary": Block(_SUMMARY, reproduce_all_summary),
-    "edge-reduction-depth": Block(_EDGES, edge_reduction_depth),
+    "edge-reduction-depth": report_table("edge-reduction", "edge-reduction.json", "| model | tasks | mean |"),
     "edge-reduction-counts": Block(_EDGES, edge_reduction_counts),
-    "edge-reduction-bins": Block(_EDGES, edge_reduction_bins),
-    "edge-reduction-totals": Block(_EDGES, edge_reduction_totals),
+    "edge-reduction-bins": report_table("edge-reduction", "edge-reduction.json", "| subgoals |"),
+    "edge-reduction-totals": report_table(
+        "edge-reduction", "edge-reduction.json", "| model | tasks | complete |"
+    ),
+    "captaincook-curves-f1": report_table("captaincook", "captaincook-curves.json", "| k | recipes |"),
+    "captaincook-curves-own-k": report_table("captaincook", "captaincook-curves.json", "| condition |"),
+    "captaincook-curves-queries": report_table(
+        "captaincook", "captaincook-curves.json", "| strategy | asked |"
+    ),
+    "active-learning-blocks-tasks": report_part(
+        "active-learning-blocks", "active-learning-blocks.json", "## Task 1", "## Verdict"
+    ),
+    "active-learning-blocks-sha": digest("active-learning-blocks.json"),
     "edge-reduction-learned": Block(_EDGES, edge_reduction_learned),
     "bench-service": from_benchmark(
         "service",
