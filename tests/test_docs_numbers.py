@@ -155,3 +155,29 @@ def test_the_recorded_captaincook_scores_are_what_the_command_gives() -> None:
     _captaincook_or_skip()
     fresh = json.loads(json.dumps([r.as_dict() for r in captaincook_report(load_captaincook())]))
     assert fresh == _recorded("captaincook.json")
+
+
+def _top(pairs: list[tuple[str, float]]) -> str:
+    label, p = pairs[0]
+    return f'[("{label}", {round(p, 2)}), ...]'
+
+
+def test_the_python_examples_quote_what_they_print() -> None:
+    """The values the README's and docs/inference.md's Python examples show in comments, from a fresh run."""
+    from supportive.inference import HierarchicalHMM, ObservationModel, StepPredictor
+    from supportive.io import parse_task_file
+    from supportive.learning import HTNLearner
+
+    spec = parse_task_file(ROOT / "examples" / "ikea-chair.yaml")
+    after = StepPredictor().fit(spec).next_step(["get_left_frame", "place_left_frame"])
+    best = min(after, key=lambda a: (-after[a], a))  # ties by name
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert f'# {{"{best}": {round(after[best], 2)}, …, "<end>": {round(after["<end>"], 3)}}}' in readme
+
+    learner = HTNLearner().fit(spec)
+    model = HierarchicalHMM(learner.htn_, ObservationModel.from_spec(spec), mean_duration=4).fit()
+    running = model.filter()
+    belief = running.update({"hand-peg", "peg-left_frame"})
+    inference = (ROOT / "docs" / "inference.md").read_text(encoding="utf-8")
+    assert f"# {_top(running.top(belief.subgoals, running.subgoal_labels))}" in inference
+    assert f"# {_top(running.top(belief.enclosing, running.enclosing_labels))}" in inference
