@@ -181,3 +181,18 @@ def test_the_python_examples_quote_what_they_print() -> None:
     inference = (ROOT / "docs" / "inference.md").read_text(encoding="utf-8")
     assert f"# {_top(running.top(belief.subgoals, running.subgoal_labels))}" in inference
     assert f"# {_top(running.top(belief.enclosing, running.enclosing_labels))}" in inference
+
+
+def test_the_social_example_quotes_what_it_prints() -> None:
+    """docs/social.md's example, run as written: the peer's reason and the student's choice it quotes."""
+    text = (ROOT / "docs" / "social.md").read_text(encoding="utf-8")
+    start = text.index("```python\nfrom supportive import examples")
+    block = text[start + len("```python\n") : text.index("```", start + 3)]
+    namespace: dict[str, object] = {}
+    exec(compile(block, "docs/social.md", "exec"), namespace)
+    decision = eval("PeerPolicy(switch_margin=0.2, halt_below=-0.5, seed=0).decide(mine, people)", namespace)
+    chosen = eval("StudentPolicy(min_force=0.2, seed=0).decide(free, people).subtask", namespace)
+    comments = " ".join(line.lstrip("# ").strip() for line in block.splitlines() if line.startswith("#"))
+    assert f'reason="{decision.reason}")' in comments
+    assert f"subtask='{decision.subtask}'" in comments
+    assert f"# {chosen!r}" in block
