@@ -71,7 +71,7 @@ bench: $(VENV)/.dev
 docs-numbers: $(VENV)/.dev
 	$(BIN)/python tools/docs_numbers.py
 
-# The docs-numbers tests with the recorded full runs made again and compared, the one of a minute included.
+# The docs-numbers tests with every recorded full run made again and compared (minutes).
 docs-verify: $(VENV)/.dev
 	SUPPORTIVE_DOCS_VERIFY=1 $(BIN)/pytest -q -n 0 tests/test_docs_numbers.py
 
@@ -82,6 +82,8 @@ docs-results: $(VENV)/.dev
 	cp out/reproduce/edge-reduction/metrics.json docs/results/edge-reduction.json
 	cp out/reproduce/active-learning-blocks/metrics.json docs/results/active-learning-blocks.json
 	cp out/reproduce/captaincook/metrics.json docs/results/captaincook-curves.json
+	cp out/reproduce/goal-inference/metrics.json docs/results/goal-inference.json
+	cp out/reproduce/goal-inference/timing.json docs/results/goal-inference-timing.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
 	mv out/captaincook.json docs/results/captaincook.json
 	$(BIN)/python tools/docs_numbers.py

@@ -20,6 +20,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -316,6 +317,27 @@ def report_part(experiment: str, file: str, first: str, stop: str) -> Block:
     return Block(f"docs/results/{file} (supportive reproduce {experiment})", make)
 
 
+def timing_part(experiment: str, file: str, first: str, stop: str | None = None) -> Block:
+    """The lines of the ``timing.md`` that ``experiment``'s ``timing_report`` writes from the recorded
+    ``timing.json`` (``docs/results/FILE``): from the line starting ``first`` up to the one starting ``stop``
+    (or the end), headings two levels down."""
+
+    def make() -> str:
+        from supportive.experiments import get
+
+        report = get(experiment).timing_report
+        if report is None:
+            raise ValueError(f"{experiment} has no timing report")
+        with tempfile.TemporaryDirectory() as folder:
+            report(_json(RESULTS / file)["trials"], Path(folder))
+            text = (Path(folder) / "timing.md").read_text(encoding="utf-8")
+        start = text.index(f"\n{first}") + 1
+        end = len(text) if stop is None else text.index(f"\n{stop}", start) + 1
+        return re.sub(r"^## ", "#### ", text[start:end].rstrip("\n") + "\n", flags=re.M)
+
+    return Block(f"docs/results/{file} (supportive reproduce {experiment}: timing.json)", make)
+
+
 def digest(file: str) -> Block:
     """An inline block: the recorded file's sha256, shortened as the docs quote it (``922beaf9…9856cb71``)."""
 
@@ -354,6 +376,40 @@ def edge_reduction_learned() -> str:
     )
 
 
+def _signed(value: float) -> str:
+    return f"{value:+.3f}".replace("-", "−")
+
+
+def goal_inference_tracker() -> str:
+    """docs/inference.md: the progress-aware tracker beside the hierarchical HMM at overlap 0.8, per task size."""
+    sizes = _json(RESULTS / "goal-inference.json")["sizes"]
+
+    def ahead(setting: str) -> int:
+        return sum(
+            s["accuracy"][setting]["progress"]["subgoal"] > s["accuracy"][setting]["hierarchical"]["subgoal"]
+            for s in sizes
+        )
+
+    parts, excluding = [], []
+    for size in sizes:
+        accuracy, difference = (
+            size["accuracy"]["overlap-0.8-noisy"],
+            size["progress_difference"]["overlap-0.8-noisy"],
+        )
+        parts.append(
+            f"{size['subgoals']:,}: {accuracy['hierarchical']['subgoal']:.3f} → {accuracy['progress']['subgoal']:.3f} "
+            f"({_signed(difference['mean'])} [{_signed(difference['low'])}, {_signed(difference['high'])}])"
+        )
+        excluding += [f"{size['subgoals']:,}"] if difference["low"] > 0 else []
+    return (
+        f"at overlap 0.8 the tracker's mean subgoal accuracy is above the hierarchical HMM's in "
+        f"{ahead('overlap-0.8-clean')} of {len(sizes)} task sizes clean and {ahead('overlap-0.8-noisy')} of "
+        f"{len(sizes)} noisy. Noisy, hierarchical → tracker (paired difference, 95% CI), by subgoals: "
+        f"{', '.join(parts)}; the interval excludes zero at {', '.join(excluding) or 'no size'} subgoals ("
+        f"{sizes[0]['trials']} trials per size).\n"
+    )
+
+
 # --- quick commands -------------------------------------------------------------------------------------------
 
 
@@ -389,6 +445,25 @@ BLOCKS: dict[str, Block] = {
         "active-learning-blocks", "active-learning-blocks.json", "## Task 1", "## Verdict"
     ),
     "active-learning-blocks-sha": digest("active-learning-blocks.json"),
+    "goal-inference-sha": digest("goal-inference.json"),
+    "goal-inference-accuracy": report_table(
+        "goal-inference", "goal-inference.json", "| setting | flat: subgoal |"
+    ),
+    "goal-inference-work": report_table(
+        "goal-inference", "goal-inference.json", "| subgoals | trials | subtasks |"
+    ),
+    "goal-inference-timing": timing_part(
+        "goal-inference", "goal-inference-timing.json", "| subgoals |", "## "
+    ),
+    "goal-inference-accuracy-summary": report_table(
+        "goal-inference", "goal-inference.json", "| setting | flat: subgoal |"
+    ),
+    "goal-inference-tracker": Block(
+        "docs/results/goal-inference.json (supportive reproduce goal-inference)", goal_inference_tracker
+    ),
+    "goal-inference-figure": timing_part(
+        "goal-inference", "goal-inference-timing.json", "## Beside Figure 2.4"
+    ),
     "edge-reduction-learned": Block(_EDGES, edge_reduction_learned),
     "bench-service": from_benchmark(
         "service",
