@@ -97,6 +97,7 @@ RECORDED = {
     "active-learning-blocks": "active-learning-blocks.json",
     "captaincook": "captaincook-curves.json",
     "goal-inference": "goal-inference.json",
+    "transfer": "transfer.json",
 }
 
 
@@ -124,6 +125,7 @@ RECORDED_RUNS = [
     ("active-learning-blocks", RECORDED["active-learning-blocks"]),
     pytest.param("captaincook", RECORDED["captaincook"], marks=_MINUTES),
     pytest.param("goal-inference", RECORDED["goal-inference"], marks=_MINUTES),
+    pytest.param("transfer", RECORDED["transfer"], marks=_MINUTES),
 ]
 
 

@@ -446,6 +446,9 @@ BLOCKS: dict[str, Block] = {
     ),
     "active-learning-blocks-sha": digest("active-learning-blocks.json"),
     "goal-inference-sha": digest("goal-inference.json"),
+    "transfer-sha": digest("transfer.json"),
+    "transfer-episodes": report_table("transfer", "transfer.json", "| condition | episodes"),
+    "transfer-comparisons": report_table("transfer", "transfer.json", "| comparison |"),
     "goal-inference-accuracy": report_table(
         "goal-inference", "goal-inference.json", "| setting | flat: subgoal |"
     ),
