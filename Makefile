@@ -85,6 +85,7 @@ docs-results: $(VENV)/.dev
 	cp out/reproduce/goal-inference/metrics.json docs/results/goal-inference.json
 	cp out/reproduce/goal-inference/timing.json docs/results/goal-inference-timing.json
 	cp out/reproduce/transfer/metrics.json docs/results/transfer.json
+	cp out/reproduce/caregiver/metrics.json docs/results/caregiver.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
 	mv out/captaincook.json docs/results/captaincook.json
 	$(BIN)/python tools/docs_numbers.py

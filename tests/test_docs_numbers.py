@@ -98,6 +98,7 @@ RECORDED = {
     "captaincook": "captaincook-curves.json",
     "goal-inference": "goal-inference.json",
     "transfer": "transfer.json",
+    "caregiver": "caregiver.json",
 }
 
 
@@ -126,6 +127,7 @@ RECORDED_RUNS = [
     pytest.param("captaincook", RECORDED["captaincook"], marks=_MINUTES),
     pytest.param("goal-inference", RECORDED["goal-inference"], marks=_MINUTES),
     pytest.param("transfer", RECORDED["transfer"], marks=_MINUTES),
+    pytest.param("caregiver", RECORDED["caregiver"], marks=_MINUTES),
 ]
 
 

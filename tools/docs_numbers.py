@@ -293,16 +293,23 @@ def _report(experiment: str, file: str) -> str:
     return get(experiment).report(_json(RESULTS / file))
 
 
+def _nth_table(experiment: str, file: str, header: str, n: int = 0) -> str:
+    """The ``n``-th table of ``experiment``'s report (from ``docs/results/FILE``) whose header starts with
+    ``header``."""
+    tables = re.findall(r"(?:^\|.*\|\n)+", _report(experiment, file) + "\n", re.M)
+    matching = [str(t) for t in tables if t.startswith(header)]
+    if len(matching) <= n:
+        raise ValueError(f"{experiment}'s report has no table {n} starting {header!r}")
+    return matching[n]
+
+
 def report_table(experiment: str, file: str, header: str) -> Block:
-    """The table of ``experiment``'s report (from ``docs/results/FILE``) whose header starts with ``header``."""
-
-    def make() -> str:
-        for table in re.findall(r"(?:^\|.*\|\n)+", _report(experiment, file) + "\n", re.M):
-            if table.startswith(header):
-                return str(table)
-        raise ValueError(f"{experiment}'s report has no table starting {header!r}")
-
-    return Block(f"docs/results/{file} (supportive reproduce {experiment})", make)
+    """The first table of ``experiment``'s report (from ``docs/results/FILE``) whose header starts with
+    ``header``."""
+    return Block(
+        f"docs/results/{file} (supportive reproduce {experiment})",
+        lambda: _nth_table(experiment, file, header),
+    )
 
 
 def report_part(experiment: str, file: str, first: str, stop: str) -> Block:
@@ -410,6 +417,24 @@ def goal_inference_tracker() -> str:
     )
 
 
+def caregiver_collisions() -> str:
+    """docs/caregiver.md: the largest damage of one episode, and what the caregiver did to the random-motion
+    novice's stairwell falls and candle bumps."""
+    metrics = _json(RESULTS / "caregiver.json")
+    counts = metrics["collisions"]["random motion"]
+
+    def change(hazard: str) -> str:
+        with_ = [counts["with"][r][hazard] for r in metrics["readings"]]
+        low, high = min(with_), max(with_)
+        return f"{counts['without'][hazard]} to {low}" + ("" if low == high else f"–{high}")
+
+    return (
+        f"(Maximum damage in one episode: {metrics['max_damage']}. Over the {metrics['episodes']} random-motion "
+        f"episodes the caregiver cut stairwell falls from {change('stairs')} and candle bumps from "
+        f"{change('candle')}, by reading.)\n"
+    )
+
+
 # --- quick commands -------------------------------------------------------------------------------------------
 
 
@@ -447,6 +472,16 @@ BLOCKS: dict[str, Block] = {
     "active-learning-blocks-sha": digest("active-learning-blocks.json"),
     "goal-inference-sha": digest("goal-inference.json"),
     "transfer-sha": digest("transfer.json"),
+    "caregiver-sha": digest("caregiver.json"),
+    "caregiver-reduction": report_table("caregiver", "caregiver.json", "| novice | reduction,"),
+    "caregiver-damage": report_table("caregiver", "caregiver.json", "| novice | no caregiver |"),
+    "caregiver-steps": Block(
+        "docs/results/caregiver.json (supportive reproduce caregiver)",
+        lambda: _nth_table("caregiver", "caregiver.json", "| novice | no caregiver |", 1),
+    ),
+    "caregiver-collisions": Block(
+        "docs/results/caregiver.json (supportive reproduce caregiver)", caregiver_collisions
+    ),
     "transfer-episodes": report_table("transfer", "transfer.json", "| condition | episodes"),
     "transfer-comparisons": report_table("transfer", "transfer.json", "| comparison |"),
     "goal-inference-accuracy": report_table(
