@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-fast lint bench serve system clean example-bags architecture
+.PHONY: demo test test-fast lint bench serve system clean example-bags architecture docs-numbers docs-results docs-verify
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -65,6 +65,30 @@ bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_service.py
 	$(BIN)/python benchmarks/bench_social.py
 	$(BIN)/python benchmarks/bench_rosbag.py
+
+# The numbers the docs quote between <!-- numbers:NAME --> markers, written again from the recorded results
+# (docs/results/, benchmarks/results/) and quick commands; `make test` fails while one is out of date.
+docs-numbers: $(VENV)/.dev
+	$(BIN)/python tools/docs_numbers.py
+
+# The docs-numbers tests with every recorded full run made again and compared (minutes).
+docs-verify: $(VENV)/.dev
+	SUPPORTIVE_DOCS_VERIFY=1 $(BIN)/pytest -q -n 0 tests/test_docs_numbers.py
+
+# The recorded results those numbers come from, made again (minutes: every experiment's full run, CaptainCook4D).
+docs-results: $(VENV)/.dev
+	$(BIN)/supportive reproduce all --workers 2 --output out/reproduce
+	cp out/reproduce/summary.json docs/results/summary.json
+	cp out/reproduce/edge-reduction/metrics.json docs/results/edge-reduction.json
+	cp out/reproduce/active-learning-blocks/metrics.json docs/results/active-learning-blocks.json
+	cp out/reproduce/captaincook/metrics.json docs/results/captaincook-curves.json
+	cp out/reproduce/goal-inference/metrics.json docs/results/goal-inference.json
+	cp out/reproduce/goal-inference/timing.json docs/results/goal-inference-timing.json
+	cp out/reproduce/transfer/metrics.json docs/results/transfer.json
+	cp out/reproduce/caregiver/metrics.json docs/results/caregiver.json
+	$(BIN)/supportive captaincook --json > out/captaincook.json
+	mv out/captaincook.json docs/results/captaincook.json
+	$(BIN)/python tools/docs_numbers.py
 
 # The example bags in examples/bags/, made again from the bundled task files (the same messages every time).
 example-bags: $(VENV)/.dev

@@ -206,10 +206,13 @@ class HTNLearner(Estimator):
         return self
 
     def partial_fit(self, demonstration: DemonstrationLike) -> Self:
-        """Add one demonstration to what was learned, updating graph, CTG and HTN in place.
+        """Add one demonstration to what was learned, updating graph, CTG and HTN in place; the result equals
+        ``fit`` on all demonstrations so far.
 
-        Only the compaction levels the new execution changes are recomputed (see
-        :meth:`Compaction.update`); the result equals ``fit`` on all demonstrations so far.
+        The task graph and CTG are updated incrementally. The strict learner (``mode="strict"``, or
+        demonstrations with explicit states) also recomputes only the compaction levels the new execution
+        changes (see :meth:`Compaction.update`); the general and ``auto`` readings learn the hierarchy again
+        from all demonstrations (slips searched and, for ``auto``, the reading chosen anew).
         """
         if not self.fitted:
             return self.fit([demonstration])
