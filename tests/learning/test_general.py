@@ -12,9 +12,9 @@ from hypothesis import strategies as st
 from supportive import examples
 from supportive.io.htn_json import htn_from_dict, htn_to_dict
 from supportive.learning import HTNLearner
-from supportive.learning.evidence import contiguity_chance, established_precedences, pair_counts
-from supportive.learning.labelling import label_performances
-from supportive.learning.top_order import precedence_top_level, seen_top_level
+from supportive.learning.general.evidence import contiguity_chance, established_precedences, pair_counts
+from supportive.learning.general.labelling import label_performances
+from supportive.learning.general.top_order import precedence_top_level, seen_top_level
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
