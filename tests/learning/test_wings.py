@@ -109,6 +109,15 @@ def test_two_interleaved_chains_between_a_first_and_a_last_step() -> None:
     assert all(alternative.admits(demo) for demo in demos)
 
 
+def test_the_alternative_settings_bound_the_general_alternatives_too() -> None:
+    demos = _interleaved(3, 12)
+    roots = len(HTNLearner(mode="general").fit(demos).htn_.roots)
+    assert roots > 1 and len(HTNLearner(mode="general").fit(demos).htn_.alternatives) == 1
+    assert HTNLearner(mode="general", alternatives=0).fit(demos).htn_.alternatives == ()
+    assert HTNLearner(mode="general", max_alternative_roots=roots - 1).fit(demos).htn_.alternatives == ()
+    assert len(HTNLearner(mode="general", max_alternative_roots=roots).fit(demos).htn_.alternatives) == 1
+
+
 def test_strict_alternatives_are_still_restrictions_of_the_known_executions() -> None:
     """§2.1.5.3's two glasses: the strict learner's readings each admit known executions only."""
     from supportive.examples import load

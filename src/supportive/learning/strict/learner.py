@@ -45,9 +45,9 @@ class StrictLearner:
     (['chain'], ())
     """
 
-    def __init__(self) -> None:
-        self.graph = TaskGraph()
-        self.ctg: ConjugateTaskGraph = conjugate_task_graph(self.graph)
+    def __init__(self, graph: TaskGraph) -> None:
+        self.graph = graph
+        self.ctg: ConjugateTaskGraph = conjugate_task_graph(graph)
         self._compaction: Compaction | None = None
 
     @classmethod
@@ -57,16 +57,15 @@ class StrictLearner:
         Raises:
             TaskGraphError: when the demonstrations cannot form a task graph.
         """
-        learner = cls()
+        graph = TaskGraph()
         for demo in demonstrations:
-            learner._add_to_graph(demo)
-        learner.ctg = conjugate_task_graph(learner.graph)
-        return learner
+            _add(graph, demo)
+        return cls(graph)
 
     def add(self, demonstration: Demonstration | Sequence[str]) -> None:
         """Add one demonstration: the task graph and CTG in place, then only the compaction levels the new
         execution changes (the result equals :meth:`of` all demonstrations so far)."""
-        update = self._add_to_graph(demonstration)
+        update = _add(self.graph, demonstration)
         if update.changed:
             update_conjugate(self.ctg, update)
             if self._compaction is not None:
@@ -85,14 +84,16 @@ class StrictLearner:
         labelled = tuple(tuple(self.graph.subgoals[s] for s in demo) for demo in self.graph.demonstrations)
         return StrictResult(roots, compaction.top_level(), found, labelled)
 
-    def _add_to_graph(self, demo: Demonstration | Sequence[str]) -> GraphUpdate:
-        if isinstance(demo, Demonstration):
-            return self.graph.add_demonstration(demo)
-        return self.graph.add(demo, f"d{len(self.graph.demonstrations) + 1}")
-
     def _compacted(self) -> Compaction:
         """Algorithm 2 over the task graph (run once, then kept up to date by :meth:`add`)."""
         if self._compaction is None:
             self._compaction = Compaction(self.graph)
             self._compaction.run()
         return self._compaction
+
+
+def _add(graph: TaskGraph, demo: Demonstration | Sequence[str]) -> GraphUpdate:
+    """Add ``demo`` to ``graph`` (a plain sequence named by its place, ``d1``, ``d2``, …)."""
+    if isinstance(demo, Demonstration):
+        return graph.add_demonstration(demo)
+    return graph.add(demo, f"d{len(graph.demonstrations) + 1}")
