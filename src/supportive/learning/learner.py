@@ -109,7 +109,9 @@ class HTNLearner(Estimator):
             fewer demonstrations); at least 2.
         selection_demonstrations: ``auto``: the fewest demonstrations the readings are compared on (with
             fewer, ``general`` is kept); at least 2.
-        alternatives: Most alternative hierarchies to look for when the result is partial (0: none).
+        alternatives: Most alternative hierarchies to look for when the result is partial (0: none); the
+            strict learner finds up to this many restrictions, the others one hierarchy admitting all the
+            result admits (docs/learning.md, "Module layout").
         max_alternative_roots: Look for alternatives only when at most this many roots are left.
         names: Leaf set -> name for subtasks whose name is known (a ground truth's names, say); by default
             the names of a task spec's ``structure``.
@@ -120,9 +122,9 @@ class HTNLearner(Estimator):
         task_graph_: The environment-space task graph.
         ctg_: Its Conjugate Task Graph (redundant edges removed).
             Both belong to the strict learner: after a general fit they are built when first asked for.
-        htn_: The learned hierarchy with its alternatives: the strict learner's are restrictions (complete
-            hierarchies each admitting only known executions, §2.1.5.3); the general learner's is one
-            complete hierarchy admitting every execution the partial one admits
+        htn_: The learned hierarchy with its alternatives: ``mode="strict"``'s are restrictions (complete
+            hierarchies each admitting only known executions, §2.1.5.3); the other modes' (whichever reading
+            ``auto`` keeps) are one complete hierarchy admitting every execution the partial one admits
             (:mod:`~supportive.learning.general.alternatives`).
         deviations_: The slips set aside (``general``), in demonstration order.
         noise_: The noise model fitted with them: slips and rate per kind (``general``; None otherwise).
@@ -371,8 +373,10 @@ class HTNLearner(Estimator):
         return selection, fit(selection.chosen, everything)
 
     def _learned(self) -> tuple[str, tuple[Node, ...], TopLevel | None, tuple[Node, ...]]:
-        """The reading learned, its roots, top level and alternatives, from the wing that learns it (the
-        strict one keeps labelled_ of its own; the general one sets the noise it found)."""
+        """The reading learned, its roots, top level and alternatives: the strict learner's when it learns
+        alone (``mode="strict"`` or explicit states), else the general learner's, whichever reading ``auto``
+        keeps (its alternative admits every execution the hierarchy admits); the labels, and the slips and
+        noise the general learner found, are set on the way."""
         limit, most = self.alternatives, self.max_alternative_roots
         if self._strictly:
             assert self._strict is not None
@@ -387,13 +391,7 @@ class HTNLearner(Estimator):
         if self.mode == "auto":
             self.selection_, chosen = self._selected(found, fitted)
             reading = self.selection_.chosen
-            if reading == "strict":
-                found_alternatives: tuple[Node, ...] = ()
-                if len(chosen.roots) > 1 and limit:
-                    strict = StrictLearner.of(_actions(found, range(len(found.cleaned))))
-                    found_alternatives = strict.result(alternatives=limit, max_roots=most).alternatives
-                return reading, chosen.roots, chosen.top_level, found_alternatives
-            fitted = FittedStructure(chosen.roots, chosen.top_level)
+            fitted = FittedStructure(chosen.roots, chosen.top_level)  # its alternative too: one admitting all
         return reading, fitted.roots, fitted.top_level, alternatives_of(fitted, limit=limit, max_roots=most)
 
     def _finish(self, started: float) -> None:
