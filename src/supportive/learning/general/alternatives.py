@@ -6,7 +6,8 @@ series of **blocks**: root ``s`` *may precede* root ``r`` when some execution th
 before ``r``; the roots that may precede one another both ways (directly or through others) form one block
 (a strongly connected component of that relation), and every root of an earlier block precedes every root of
 a later one in every execution. The alternative is the chain of the blocks in that order, each block a clique
-of its roots (a block of one root is that root; each root keeps its own structure and its ``optional`` flag).
+of its roots (a block of one root is that root; each root keeps its own structure, and is ``optional`` when
+it is, or when some execution of the top level leaves it out).
 
 It admits every execution the partial hierarchy admits: each root is performed without interruption in both,
 the blocks come in the order every admitted execution keeps, and a clique admits every order of its members.
@@ -17,12 +18,13 @@ alternatives are restrictions of the known executions, this one is a generalisat
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import networkx as nx
 
 from supportive.tasks.htn import ChainNode, CliqueNode, Node, TopLevel
 
-__all__ = ["complete_alternative", "may_precede"]
+__all__ = ["complete_alternative", "may_precede", "required_roots"]
 
 
 def complete_alternative(roots: Sequence[Node], top_level: TopLevel) -> Node:
@@ -40,6 +42,8 @@ def complete_alternative(roots: Sequence[Node], top_level: TopLevel) -> Node:
     graph: nx.DiGraph[int] = nx.DiGraph()
     graph.add_nodes_from(range(len(roots)))
     graph.add_edges_from((s, r) for s, later in enumerate(may_precede(top_level, len(roots))) for r in later)
+    required = required_roots(top_level, len(roots))
+    roots = [root if root.optional or i in required else replace(root, optional=True) for i, root in enumerate(roots)]
     blocks = nx.condensation(graph)
     members: dict[int, list[int]] = {b: sorted(blocks.nodes[b]["members"]) for b in blocks.nodes}
     order = nx.lexicographical_topological_sort(blocks, key=lambda b: members[b][0])
@@ -70,6 +74,25 @@ def may_precede(top_level: TopLevel, n_roots: int) -> list[set[int]]:
         for root, dst in moves.items():
             after[root] |= ahead[dst]
     return [{r for r in range(n_roots) if bits >> r & 1 and r != s} for s, bits in enumerate(after)]
+
+
+def required_roots(top_level: TopLevel, n_roots: int) -> set[int]:
+    """The roots (of ``n_roots``) every execution of ``top_level`` performs: on every path from an initial
+    state to a terminal one."""
+    out = top_level.successors()
+    terminal = set(top_level.terminal)
+    states = set(out) | {dst for moves in out.values() for dst in moves.values()} | terminal
+    every = -1  # all roots, as bits
+    on_all: dict[int, int] = {}  # state -> roots (bits) on every path from it to a terminal state
+    for state in _reverse_topological(states, out):
+        bits = 0 if state in terminal else every
+        for root, dst in out.get(state, {}).items():
+            bits &= 1 << root | on_all[dst]
+        on_all[state] = bits
+    found = every
+    for state in top_level.initial:
+        found &= on_all.get(state, 0)
+    return {r for r in range(n_roots) if found >> r & 1}
 
 
 def _reverse_topological(states: set[int], out: dict[int, dict[int, int]]) -> list[int]:
