@@ -5,7 +5,7 @@ hierarchy admits (checked against every execution enumerated, on generated tasks
 from __future__ import annotations
 
 import random
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator, Sequence
 
 import pytest
 from hypothesis import assume, given, settings
@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 from supportive.errors import NotFittedError, TaskGraphError
 from supportive.generate import generate_task, inject, random_partial_order
+from supportive.generate.mistakes import KINDS
 from supportive.learning import HTNLearner
 from supportive.learning.general.alternatives import complete_alternative, required_roots
 from supportive.learning.strict import Compaction, StrictLearner
@@ -152,13 +153,13 @@ def generated(draw: st.DrawFn) -> list[list[str]]:
         task = random_partial_order(draw(st.integers(3, 7)), seed, chains=draw(st.integers(2, 3)), cross=draw(st.integers(0, 2)))
         rng = random.Random(seed)
         demos = [list(task.sample(rng.randrange(2**32))) for _ in range(draw(st.integers(1, 30)))]
-        valid = task.admits
+        valid: Callable[[Sequence[str]], bool] = task.admits
     else:
         spec = generate_task(draw(st.integers(3, 8)), seed, demonstrations=draw(st.integers(1, 12)), profile="uniform")
+        assert spec.structure is not None
         demos = [list(d.actions) for d in spec.demonstrations]
-        htn = HTN("", (spec.structure,)) if spec.structure is not None else None
-        valid = htn.admits if htn is not None else (lambda _: True)
-    kind = draw(st.sampled_from([None, "moved", "repeated", "dropped"]))
+        valid = HTN("", (spec.structure,)).admits
+    kind = draw(st.sampled_from([None, *KINDS]))
     if kind is None or max(map(len, demos)) < 3:
         return demos
     return inject(demos, kind, 0.2, valid, seed)[0]
