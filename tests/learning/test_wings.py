@@ -20,6 +20,7 @@ from supportive.learning.strict import Compaction, StrictLearner
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Leaf, TopLevel, iter_orderings
 from supportive.tasks.spec import Demonstration, Step
+from supportive.tasks.task_graph import TaskGraph
 
 ENUMERATION_LIMIT = 3000
 
@@ -52,6 +53,8 @@ def test_a_general_fit_builds_none_of_the_strict_structures(monkeypatch: pytest.
 
     monkeypatch.setattr(StrictLearner, "of", built)
     monkeypatch.setattr(Compaction, "run", built)
+    monkeypatch.setattr(TaskGraph, "add_leaves", built)  # every task graph is built through these
+    monkeypatch.setattr(TaskGraph, "add_demonstration", built)
     demos = _interleaved(1, 12)
     for mode in ("general", "partial order"):
         learner = HTNLearner(mode=mode).fit(demos)
