@@ -86,6 +86,7 @@ PLANTED = [
     ("command", Plant("io/taskfile.py", "typer", in_function=True)),
     ("rl", Plant("safety/caregiver.py", "gymnasium")),
     ("rl", Plant("render/household.py", "pettingzoo", in_function=True)),
+    ("learning-wings", Plant("learning/general/noise.py", "supportive.learning.strict.compaction")),
 ]
 
 

@@ -28,7 +28,7 @@ def test_learn_json_to_stdout_and_file(tmp_path: Path, cli: CliRunner) -> None:
     data = json.loads(out)
     assert data["complete"] is True and data["stats"]["task_graph"]["paths"] == 2
     target = tmp_path / "htn.json"
-    code, out, _ = cli(["learn", str(examples.path("two-glasses")), "-f", "json", "-o", str(target)])
+    code, out, _ = cli(["learn", str(examples.path("two-glasses")), "-f", "json", "-o", str(target), "--mode", "strict"])
     assert code == 0 and out == ""
     assert len(htn_from_dict(json.loads(target.read_text())).alternatives) == 2
 

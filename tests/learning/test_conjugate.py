@@ -2,7 +2,7 @@ from __future__ import annotations
 
 import itertools
 
-from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
+from supportive.learning.strict.conjugate import conjugate_task_graph, update_conjugate
 from supportive.tasks.conjugate import ORIGIN, TERMINAL, ConjugateTaskGraph
 from supportive.tasks.task_graph import TaskGraph
 

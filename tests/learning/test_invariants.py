@@ -114,9 +114,10 @@ def test_sampled_demonstrations_keep_invariants(structure: Node, k: int, seed: i
     demos = [actions(sample_ordering(structure, rng)) for _ in range(k)]
     learner = HTNLearner(mode=mode).fit(demos)
     assert_invariants_1_and_2(learner)
-    for alternative in learner.htn_.alternatives:
+    for alternative in learner.htn_.alternatives:  # the general learner's: tests/learning/test_wings.py
         assert alternative.complete
-        assert all(learner.task_graph_.contains(actions(o)) for o in iter_orderings(alternative.roots[0]))
+        if mode == "strict":  # a restriction: every execution it admits is known
+            assert all(learner.task_graph_.contains(actions(o)) for o in iter_orderings(alternative.roots[0]))
 
 
 @given(st.lists(st.permutations(["a", "b", "c", "d", "e"]), min_size=1, max_size=8), MODES)

@@ -1,4 +1,4 @@
-"""Slips as noise (learning/noise.py): nothing set aside on clean data, whatever its structure and size; the
+"""Slips as noise (learning/general/noise.py): nothing set aside on clean data, whatever its structure and size; the
 mistakes put into generated demonstrations are found, each as the kind it was.
 
 The clean-data properties draw their examples deterministically (``derandomize``): no detector can promise

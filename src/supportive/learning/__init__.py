@@ -1,9 +1,6 @@
-"""Learning algorithms over the model: Algorithm 1 (CTG), Algorithm 2 (CC-HTN), Algorithms 3–4 (ambiguity)."""
+"""Learning CC-HTNs from demonstrations: :class:`HTNLearner` in front of two learners, ``strict`` (the
+thesis's Algorithms 1–4, :mod:`supportive.learning.strict`) and ``general`` (:mod:`supportive.learning.general`)."""
 
-from supportive.learning.ambiguity import resolve_ambiguity
-from supportive.learning.compaction import Compaction
-from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
-from supportive.learning.coverage import admitted_path_count
 from supportive.learning.instructors import (
     SimulatedInstructor,
     demonstrate,
@@ -13,6 +10,13 @@ from supportive.learning.instructors import (
 from supportive.learning.invariants import invariant_violations
 from supportive.learning.learner import HTNLearner, LearningStats, learn
 from supportive.learning.macros import MacroAction, macro_actions, macro_library
+from supportive.learning.strict import (
+    Compaction,
+    admitted_path_count,
+    conjugate_task_graph,
+    resolve_ambiguity,
+    update_conjugate,
+)
 
 __all__ = [
     "Compaction",

@@ -247,7 +247,7 @@ class ProgressModel:
         """How many choice probabilities the demonstrations had to fix: per choice (an optional node's take
         or skip, a clique's or the top level's first child, the child after each child or the end), the
         options the counts show were ever taken, less one. A choice only ever made one way costs nothing
-        (the penalised likelihoods of :mod:`supportive.learning.noise` and :mod:`supportive.learning.selection`
+        (the penalised likelihoods of :mod:`supportive.learning.general.noise` and :mod:`supportive.learning.selection`
         charge each parameter ``(1/2) log n``)."""
         total = 0
         ex = self.executions

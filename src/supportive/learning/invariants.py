@@ -7,7 +7,7 @@
 
 from __future__ import annotations
 
-from supportive.learning.coverage import admitted_path_count
+from supportive.learning.strict.coverage import admitted_path_count
 from supportive.tasks.htn import HTN, Node, canonical, count_orderings, internal_nodes
 from supportive.tasks.task_graph import TaskGraph
 

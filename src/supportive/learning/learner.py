@@ -1,11 +1,18 @@
 """Learn a CC-HTN from demonstrations, as one estimator that also learns one demonstration at a time.
 
-Two learners share it. ``strict`` is the thesis's pipeline as first implemented here: task graph, CTG
-(Algorithm 1), compaction (Algorithm 2) with every subtask observed in full, ambiguity resolution (Algorithms
-3–4); it admits exactly the executions it can piece together from what was seen. ``general`` (the default)
-accepts what the evidence supports — optional steps, repeated subtasks, cliques from contiguous runs seen in
-several orders, chains from consistently ordered runs, a partial order where no tree fits, slips set aside —
-see :mod:`supportive.learning.general` and docs/learning.md for the measurements behind the choice.
+A thin front over two learners that share no code (docs/learning.md, "Module layout"):
+
+* ``strict`` (:mod:`supportive.learning.strict`) is the thesis's pipeline as first implemented here: task
+  graph, CTG (Algorithm 1), compaction (Algorithm 2) with every subtask observed in full, ambiguity resolution
+  (Algorithms 3–4); it admits exactly the executions it can piece together from what was seen.
+* ``general`` (:mod:`supportive.learning.general`; the ``general`` and ``partial order`` readings) accepts
+  what the evidence supports — optional steps, repeated subtasks, cliques from contiguous runs seen in several
+  orders, chains from consistently ordered runs, a partial order where no tree fits, slips set aside.
+
+``auto`` (the default) learns both wings' readings and keeps the one that best predicts held-out
+demonstrations (:mod:`supportive.learning.selection`). Each wing builds only its own structures: a general
+fit builds no task graph, CTG or compaction (``task_graph_`` and ``ctg_`` are built when first asked for), and
+the alternatives a hierarchy reports are its own learner's.
 """
 
 from __future__ import annotations
@@ -16,16 +23,23 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal, Self
 
-from supportive.errors import LearningError
+from supportive.errors import LearningError, NotFittedError, TaskGraphError
 from supportive.estimator import Estimator
-from supportive.learning.ambiguity import resolve_ambiguity
-from supportive.learning.compaction import Compaction
-from supportive.learning.conjugate import conjugate_task_graph, update_conjugate
-from supportive.learning.general import GeneralResult, learn_general
-from supportive.learning.noise import Deviation, NoiseEstimate, NoiseSettings
+from supportive.learning.general import (
+    Deviation,
+    FittedStructure,
+    GeneralResult,
+    NoiseEstimate,
+    NoiseSettings,
+    StructureSettings,
+    alternatives_of,
+    learn_general,
+    refit,
+)
 from supportive.learning.selection import CONSISTENT, READINGS, Selection, select_reading
-from supportive.learning.structure import FittedStructure, StructureSettings, fit_structure
-from supportive.tasks.htn import HTN, Leaf
+from supportive.learning.strict import StrictLearner
+from supportive.tasks.conjugate import ConjugateTaskGraph
+from supportive.tasks.htn import HTN, Leaf, Node, TopLevel
 from supportive.tasks.naming import known_names, named
 from supportive.tasks.spec import Demonstration, TaskSpec
 from supportive.tasks.task_graph import TaskGraph
@@ -68,7 +82,7 @@ class HTNLearner(Estimator):
             held-out demonstrations (:mod:`~supportive.learning.selection`); or one of the three by name.
             Demonstrations with explicit states are always learned strictly.
         slips: ``general``: look for slips (steps out of order, repeated, missing or unknown) and learn
-            without them (:mod:`~supportive.learning.noise`); False learns from every step as it is.
+            without them (:mod:`~supportive.learning.general.noise`); False learns from every step as it is.
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
             the noise it claims has been paid for); 0 or more. Default 2, with ``slip_rate`` 0.2: the setting
@@ -82,11 +96,11 @@ class HTNLearner(Estimator):
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
             (the most telling first); at least 1. A bound on the work, not a model setting.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
-            this (:func:`~supportive.learning.evidence.contiguity_chance`, a likelihood-ratio test), and take
+            this (:func:`~supportive.learning.general.evidence.contiguity_chance`, a likelihood-ratio test), and take
             an order the demonstrations reverse far less often than the hierarchy predicts as agreed (the
-            slip search's candidates, :mod:`~supportive.learning.noise`). The conventional 5 % level.
+            slip search's candidates, :mod:`~supportive.learning.general.noise`). The conventional 5 % level.
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
-            even when no step is between them (:func:`~supportive.learning.evidence.established_precedences`);
+            even when no step is between them (:func:`~supportive.learning.general.evidence.established_precedences`);
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).
         subtask_demonstrations: ``general``: from how many demonstrations on contiguous runs are made
             subtasks (chains and cliques); with fewer, the steps are kept in the orders the evidence
@@ -95,7 +109,9 @@ class HTNLearner(Estimator):
             fewer demonstrations); at least 2.
         selection_demonstrations: ``auto``: the fewest demonstrations the readings are compared on (with
             fewer, ``general`` is kept); at least 2.
-        alternatives: Most alternative hierarchies to look for when the result is partial (0: none).
+        alternatives: Most alternative hierarchies to look for when the result is partial (0: none); the
+            strict learner finds up to this many restrictions, the others one hierarchy admitting all the
+            result admits (docs/learning.md, "Module layout").
         max_alternative_roots: Look for alternatives only when at most this many roots are left.
         names: Leaf set -> name for subtasks whose name is known (a ground truth's names, say); by default
             the names of a task spec's ``structure``.
@@ -105,7 +121,11 @@ class HTNLearner(Estimator):
         names_: The subtask names used: ``names``, or the spec's structure's.
         task_graph_: The environment-space task graph.
         ctg_: Its Conjugate Task Graph (redundant edges removed).
-        htn_: The learned hierarchy with its alternatives.
+            Both belong to the strict learner: after a general fit they are built when first asked for.
+        htn_: The learned hierarchy with its alternatives: ``mode="strict"``'s are restrictions (complete
+            hierarchies each admitting only known executions, §2.1.5.3); the other modes' (whichever reading
+            ``auto`` keeps) are one complete hierarchy admitting every execution the partial one admits
+            (:mod:`~supportive.learning.general.alternatives`).
         deviations_: The slips set aside (``general``), in demonstration order.
         noise_: The noise model fitted with them: slips and rate per kind (``general``; None otherwise).
         reading_: The reading learned (one of :data:`~supportive.learning.selection.CANDIDATES`).
@@ -122,6 +142,15 @@ class HTNLearner(Estimator):
     >>> HTNLearner().fit(two * 2).htn_.roots[0].kind  # four: knife, then carrots and celery in any order
     'chain'
     """
+
+    htn_: HTN
+    reading_: str
+    selection_: Selection | None
+    deviations_: tuple[Deviation, ...]
+    noise_: NoiseEstimate | None
+    labelled_: tuple[tuple[Leaf, ...], ...]
+    seconds_: float
+    _stats: LearningStats | None
 
     def __init__(
         self,
@@ -194,42 +223,32 @@ class HTNLearner(Estimator):
         if not demos:
             raise LearningError(f"task {self.task_ or '?'}: no demonstrations to learn from")
         self._demos = list(demos)
-        self.task_graph_ = TaskGraph()
-        for i, demo in enumerate(demos):
-            if isinstance(demo, Demonstration):
-                self.task_graph_.add_demonstration(demo)
-            else:
-                self.task_graph_.add(demo, f"d{i + 1}")
-        self.ctg_ = conjugate_task_graph(self.task_graph_)
-        self._compaction: Compaction | None = None
+        self._strictly = self.mode == "strict" or any(
+            isinstance(d, Demonstration) and d.has_states for d in demos
+        )
+        self._strict: StrictLearner | None = StrictLearner.of(demos) if self._strictly else None
+        if not self._strictly:
+            for i, demo in enumerate(demos):
+                _check_steps(demo, i)
         self._finish(started)
         return self
 
     def partial_fit(self, demonstration: DemonstrationLike) -> Self:
-        """Add one demonstration to what was learned, updating graph, CTG and HTN in place; the result equals
-        ``fit`` on all demonstrations so far.
+        """Add one demonstration to what was learned; the result equals ``fit`` on all demonstrations so far.
 
-        The task graph and CTG are updated incrementally. The strict learner (``mode="strict"``, or
-        demonstrations with explicit states) also recomputes only the compaction levels the new execution
-        changes (see :meth:`Compaction.update`); the general and ``auto`` readings learn the hierarchy again
-        from all demonstrations (slips searched and, for ``auto``, the reading chosen anew).
+        The strict learner updates its task graph, CTG and only the compaction levels the new execution
+        changes (see :meth:`Compaction.update`); the general learner refits from all demonstrations.
         """
         if not self.fitted:
             return self.fit([demonstration])
-        started = time.perf_counter()
-        graph = self.task_graph_
-        if not isinstance(demonstration, str):
-            self._demos.append(demonstration)
-        if isinstance(demonstration, Demonstration):
-            update = graph.add_demonstration(demonstration)
-        elif isinstance(demonstration, str):
+        if isinstance(demonstration, str):
             raise LearningError("a demonstration is a sequence of action ids, not a string")
+        started = time.perf_counter()
+        if self._strict is not None:
+            self._strict.add(demonstration)
         else:
-            update = graph.add(demonstration, f"d{len(graph.demonstrations) + 1}")
-        if update.changed:
-            update_conjugate(self.ctg_, update)
-            if self._compaction is not None:
-                self._compaction.update()
+            _check_steps(demonstration, len(self._demos))
+        self._demos.append(demonstration)
         self._finish(started)
         return self
 
@@ -253,7 +272,53 @@ class HTNLearner(Estimator):
     @property
     def learns_strictly(self) -> bool:
         """True when this fit uses the ``strict`` learner (asked for, or explicit states given)."""
-        return self.mode == "strict" or bool(self.task_graph_.explicit_states)
+        self._check_fitted("learns_strictly")
+        return self._strictly
+
+    @property
+    def task_graph_(self) -> TaskGraph:
+        """The environment-space task graph (the strict learner's; after a general fit, built when first
+        asked for)."""
+        return self._strict_learner("task_graph_").graph
+
+    @property
+    def ctg_(self) -> ConjugateTaskGraph:
+        """The task graph's Conjugate Task Graph (as ``task_graph_``)."""
+        return self._strict_learner("ctg_").ctg
+
+    @property
+    def stats_(self) -> LearningStats:
+        """Sizes of what was learned and the time ``fit`` (or the last ``partial_fit``) took; the task graph's
+        and CTG's sizes build them when a general fit has not."""
+        self._check_fitted("stats_")
+        if self._stats is None:
+            graph, ctg, htn = self.task_graph_, self.ctg_, self.htn_
+            self._stats = LearningStats(
+                demonstrations=len(graph.demonstrations),
+                actions=len(graph.subgoals),
+                task_graph={"states": graph.n_states, "edges": graph.n_edges, "paths": graph.path_count()},
+                ctg={"vertices": ctg.n_vertices, "edges": ctg.n_edges},
+                htn={
+                    "nodes": htn.node_count(),
+                    "edges": htn.edge_count(),
+                    "mean_action_depth": round(htn.mean_action_depth(), 4),
+                },
+                seconds=round(self.seconds_, 6),
+            )
+        return self._stats
+
+    def _check_fitted(self, name: str) -> None:
+        if "htn_" not in vars(self):
+            raise NotFittedError(
+                f"{type(self).__name__} is not fitted: call fit(...) before asking for {name}"
+            )
+
+    def _strict_learner(self, name: str) -> StrictLearner:
+        """The strict learner's structures of the demonstrations (built now after a general fit)."""
+        self._check_fitted(name)
+        if self._strict is None:
+            self._strict = StrictLearner.of(self._demos)
+        return self._strict
 
     def _structure_settings(self, reading: str) -> StructureSettings:
         """The evidence settings of a reading (``consistent orders``: two demonstrations establish an order)."""
@@ -261,7 +326,7 @@ class HTNLearner(Estimator):
         return StructureSettings(self.evidence, support, self.subtask_demonstrations)
 
     def _general(self, sequences: Sequence[Sequence[str]], reading: str) -> GeneralResult:
-        """The general learner in one of its readings, slips searched (:mod:`~supportive.learning.noise`)."""
+        """The general learner in one of its readings, slips searched (:mod:`~supportive.learning.general.noise`)."""
         noise = NoiseSettings(
             math.inf if not self.slips else self.slip_margin,
             self.slip_rate,
@@ -269,43 +334,34 @@ class HTNLearner(Estimator):
             self.max_slip_candidates,
         )
         return learn_general(
-            sequences, self._structure_settings(reading), noise, modules=not reading.startswith("partial order")
+            sequences,
+            self._structure_settings(reading),
+            noise,
+            modules=not reading.startswith("partial order"),
         )
 
-    def _reading(self, name: str, found: GeneralResult, indices: Sequence[int]) -> FittedStructure:
+    def _reading(self, name: str, found: GeneralResult, indices: Sequence[int]) -> HTN:
         """One reading learned from the demonstrations ``indices`` with the slips ``found`` taken out (for
         the selection, :mod:`~supportive.learning.selection`)."""
-        cleaned = [found.cleaned[i] for i in indices]
         if name == "strict":
-            graph = TaskGraph()
-            for i, demo in enumerate(cleaned):
-                graph.add([action for action, _ in demo], f"d{i + 1}")
-            compaction = Compaction(graph)
-            compaction.run()
-            return FittedStructure(tuple(compaction.roots()), compaction.top_level())
-        position = {d: i for i, d in enumerate(indices)}
-        excused = [
-            (position[d.demonstration], d.leaf)
-            for d in found.deviations
-            if d.kind in ("out of order", "missing") and d.demonstration in position
-        ]
-        return fit_structure(
-            cleaned, excused, self._structure_settings(name), modules=not name.startswith("partial order")
-        )
+            result = StrictLearner.of(_actions(found, indices)).result(alternatives=0, max_roots=1)
+            return HTN("", result.roots, result.top_level)
+        structure = self._structure_settings(name)
+        return refit(found, indices, structure, modules=not name.startswith("partial order")).htn()
 
-    def _selected(self, found: GeneralResult, general: FittedStructure) -> tuple[FittedStructure, Selection]:
-        """The reading the held-out likelihood prefers, learned from the demonstrations with the slips
-        ``found`` taken out, and why it was chosen."""
-        fits: dict[tuple[str, tuple[int, ...]], FittedStructure] = {}
+    def _selected(self, found: GeneralResult, general: FittedStructure) -> tuple[Selection, HTN]:
+        """Why a reading was chosen by the held-out likelihood, and that reading learned from the
+        demonstrations with the slips ``found`` taken out."""
+        fits: dict[tuple[str, tuple[int, ...]], HTN] = {}
 
         def fit(name: str, indices: Sequence[int]) -> HTN:
             key = (name, tuple(indices))
             if key not in fits:
                 fits[key] = self._reading(name, found, indices)
-            return fits[key].htn()
+            return fits[key]
 
         everything = tuple(range(len(found.cleaned)))
-        fits[("general", everything)] = general
+        fits[("general", everything)] = general.htn()
         selection = select_reading(
             [[action for action, _ in demo] for demo in found.cleaned],
             fit,
@@ -314,61 +370,60 @@ class HTNLearner(Estimator):
             min_demonstrations=self.selection_demonstrations,
             slip_rate=self.slip_rate,
         )
-        chosen = selection.chosen
-        return fits.get((chosen, everything)) or self._reading(chosen, found, everything), selection
+        return selection, fit(selection.chosen, everything)
 
-    def _compacted(self) -> Compaction:
-        """Algorithm 2 over the task graph (run once, then kept up to date by ``partial_fit``)."""
-        if self._compaction is None:
-            self._compaction = Compaction(self.task_graph_)
-            self._compaction.run()
-        return self._compaction
+    def _learned(self) -> tuple[str, tuple[Node, ...], TopLevel | None, tuple[Node, ...]]:
+        """The reading learned, its roots, top level and alternatives: the strict learner's when it learns
+        alone (``mode="strict"`` or explicit states), else the general learner's, whichever reading ``auto``
+        keeps (its alternative admits every execution the hierarchy admits); the labels, and the slips and
+        noise the general learner found, are set on the way."""
+        limit, most = self.alternatives, self.max_alternative_roots
+        if self._strictly:
+            assert self._strict is not None
+            result = self._strict.result(alternatives=limit, max_roots=most)
+            self.labelled_ = result.labelled
+            return "strict", result.roots, result.top_level, result.alternatives
+        sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
+        found = self._general(sequences, "general" if self.mode == "auto" else self.mode)
+        self.deviations_, self.noise_, self.labelled_ = found.deviations, found.noise, found.labelled
+        fitted = FittedStructure(found.roots, found.top_level)
+        reading: str = self.mode
+        if self.mode == "auto":
+            self.selection_, chosen = self._selected(found, fitted)
+            reading = self.selection_.chosen
+            fitted = FittedStructure(chosen.roots, chosen.top_level)  # its alternative too: one admitting all
+        return reading, fitted.roots, fitted.top_level, alternatives_of(fitted, limit=limit, max_roots=most)
 
     def _finish(self, started: float) -> None:
-        names = self.names_
-        self.selection_: Selection | None = None
-        self.deviations_: tuple[Deviation, ...] = ()
-        self.noise_: NoiseEstimate | None = None
-        reading: str = "strict" if self.learns_strictly else self.mode
-        if reading == "strict":
-            compaction = self._compacted()
-            roots = tuple(named(root, names) for root in compaction.roots())
-            top = compaction.top_level()
-            self.labelled_ = tuple(tuple(self.task_graph_.subgoals[s] for s in d) for d in self.task_graph_.demonstrations)
-        else:
-            sequences = [d.actions if isinstance(d, Demonstration) else tuple(d) for d in self._demos]
-            result = self._general(sequences, "general" if reading == "auto" else reading)
-            fitted = FittedStructure(result.roots, result.top_level)
-            if reading == "auto":
-                fitted, self.selection_ = self._selected(result, fitted)
-                reading = self.selection_.chosen
-            roots = tuple(named(root, names) for root in fitted.roots)
-            top = fitted.top_level
-            self.deviations_ = result.deviations
-            self.noise_ = result.noise
-            self.labelled_ = result.labelled
+        self.selection_ = None
+        self.deviations_ = ()
+        self.noise_ = None
+        self._stats = None
+        reading, roots, top, alternatives = self._learned()
         self.reading_ = reading
-        alternatives: tuple[HTN, ...] = ()
-        if len(roots) > 1 and self.alternatives:
-            found = resolve_ambiguity(
-                self._compacted(), limit=self.alternatives, max_roots=self.max_alternative_roots
-            )
-            alternatives = tuple(HTN(self.task_, (named(root, names),)) for root, _ in found)
-        self.htn_ = HTN(self.task_, roots, top, alternatives)
-        self.seconds_ = time.perf_counter() - started
-        graph, htn = self.task_graph_, self.htn_
-        self.stats_ = LearningStats(
-            demonstrations=len(graph.demonstrations),
-            actions=len(graph.subgoals),
-            task_graph={"states": graph.n_states, "edges": graph.n_edges, "paths": graph.path_count()},
-            ctg={"vertices": self.ctg_.n_vertices, "edges": self.ctg_.n_edges},
-            htn={
-                "nodes": htn.node_count(),
-                "edges": htn.edge_count(),
-                "mean_action_depth": round(htn.mean_action_depth(), 4),
-            },
-            seconds=round(self.seconds_, 6),
+        names = self.names_
+        self.htn_ = HTN(
+            self.task_,
+            tuple(named(root, names) for root in roots),
+            top,
+            tuple(HTN(self.task_, (named(root, names),)) for root in alternatives),
         )
+        self.seconds_ = time.perf_counter() - started
+
+
+def _actions(found: GeneralResult, indices: Iterable[int]) -> list[list[str]]:
+    """The cleaned demonstrations ``indices`` of ``found`` as action ids."""
+    return [[action for action, _ in found.cleaned[i]] for i in indices]
+
+
+def _check_steps(demo: DemonstrationLike, index: int) -> None:
+    """The task graph's checks of a demonstration, for a fit without explicit states that builds none: it
+    has a step and gives no explicit state."""
+    name = (demo.id if isinstance(demo, Demonstration) else f"d{index + 1}") or "?"
+    if isinstance(demo, Demonstration) and demo.has_states:
+        raise TaskGraphError(f"demonstration {name}: all demonstrations must give explicit states, or none")
+    if not (demo.actions if isinstance(demo, Demonstration) else demo):
+        raise TaskGraphError(f"demonstration {name} has no steps")
 
 
 def learn(spec: TaskSpec, **options: Any) -> HTNLearner:

@@ -13,7 +13,7 @@ follows from the structure alone:
 This is what a free pair of a partial order is expected to do: of two interleaved chains ``a1 a2 a3`` and
 ``b1 b2 b3``, ``b3`` precedes ``a1`` in one execution of twenty, not one of two; a slip is an order the
 demonstrations reverse far less often than the structure without it predicts
-(:mod:`~supportive.learning.noise`).
+(:mod:`~supportive.learning.general.noise`).
 
 >>> from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, HTN
 >>> htn = HTN("t", (ChainNode((ActionNode("k"), CliqueNode((ActionNode("a"), ActionNode("b"))))),))

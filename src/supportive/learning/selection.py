@@ -1,7 +1,7 @@
 """Which reading of the demonstrations to keep: the one that best predicts demonstrations it did not see.
 
 Readings of the same demonstrations (:class:`~supportive.learning.learner.HTNLearner`), each learned from the
-demonstrations with their slips taken out (the slips are found once, :mod:`~supportive.learning.noise`):
+demonstrations with their slips taken out (the slips are found once, :mod:`~supportive.learning.general.noise`):
 
 * ``general``: chains and cliques the evidence supports, a partial order where no tree fits;
 * ``strict``: the thesis's reading, only what was seen in full;

@@ -1,6 +1,6 @@
 """The Conjugate Task Graph (§2.1.3): subgoals as vertices, environmental prerequisites on edges.
 
-Built by :func:`supportive.learning.conjugate.conjugate_task_graph` (Algorithm 1). Edges between the same two
+Built by :func:`supportive.learning.strict.conjugate.conjugate_task_graph` (Algorithm 1). Edges between the same two
 vertices keep only their minimal prerequisite sets (lines 15–16 of Algorithm 1): an edge whose prerequisites
 contain another's is redundant.
 """

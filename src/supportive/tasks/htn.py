@@ -354,8 +354,9 @@ class HTN:
 
     ``roots`` holds one node when the hierarchy is complete; otherwise the top-level nodes left when
     compaction stopped, in the order their members first occur, and ``top_level`` says in which orders they
-    were seen. ``alternatives`` holds other complete hierarchies found by ambiguity resolution (§2.1.5.3),
-    best first: each admits only executions known to be valid.
+    were seen. ``alternatives`` holds other complete hierarchies its learner offers, best first: the strict
+    learner's (ambiguity resolution, §2.1.5.3) each admit only executions known to be valid; the general
+    learner's admits every execution this one admits.
     """
 
     task: str

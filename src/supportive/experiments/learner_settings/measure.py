@@ -20,7 +20,7 @@ from supportive.errors import ExperimentError
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import KINDS, PROFILES, inject, random_known_task
 from supportive.learning import HTNLearner
-from supportive.learning.noise import Deviation
+from supportive.learning.general.noise import Deviation
 
 __all__ = [
     "CLEAN_DEMONSTRATIONS",

@@ -16,7 +16,7 @@ are noise):
   landed (a uniform choice among the demonstration's positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
   gain exceeds ``margin`` nats. Candidates are the steps that reverse an order the others agree on
-  (:func:`~supportive.learning.evidence.agreed_orders`), every performance of a step the others do not do,
+  (:func:`~supportive.learning.general.evidence.agreed_orders`), every performance of a step the others do not do,
   and every demonstration that skips a step the others do; those the others would have to agree on are
   shown by at least ``support`` demonstrations (no slip can be told from a variant with fewer).
 
@@ -38,10 +38,10 @@ from typing import Literal
 import numpy as np
 from scipy.stats import binom
 
-from supportive.learning.evidence import IntMatrix, as_matrix, pair_counts
+from supportive.learning.general.evidence import IntMatrix, as_matrix, pair_counts
+from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
-from supportive.learning.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.tasks.htn import Leaf
 
 __all__ = ["KINDS", "Deviation", "NoiseEstimate", "NoiseSettings", "SlipResult", "find_slips"]
@@ -144,8 +144,8 @@ def find_slips(
     docstring).
 
     Args:
-        labelled: The demonstrations as leaves (:func:`~supportive.learning.labelling.label_performances`).
-        structure: How hierarchies are learned (:func:`~supportive.learning.structure.fit_structure`).
+        labelled: The demonstrations as leaves (:func:`~supportive.learning.general.labelling.label_performances`).
+        structure: How hierarchies are learned (:func:`~supportive.learning.general.structure.fit_structure`).
         settings: The search's margin, the slip rates' prior and how many candidates a round scores.
         modules: False learns partial orders of steps only (see :func:`fit_structure`).
     """
@@ -572,7 +572,7 @@ def _outliers(scores: Sequence[float]) -> set[int]:
 
 def _robust_closure(start: frozenset[int], matrix: IntMatrix) -> tuple[frozenset[int], list[tuple[int, int]]]:
     """The smallest set of step ids holding ``start`` whose members are contiguous in every demonstration (a
-    row of ``matrix``, :func:`~supportive.learning.evidence.as_matrix`) but for steps found inside its span in
+    row of ``matrix``, :func:`~supportive.learning.general.evidence.as_matrix`) but for steps found inside its span in
     one demonstration only; those ``(demonstration, step)`` are returned apart."""
     members = set(start)
     columns = np.arange(matrix.shape[1])

@@ -1,5 +1,5 @@
 """Learn chains and cliques from the demonstrations themselves, accepting what the evidence supports
-(the ``general`` learner; the ``strict`` one is :class:`~supportive.learning.compaction.Compaction`).
+(the ``general`` learner; the ``strict`` one is :class:`~supportive.learning.strict.compaction.Compaction`).
 
 Bottom up, level after level, like Algorithm 2, but over the demonstrations as sequences rather than over the
 states they share, so that a subtask need not have been seen in every order once:
@@ -9,7 +9,7 @@ states they share, so that a subtask need not have been seen in every order once
    demonstration skips does not break contiguity): the *closure* of that pair.
 2. A candidate performed in one order everywhere is a **chain** (§2.1.4's maximal chains, found as runs
    that are consistently ordered); one performed in several orders is a **clique** unless an order between
-   two of its members is established (:func:`~supportive.learning.evidence.established_precedences`) —
+   two of its members is established (:func:`~supportive.learning.general.evidence.established_precedences`) —
    then no chain/clique node fits it and it is left to the level above. §2.1.4 accepts a clique whose
    members commute pairwise and are contiguous; this accepts one whose members are contiguous and show no
    established order, which is what a few demonstrations of an order-free subtask show.
@@ -17,11 +17,11 @@ states they share, so that a subtask need not have been seen in every order once
    rewritten with it. The loop stops at one root or when a level accepts nothing.
 4. A clique nested directly in a clique claims that its members are never interleaved with its siblings;
    it is kept only when the demonstrations are evidence of that (steps outside it were seen on both sides
-   of it and never inside, :func:`~supportive.learning.evidence.contiguity_chance`), and otherwise merged
+   of it and never inside, :func:`~supportive.learning.general.evidence.contiguity_chance`), and otherwise merged
    into its parent. A contiguous run seen in varying orders among other steps that move around it is more
    often chance than a subtask of its own, and the merged clique admits what people go on to do.
 
-Nodes are plain ids here; :mod:`supportive.learning.annotate` turns them into HTN nodes with optional flags,
+Nodes are plain ids here; :mod:`supportive.learning.general.annotate` turns them into HTN nodes with optional flags,
 counts and support.
 """
 
@@ -36,7 +36,7 @@ from functools import cached_property
 
 import numpy as np
 
-from supportive.learning.evidence import (
+from supportive.learning.general.evidence import (
     BoolMatrix,
     IntMatrix,
     as_matrix,
@@ -216,7 +216,7 @@ class _Lists(_Level):
 
     @cached_property
     def nodes(self) -> IntMatrix:
-        """The sequences as a matrix (:func:`~supportive.learning.evidence.as_matrix`)."""
+        """The sequences as a matrix (:func:`~supportive.learning.general.evidence.as_matrix`)."""
         return as_matrix(self._sequences)
 
     def closure(self, pair: tuple[int, int], limit: int) -> frozenset[int] | None:
@@ -362,9 +362,9 @@ def decompose(
         labelled: Demonstrations as ``(action, instance)`` labels, each label at most once per demonstration.
         evidence: A clique nested in a clique stays a node of its own only when the chance of its contiguity
             under random placement of the free steps is below this
-            (:func:`~supportive.learning.evidence.contiguity_chance`).
+            (:func:`~supportive.learning.general.evidence.contiguity_chance`).
         order_support: Demonstrations showing a pair in one order that establish the order without a
-            witness (see :func:`~supportive.learning.evidence.established_precedences`).
+            witness (see :func:`~supportive.learning.general.evidence.established_precedences`).
         modules: False keeps every leaf a root (no chain or clique is made).
         max_module: Candidates larger than this (nodes of one level) are not grown further (they are found
             only as the whole level); bounds the work on long demonstrations without structure.

@@ -1,7 +1,7 @@
 """The top level of a partial hierarchy as a partial order of its roots (the ``general`` learner).
 
 When no chain or clique holds the roots left by decomposition, they are kept in the orders the evidence
-establishes (:func:`~supportive.learning.evidence.established_precedences`) rather than only in the orders
+establishes (:func:`~supportive.learning.general.evidence.established_precedences`) rather than only in the orders
 seen: any order that respects every established precedence is admitted, roots of unrelated order may come in
 any order, and an optional root may be skipped (a precedence only binds roots that are both performed). The
 result is an ordinary :class:`~supportive.tasks.htn.TopLevel` whose states are the sets of roots done.
@@ -17,7 +17,7 @@ from collections.abc import Sequence
 import networkx as nx
 import numpy as np
 
-from supportive.learning.evidence import established_precedences, pair_counts
+from supportive.learning.general.evidence import established_precedences, pair_counts
 from supportive.tasks.htn import TopLevel
 
 __all__ = ["MAX_PAIRWISE_ROOTS", "precedence_top_level", "seen_top_level"]
@@ -40,7 +40,7 @@ def precedence_top_level(
         roots: Root node ids, in the order of the hierarchy's ``roots``.
         sequences: Every demonstration as a sequence of root ids.
         required: Roots every demonstration performs (the others may be skipped).
-        order_support: See :func:`~supportive.learning.evidence.established_precedences`.
+        order_support: See :func:`~supportive.learning.general.evidence.established_precedences`.
         max_states: Fall back to :func:`seen_top_level` beyond this many states.
     """
     if len(roots) > MAX_PAIRWISE_ROOTS:

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from supportive.learning.levels import Group, LevelGraph, Ordering
+from supportive.learning.strict.levels import Group, LevelGraph, Ordering
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node, TopLevel
 from supportive.tasks.task_graph import TaskGraph
 

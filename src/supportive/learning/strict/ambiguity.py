@@ -17,9 +17,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from supportive.learning.compaction import Compaction, Registry
-from supportive.learning.coverage import admitted_path_count
-from supportive.learning.levels import Group, LevelGraph
+from supportive.learning.strict.compaction import Compaction, Registry
+from supportive.learning.strict.coverage import admitted_path_count
+from supportive.learning.strict.levels import Group, LevelGraph
 from supportive.tasks.htn import Node, canonical, count_orderings
 from supportive.tasks.task_graph import TaskGraph
 

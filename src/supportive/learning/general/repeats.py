@@ -1,6 +1,6 @@
 """Repeated subtasks: k performances of one subtask (the four legs of a table) as k instances of it.
 
-Instances are numbered by when they are performed (:mod:`~supportive.learning.labelling`), so in every
+Instances are numbered by when they are performed (:mod:`~supportive.learning.general.labelling`), so in every
 demonstration instance 1 comes before instance 2: decomposition finds them as a run of a chain. A run of a
 chain's children that splits into k ≥ 2 consecutive segments of the same shape (the same actions in the same
 structure, whatever their occurrence numbers and whichever steps were skipped) is made a clique of k
@@ -14,7 +14,7 @@ import bisect
 import dataclasses
 from collections import defaultdict
 
-from supportive.learning.decomposition import Decomposition, Group, Shapes
+from supportive.learning.general.decomposition import Decomposition, Group, Shapes
 
 __all__ = ["fold_repeats"]
 

@@ -19,8 +19,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import numpy.typing as npt
 
-from supportive.learning.decomposition import Decomposition, Shapes
-from supportive.learning.evidence import IntMatrix
+from supportive.learning.general.decomposition import Decomposition, Shapes
+from supportive.learning.general.evidence import IntMatrix
 from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
@@ -43,7 +43,7 @@ class Annotated:
     """HTN nodes for every id of a :class:`Decomposition`, and the counts of its top level.
 
     Args:
-        decomposition: What :func:`~supportive.learning.decomposition.decompose` found.
+        decomposition: What :func:`~supportive.learning.general.decomposition.decompose` found.
         excused: Node id -> demonstrations in which it was set aside as a deviation; they count as performing
             it, so a step someone slipped on does not become optional.
         demonstrations: How many demonstrations there were.
@@ -217,7 +217,7 @@ class _ChildOrders:
     then the node counts for that group only.
 
     Args:
-        decomposition: What :func:`~supportive.learning.decomposition.decompose` found.
+        decomposition: What :func:`~supportive.learning.general.decomposition.decompose` found.
         kinds: For the nodes to describe, per child, the index of the first child of its shape.
     """
 

@@ -7,6 +7,10 @@
    coincidence: every step is then a root of its own, in the orders the evidence establishes; a single
    demonstration, with nothing to compare it with, is one chain), repeated subtasks, optional flags, counts,
    and a partial-order top level when several roots remain.
+4. When several roots remain, its alternative: one complete hierarchy that admits every execution the partial
+   one admits (:mod:`.alternatives`).
+
+It builds no task graph, CTG or compaction: those are the ``strict`` learner's (:mod:`supportive.learning.strict`).
 """
 
 from __future__ import annotations
@@ -14,12 +18,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from supportive.learning.labelling import label_performances
-from supportive.learning.noise import Deviation, NoiseEstimate, NoiseSettings, find_slips
-from supportive.learning.structure import StructureSettings
+from supportive.learning.general.alternatives import complete_alternative
+from supportive.learning.general.labelling import label_performances
+from supportive.learning.general.noise import Deviation, NoiseEstimate, NoiseSettings, find_slips
+from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.tasks.htn import Leaf, Node, TopLevel
 
-__all__ = ["GeneralResult", "learn_general"]
+__all__ = ["GeneralResult", "alternatives_of", "learn_general", "refit"]
 
 
 @dataclass(frozen=True)
@@ -54,3 +59,27 @@ def learn_general(
         tuple(labelled),
         tuple(tuple(demo) for demo in found.cleaned),
     )
+
+
+def refit(
+    found: GeneralResult, indices: Sequence[int], structure: StructureSettings, *, modules: bool = True
+) -> FittedStructure:
+    """The hierarchy of the demonstrations ``indices`` with the slips ``found`` taken out, learned with
+    ``structure`` (another reading of the same cleaned demonstrations, :mod:`supportive.learning.selection`);
+    a step slipped on counts as performed there."""
+    position = {d: i for i, d in enumerate(indices)}
+    excused = [
+        (position[d.demonstration], d.leaf)
+        for d in found.deviations
+        if d.kind in ("out of order", "missing") and d.demonstration in position
+    ]
+    return fit_structure([found.cleaned[i] for i in indices], excused, structure, modules=modules)
+
+
+def alternatives_of(fitted: FittedStructure, *, limit: int, max_roots: int) -> tuple[Node, ...]:
+    """The general learner's alternatives to ``fitted``: none when it is complete, has more than
+    ``max_roots`` roots or ``limit`` is 0; else its complete alternative (:mod:`.alternatives`), which
+    admits every execution ``fitted`` admits."""
+    if fitted.top_level is None or not limit or len(fitted.roots) > max_roots:
+        return ()
+    return (complete_alternative(fitted.roots, fitted.top_level),)

@@ -16,11 +16,11 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from supportive.learning.annotate import annotate
-from supportive.learning.decomposition import decompose
 from supportive.learning.distribution import ProgressModel
-from supportive.learning.repeats import fold_repeats
-from supportive.learning.top_order import precedence_top_level
+from supportive.learning.general.annotate import annotate
+from supportive.learning.general.decomposition import decompose
+from supportive.learning.general.repeats import fold_repeats
+from supportive.learning.general.top_order import precedence_top_level
 from supportive.tasks.htn import HTN, Leaf, Node, TopLevel
 
 __all__ = ["FittedStructure", "StructureSettings", "fit_structure", "log_likelihood"]
