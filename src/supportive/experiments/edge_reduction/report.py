@@ -10,7 +10,7 @@ from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
 
-__all__ = ["LABELS", "THESIS", "findings", "headline", "report", "verdict"]
+__all__ = ["DEFAULT_TRIALS", "LABELS", "THESIS", "findings", "headline", "report", "verdict"]
 
 THESIS: dict[str, Any] = {
     "tasks": 76,
@@ -41,6 +41,8 @@ LABELS = {
     "all_orderings": "(c) learned from all valid orderings",
 }
 """How the report names the three models."""
+DEFAULT_TRIALS = THESIS["tasks"]
+"""Trials of a full run: one per task of the thesis."""
 
 
 def _f(value: float | None, digits: int = 1) -> str:

@@ -10,8 +10,10 @@ over the unsupported agent scenario", and Figure 3.5 plots makespan) and the **s
 
 from __future__ import annotations
 
+import json
 import statistics
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 from supportive.experiments.readings import Finding, readings_table
@@ -20,7 +22,17 @@ from supportive.experiments.statistics import format_ci, mean_ci
 from supportive.experiments.support_tamp.measure import PAIRINGS, READINGS, SCENARIOS, SEARCH_WEIGHT
 from supportive.experiments.tables import markdown_table
 
-__all__ = ["CONDITIONS", "GAINS", "THESIS", "findings", "headline", "report", "summarize", "timing_summary"]
+__all__ = [
+    "CONDITIONS",
+    "GAINS",
+    "THESIS",
+    "findings",
+    "headline",
+    "report",
+    "summarize",
+    "timing_report",
+    "timing_summary",
+]
 
 CONDITIONS = ("alone", "supported")
 """The lead alone, and with the support agent."""
@@ -148,6 +160,13 @@ def timing_summary(timings: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 }
             out[scenario][pairing] = entry
     return out
+
+
+def timing_report(timings: list[dict[str, Any]], directory: Path) -> list[Path]:
+    """Write ``timing-summary.json`` (:func:`timing_summary` of the trials' timings) into ``directory``."""
+    path = directory / "timing-summary.json"
+    path.write_text(json.dumps(timing_summary(timings), indent=2) + "\n", encoding="utf-8")
+    return [path]
 
 
 def _readings(metrics: Mapping[str, Any]) -> list[str]:

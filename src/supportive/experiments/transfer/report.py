@@ -18,11 +18,12 @@ from supportive.experiments.transfer.explore import (
     NOVELTY,
     STEP,
 )
-from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS
+from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS, SEEDS
 from supportive.experiments.transfer.sources import PRIOR_SCALE
 
 __all__ = [
     "CLAIM",
+    "DEFAULT_TRIALS",
     "LABELS",
     "THESIS",
     "column",
@@ -49,6 +50,8 @@ THESIS: dict[str, Any] = {
     "values": "Figure 2.6 plots iterations per condition; the text prints no numbers",
 }
 """What the thesis reports about the experiment."""
+DEFAULT_TRIALS = THESIS["tasks"] * SEEDS
+"""Trials of a full run: every task, :data:`~.measure.SEEDS` times."""
 
 LABELS = {
     "none": "(a) no transfer",
