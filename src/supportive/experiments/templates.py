@@ -1,0 +1,48 @@
+"""Report prose kept in template files, apart from the code that computes the numbers.
+
+An experiment's package holds its templates in ``templates/`` (package data, read with
+:mod:`importlib.resources`): markdown with :class:`string.Template` placeholders (``$name`` or ``${name}``;
+``$$`` is a dollar sign). The report builder computes every value, tables and the sentences that depend on
+the numbers included, and :func:`render` fills them in; the prose that never changes stays in the file.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import cache
+from importlib.resources import files
+from string import Template
+
+from supportive.errors import ExperimentError
+
+__all__ = ["render"]
+
+
+def render(package: str | None, name: str, /, **values: str | Sequence[str]) -> str:
+    """The template ``templates/<name>`` of ``package`` with its placeholders filled in.
+
+    Args:
+        package: The experiment's package (``"supportive.experiments.edge_reduction"``): the calling
+            module's ``__package__``.
+        name: The template's file name in its ``templates/`` folder.
+        values: One value per placeholder: text, or lines (a markdown table, a list), joined by newlines.
+
+    Raises:
+        ExperimentError: when the values do not name exactly the template's placeholders, or without a
+            package.
+    """
+    if not package:
+        raise ExperimentError(f"template {name}: no package to read it from")
+    template = _load(package, name)
+    wanted, given = set(template.get_identifiers()), set(values)
+    if wanted != given:
+        missing, extra = sorted(wanted - given), sorted(given - wanted)
+        raise ExperimentError(
+            f"template {package}:templates/{name}: missing values {missing}, values it has no place for {extra}"
+        )
+    return template.substitute({k: v if isinstance(v, str) else "\n".join(v) for k, v in values.items()})
+
+
+@cache
+def _load(package: str, name: str) -> Template:
+    return Template(files(package).joinpath("templates", name).read_text(encoding="utf-8"))
