@@ -15,7 +15,7 @@ from string import Template
 
 from supportive.errors import ExperimentError
 
-__all__ = ["render"]
+__all__ = ["render", "section"]
 
 
 def render(package: str | None, name: str, /, **values: str | Sequence[str]) -> str:
@@ -41,6 +41,16 @@ def render(package: str | None, name: str, /, **values: str | Sequence[str]) -> 
             f"template {package}:templates/{name}: missing values {missing}, values it has no place for {extra}"
         )
     return template.substitute({k: v if isinstance(v, str) else "\n".join(v) for k, v in values.items()})
+
+
+def section(package: str | None, name: str, /, **values: str | Sequence[str]) -> str:
+    """An optional part of a report, to follow other text: a blank line, then the template filled in as by
+    :func:`render`, without its last newline.
+
+    Raises:
+        ExperimentError: as :func:`render`.
+    """
+    return "\n\n" + render(package, name, **values).rstrip("\n")
 
 
 @cache

@@ -12,7 +12,7 @@ from supportive.experiments.generalisation.measure import DEMONSTRATIONS, LEARNE
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
-from supportive.experiments.templates import render
+from supportive.experiments.templates import render, section
 from supportive.learning.graph_edges import PEERS
 
 __all__ = ["findings", "headline", "plots", "report"]
@@ -39,10 +39,11 @@ def report(metrics: Mapping[str, Any]) -> str:
                 for mode, m in by_mode.items()
             ],
         ),
-        slips=_section("slips.md", clean=str(SLIP_CLEAN), slipped=str(SLIPPED), table=_slips_table(slips))
+        slips=section(__package__, "slips.md", clean=str(SLIP_CLEAN), slipped=str(SLIPPED), table=_slips_table(slips))
         if slips
         else "",
-        captaincook=_section(
+        captaincook=section(
+            __package__,
             "captaincook.md",
             scores_table=_scores_table(captaincook),
             few_shot=str(FEW_SHOT),
@@ -52,11 +53,6 @@ def report(metrics: Mapping[str, Any]) -> str:
         if captaincook
         else "",
     )
-
-
-def _section(template: str, **values: str | list[str]) -> str:
-    """An optional part of the report: a blank line, then the template filled in (without its last newline)."""
-    return "\n\n" + render(__package__, template, **values).rstrip("\n")
 
 
 def _slips_table(slips: Mapping[str, Any]) -> list[str]:
