@@ -10,8 +10,16 @@ from typing import Any
 import pytest
 
 from supportive.errors import ExperimentError
-from supportive.experiments import Reading, Trial, get, names, run_experiment, spawn_trials, unregister
-from supportive.experiments.registry import declare
+from supportive.experiments import (
+    Reading,
+    Trial,
+    declare,
+    get,
+    names,
+    run_experiment,
+    spawn_trials,
+    unregister,
+)
 from supportive.experiments.templates import render, section
 
 
