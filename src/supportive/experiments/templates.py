@@ -8,7 +8,6 @@ the numbers included, and :func:`render` fills them in; the prose that never cha
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from functools import cache
 from importlib.resources import files
 from string import Template
@@ -18,14 +17,15 @@ from supportive.errors import ExperimentError
 __all__ = ["render", "section"]
 
 
-def render(package: str | None, name: str, /, **values: str | Sequence[str]) -> str:
+def render(package: str | None, name: str, /, **values: object) -> str:
     """The template ``templates/<name>`` of ``package`` with its placeholders filled in.
 
     Args:
         package: The experiment's package (``"supportive.experiments.edge_reduction"``): the calling
             module's ``__package__``.
         name: The template's file name in its ``templates/`` folder.
-        values: One value per placeholder: text, or lines (a markdown table, a list), joined by newlines.
+        values: One value per placeholder: text; lines (a list or tuple of text: a markdown table, a list),
+            joined by newlines; or anything else, as ``str`` writes it (as an f-string's ``{value}`` would).
 
     Raises:
         ExperimentError: when the values do not name exactly the template's placeholders, or without a
@@ -40,10 +40,16 @@ def render(package: str | None, name: str, /, **values: str | Sequence[str]) -> 
         raise ExperimentError(
             f"template {package}:templates/{name}: missing values {missing}, values it has no place for {extra}"
         )
-    return template.substitute({k: v if isinstance(v, str) else "\n".join(v) for k, v in values.items()})
+    return template.substitute({key: _text(value) for key, value in values.items()})
 
 
-def section(package: str | None, name: str, /, **values: str | Sequence[str]) -> str:
+def _text(value: object) -> str:
+    if isinstance(value, list | tuple):
+        return "\n".join(value)
+    return str(value)
+
+
+def section(package: str | None, name: str, /, **values: object) -> str:
     """An optional part of a report, to follow other text: a blank line, then the template filled in as by
     :func:`render`, without its last newline.
 

@@ -39,8 +39,8 @@ def report(metrics: Mapping[str, Any]) -> str:
         top1_gain=f"{ours['top1'] - masked['top1']:+.3f}",
         zero=f"{ours['zero']:.1%}",
         masked_zero=f"{masked['zero']:.1%}",
-        admitted=str(admission["admitted"]),
-        held_out=str(admission["held_out"]),
+        admitted=admission["admitted"],
+        held_out=admission["held_out"],
         share=f"{admission['share']:.1%}",
         recipes_table=markdown_table(
             ["recipe", "held out", "admitted", "top-1 (ours)", "top-1 (masked bigram)"],

@@ -191,12 +191,12 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
-        map=str(metrics["map"]),
-        episodes=str(metrics["episodes"]),
-        steps=str(THESIS["steps"]),
-        thesis_episodes=str(THESIS["episodes"]),
-        threshold=str(THESIS["threshold"]),
-        max_damage=str(metrics["max_damage"]),
+        map=metrics["map"],
+        episodes=metrics["episodes"],
+        steps=THESIS["steps"],
+        thesis_episodes=THESIS["episodes"],
+        threshold=THESIS["threshold"],
+        max_damage=metrics["max_damage"],
         readings_table=readings_table(
             READINGS, readings, "P(safe | τ)", ("memory γ", {n: f"{metrics['memory'][n]:g}" for n in readings})
         ),

@@ -30,7 +30,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         __package__,
         "report.md",
         sizes=f"{SIZES[0]}–{SIZES[1]}",
-        demonstrations=str(DEMONSTRATIONS),
+        demonstrations=DEMONSTRATIONS,
         synthetic_table=markdown_table(
             ["profile", "learner", "tasks", "recall", "precision", "complete"],
             [
@@ -46,7 +46,7 @@ def report(metrics: Mapping[str, Any]) -> str:
             __package__,
             "captaincook.md",
             scores_table=_scores_table(captaincook),
-            few_shot=str(FEW_SHOT),
+            few_shot=FEW_SHOT,
             peers=", ".join(f"{name} {', '.join(f'{k} {v:.3f}' for k, v in f1.items())}" for name, f1 in PEERS.items()),
             edges_table=_edges_table(captaincook),
         )

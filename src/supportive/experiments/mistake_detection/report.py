@@ -27,9 +27,9 @@ def report(metrics: Mapping[str, Any]) -> str:
         __package__,
         "report.md",
         sizes=f"{SIZES[0]}–{SIZES[1]}",
-        train=str(TRAIN),
-        test=str(TEST),
-        chosen=str(chosen),
+        train=TRAIN,
+        test=TEST,
+        chosen=chosen,
         generated_table=markdown_table(
             ["threshold", "false alarms (clean steps)", *(f"recall: {k}" for k in KINDS), "skip caught after (steps)"],
             [
@@ -52,10 +52,10 @@ def _captaincook(cc: Mapping[str, Any]) -> str:
     return section(
         __package__,
         "captaincook.md",
-        recipes=str(cc["recipes"]),
-        held_out=str(cc["held_out"]),
+        recipes=cc["recipes"],
+        held_out=cc["held_out"],
         positives=" and ".join(POSITIVES),
-        threshold=str(cc["threshold"]),
+        threshold=cc["threshold"],
         methods_table=markdown_table(
             ["method", "precision", "recall", "F1", "flagged on error-free recordings", "not-visible labels flagged"],
             [
@@ -71,8 +71,8 @@ def _captaincook(cc: Mapping[str, Any]) -> str:
             ],
         ),
         kinds_table=markdown_table(list(KIND_HEADERS), kind_rows(cc["methods"])),
-        found=str(delay["found"]),
-        mean=str(delay["mean"]),
+        found=delay["found"],
+        mean=delay["mean"],
     )
 
 
