@@ -230,11 +230,7 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "blocks.md",
-        seed=metrics["seed"],
-        panels=metrics["panels"],
-        panel=metrics["panel"],
-        demonstrations=metrics["demonstrations"],
-        base=metrics["base"],
+        metrics,
         claims=[f"* {claim}" for claim in metrics["thesis"]["claims"]],
         tasks="\n\n".join(_task_section(metrics, task) for task in metrics["tasks"]),
         verdict=verdict(metrics),

@@ -310,10 +310,7 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "food.md",
-        seed=metrics["seed"],
-        trials=metrics["trials"],
-        instructors=metrics["instructors"],
-        task_count=metrics["task_count"],
+        metrics,
         base="a valid ordering drawn for each instructor" if metrics["base"] == "own" else "the structure's order",
         readings_table=readings_table(READINGS, readings, "schedule"),
         curves="\n\n".join(_section(LABELS[condition], _curve_table(metrics, condition)) for condition in CONDITIONS),

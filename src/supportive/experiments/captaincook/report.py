@@ -63,12 +63,12 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
+        metrics,
         title=metrics.get("title", "CaptainCook4D learning curves"),
         seed=metrics.get("seed"),
         trials=metrics.get("trials"),
         recipes=metrics["recipes_run"],
         recordings=f"{demos['min']}–{demos['max']}",
-        horizon=metrics["horizon"],
         after_steps=", ".join(map(str, metrics["schedule"]["after_steps"])),
         note=THESIS["note"],
         claims=[f"* {claim}" for claim in THESIS["claims"]],

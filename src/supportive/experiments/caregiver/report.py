@@ -191,12 +191,10 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
-        map=metrics["map"],
-        episodes=metrics["episodes"],
+        metrics,
         steps=THESIS["steps"],
         thesis_episodes=THESIS["episodes"],
         threshold=THESIS["threshold"],
-        max_damage=metrics["max_damage"],
         readings_table=readings_table(
             READINGS, readings, "P(safe | τ)", ("memory γ", {n: f"{metrics['memory'][n]:g}" for n in readings})
         ),

@@ -110,12 +110,9 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
-        title=metrics["title"],
-        reference=metrics["reference"],
-        trials=metrics["trials"],
+        metrics,
         subgoals=f"{sizes['min']}–{sizes['max']}",
         demonstrations=", ".join(map(str, sorted({t["demonstrations"] for t in metrics["tasks"]}))),
-        seed=metrics["seed"],
         thesis_tasks=thesis["tasks"],
         thesis_subgoals=f"{thesis['subgoals']['min']}–{thesis['subgoals']['max']}",
         thesis_demonstrations=thesis["demonstrations_per_task"],

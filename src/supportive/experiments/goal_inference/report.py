@@ -164,11 +164,8 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
-        title=metrics["title"],
-        reference=metrics["reference"],
-        trials=metrics["trials"],
+        metrics,
         sizes=_sizes_line(metrics),
-        seed=metrics["seed"],
         thesis_tasks=thesis["tasks"],
         thesis_subgoals=f"{thesis['subgoals']['min']}–{thesis['subgoals']['max']}",
         mean_duration=f"{MEAN_DURATION:g}",

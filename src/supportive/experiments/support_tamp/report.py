@@ -181,7 +181,7 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
-        tables=metrics["tables"],
+        metrics,
         readings_table=readings_table(READINGS, _readings(metrics), "the support agent minimises"),
         scenarios="\n\n".join(_scenario(metrics, scenario) for scenario in SCENARIOS),
         search_table=_search_table(metrics),

@@ -196,11 +196,11 @@ def report(metrics: Mapping[str, Any]) -> str:
     return render(
         __package__,
         "report.md",
+        metrics,
         thesis_tasks=thesis["tasks"],
         thesis_steps=thesis["steps"],
         primitive_actions=thesis["primitive_actions"],
         claim=CLAIM,
-        trials=metrics["trials"],
         alpha=ALPHA,
         gamma=GAMMA,
         epsilon=EPSILON,
