@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from supportive.experiments import get, names, run_experiment
-from supportive.experiments.captaincook import (
+from supportive.experiments.captaincook.measure import (
     CONDITIONS,
     make_trials,
     partial_order,

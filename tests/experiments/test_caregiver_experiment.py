@@ -9,15 +9,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.experiments import get, names, run_experiment
-from supportive.experiments.caregiver import (
-    DEFAULT_EPISODES,
-    FILES,
+from supportive.experiments.caregiver.measure import (
+    DEFAULT_TRIALS,
     MEMORIES,
     READINGS,
-    THESIS,
     make_trials,
     run_trial,
 )
+from supportive.experiments.caregiver.plots import FILES
+from supportive.experiments.caregiver.report import THESIS
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.experiments.statistics import ratio_ci
 
@@ -33,7 +33,7 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
 def test_registered_with_100_episodes_and_three_readings() -> None:
     assert "caregiver" in names()
     experiment = get("caregiver")
-    assert experiment.default_trials == DEFAULT_EPISODES == 100 and THESIS["episodes"] == 20
+    assert experiment.default_trials == DEFAULT_TRIALS == 100 and THESIS["episodes"] == 20
     assert [r.name for r in experiment.readings] == ["trajectory", "memory", "per-step"]
     assert experiment.default_reading == "trajectory" and MEMORIES["trajectory"] == 1.0  # Eq. 3.2 as printed
     assert MEMORIES["per-step"] < MEMORIES["memory"] < 1

@@ -7,9 +7,9 @@ import pytest
 
 from supportive.errors import ExperimentError
 from supportive.experiments import get, run_experiment
-from supportive.experiments.edge_reduction import make_trials, measure_task, model_sizes, run_trial, summarize
+from supportive.experiments.edge_reduction.measure import make_trials, measure_task, model_sizes, run_trial
 from supportive.experiments.edge_reduction.report import verdict
-from supportive.experiments.edge_reduction.summary import bin_of
+from supportive.experiments.edge_reduction.summary import bin_of, summarize
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.generate import THESIS_DEPTH_RANGE, as_demonstrations, sample_orderings
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Node

@@ -11,19 +11,13 @@ import pytest
 
 from supportive.errors import ExperimentError
 from supportive.experiments import get, names, run_experiment
-from supportive.experiments.goal_inference import (
-    SETTINGS,
-    SIZES,
-    THESIS,
-    make_trials,
-    measure_task,
-    plots,
-    summarize,
-    task_for,
-    timing_report,
-    timing_summary,
-)
+from supportive.experiments.goal_inference.design import SETTINGS, SIZES, make_trials
+from supportive.experiments.goal_inference.measure import measure_task, task_for
+from supportive.experiments.goal_inference.plots import plots, timing_report
 from supportive.experiments.goal_inference.report import headline, report
+from supportive.experiments.goal_inference.summary import summarize
+from supportive.experiments.goal_inference.thesis import THESIS
+from supportive.experiments.goal_inference.timing import timing_summary
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.tasks.spec import TaskSpec
 

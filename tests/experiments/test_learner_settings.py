@@ -7,15 +7,17 @@ import itertools
 from typing import Any
 
 from supportive.experiments import get
-from supportive.experiments.learner_settings import (
+from supportive.experiments.learner_settings.measure import (
+    CLEAN_TASKS,
+    DEMONSTRATIONS,
     GRID,
+    TASKS,
     choose,
     make_trials,
     run_trial,
     settings_name,
     summarize,
 )
-from supportive.experiments.learner_settings.measure import CLEAN_TASKS, DEMONSTRATIONS, TASKS
 from supportive.generate.mistakes import KINDS, PROFILES
 from supportive.learning.learner import HTNLearner
 

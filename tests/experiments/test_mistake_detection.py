@@ -9,8 +9,17 @@ from tests.evaluation.test_mistake_scores import _tea
 
 from supportive.evaluation.mistakes import DETECTOR, METHODS, evaluate_mistakes
 from supportive.experiments import get
-from supportive.experiments.mistake_detection import choose, make_trials, plots, report, run_trial, summarize
-from supportive.experiments.mistake_detection.measure import GENERATED, KINDS, RECIPES, THRESHOLDS
+from supportive.experiments.mistake_detection.measure import (
+    GENERATED,
+    KINDS,
+    RECIPES,
+    THRESHOLDS,
+    choose,
+    make_trials,
+    run_trial,
+    summarize,
+)
+from supportive.experiments.mistake_detection.report import plots, report
 from supportive.inference.mistakes import DEFAULT_THRESHOLD
 
 

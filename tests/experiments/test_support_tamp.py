@@ -10,17 +10,17 @@ from supportive.envs.tabletop.leads import PlanFollowingLead
 from supportive.envs.tabletop.team import run_team
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.plotting import PNG_SIGNATURE
-from supportive.experiments.support_tamp import (
-    FILES,
+from supportive.experiments.support_tamp.measure import (
     PAIRINGS,
     READINGS,
     SCENARIOS,
-    THESIS,
     alone_plan,
     make_trials,
     run_trial,
     staged_floor,
 )
+from supportive.experiments.support_tamp.plots import FILES
+from supportive.experiments.support_tamp.report import THESIS
 
 
 @pytest.fixture(scope="module")

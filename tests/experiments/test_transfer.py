@@ -11,10 +11,25 @@ import pytest
 from supportive.examples.food import transfer_names
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.plotting import PNG_SIGNATURE
-from supportive.experiments.transfer import CLAIM, TaskModel, execute, explore, run_condition, run_trial
-from supportive.experiments.transfer.explore import FAIL, NOVELTY, START, STEP, Option
-from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS, make_trials
-from supportive.experiments.transfer.report import column
+from supportive.experiments.transfer.explore import (
+    FAIL,
+    NOVELTY,
+    START,
+    STEP,
+    Option,
+    TaskModel,
+    execute,
+    explore,
+)
+from supportive.experiments.transfer.measure import (
+    CONDITIONS,
+    MACRO_CONDITIONS,
+    READINGS,
+    make_trials,
+    run_condition,
+    run_trial,
+)
+from supportive.experiments.transfer.report import CLAIM, column
 from supportive.experiments.transfer.sources import (
     PRIOR_SCALE,
     _sequence_value,

@@ -5,7 +5,7 @@ import pytest
 
 from supportive.errors import ExperimentError
 from supportive.experiments import get, spawn_trials, trial_seeds
-from supportive.experiments.edge_reduction import make_trials
+from supportive.experiments.edge_reduction.measure import make_trials
 
 
 def _state(seed: np.random.SeedSequence) -> list[int]:

@@ -4,7 +4,9 @@ An :class:`Experiment` says what the thesis reports and how to reproduce it: how
 module-level (picklable) function that runs one trial and returns plain JSON data, and how to turn the trials'
 results into metrics, a markdown report (this run's numbers beside the thesis's) and plots.
 
-The built-in experiments register themselves the first time the registry is asked for a name.
+Each built-in experiment is one :func:`declare` call in its package's ``__init__``: its name, title and
+reference, and the modules that hold its parts under the field names (``make_trials``, ``run_trial``, …);
+they register themselves the first time the registry is asked for a name.
 
 >>> "edge-reduction" in names()
 True
@@ -19,6 +21,7 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import ModuleType
 from typing import Any, TypeAlias
 
 from supportive.errors import ExperimentError
@@ -32,6 +35,7 @@ __all__ = [
     "HeadlineRow",
     "Metrics",
     "TrialResult",
+    "declare",
     "get",
     "names",
     "register",
@@ -163,6 +167,60 @@ def register(experiment: Experiment, *, replace: bool = False) -> Experiment:
         raise ExperimentError(f"an experiment named {experiment.name!r} is already registered")
     _registry[experiment.name] = experiment
     return experiment
+
+
+_PARTS = ("make_trials", "run_trial", "summarize", "report", "plots", "headline", "timing_report", "findings")
+"""The fields :func:`declare` takes from the modules under their own names (the last two may be missing)."""
+_CONSTANTS = {"default_trials": "DEFAULT_TRIALS", "thesis": "THESIS", "readings": "READINGS"}
+"""The fields :func:`declare` takes from the modules' constants (``THESIS`` and ``READINGS`` may be missing)."""
+_OPTIONAL: dict[str, Any] = {"timing_report": None, "findings": None, "thesis": {}, "readings": ()}
+
+
+def declare(
+    *, name: str, title: str, reference: str, parts: Sequence[ModuleType], **given: Any
+) -> Experiment:
+    """Build the experiment ``name`` from its modules and register it: the one declaration of an experiment.
+
+    Every other field of :class:`Experiment` is looked up in ``parts``: the functions under their field
+    names (``make_trials``, ``run_trial``, ``summarize``, ``report``, ``plots``, ``headline`` and, when
+    there, ``timing_report`` and ``findings``) and the constants ``DEFAULT_TRIALS`` and, when there,
+    ``THESIS`` and ``READINGS``. A field given as a keyword is taken as given instead.
+
+    Raises:
+        ExperimentError: when a required part is in none of the modules, when two modules hold different
+            objects under one part's name, or for what :class:`Experiment` and :func:`register` refuse.
+
+    >>> from supportive.experiments.edge_reduction import measure, report
+    >>> declare(name="edge-reduction", title="x", reference="y", parts=(measure, report))
+    Traceback (most recent call last):
+    ...
+    supportive.errors.ExperimentError: experiment edge-reduction: no summarize in measure, report
+    """
+    unknown = sorted(set(given) - {*_PARTS, *_CONSTANTS})
+    if unknown:
+        raise ExperimentError(f"experiment {name}: declare() has no field {', '.join(unknown)}")
+    values: dict[str, Any] = {}
+    for key in (*_PARTS, *_CONSTANTS):
+        if key in given:
+            values[key] = given[key]
+            continue
+        attribute = _CONSTANTS.get(key, key)
+        found = {id(v): v for m in parts if (v := getattr(m, attribute, None)) is not None}
+        if len(found) > 1:
+            raise ExperimentError(f"experiment {name}: {_where(parts, attribute)} hold different {attribute}")
+        if found:
+            values[key] = next(iter(found.values()))
+        elif key in _OPTIONAL:
+            values[key] = _OPTIONAL[key]
+        else:
+            raise ExperimentError(f"experiment {name}: no {attribute} in {_where(parts)}")
+    return register(Experiment(name=name, title=title, reference=reference, **values))
+
+
+def _where(parts: Sequence[ModuleType], attribute: str | None = None) -> str:
+    return ", ".join(
+        m.__name__.rsplit(".", 1)[-1] for m in parts if attribute is None or hasattr(m, attribute)
+    )
 
 
 def unregister(name: str) -> None:

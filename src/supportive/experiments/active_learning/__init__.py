@@ -15,43 +15,24 @@ teaching learners that ask for actions (:class:`~supportive.learning.active.Teac
 
 from supportive.experiments.active_learning import blocks, food
 from supportive.experiments.active_learning.plots import blocks_plots, food_plots
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.registry import declare
 
 __all__ = ["ACTIVE_LEARNING", "ACTIVE_LEARNING_BLOCKS", "blocks", "food"]
 
-ACTIVE_LEARNING_BLOCKS = register(
-    Experiment(
-        name="active-learning-blocks",
-        title="Active learning strategies on the block tasks: solo, pairs and triads of instructors",
-        reference="§2.2.7–2.2.10, Figure 2.10",
-        thesis=blocks.THESIS,
-        default_trials=blocks.DEFAULT_TRIALS,
-        make_trials=blocks.make_trials,
-        run_trial=blocks.run_trial,
-        summarize=blocks.summarize,
-        report=blocks.report,
-        plots=blocks_plots,
-        headline=blocks.headline,
-        findings=blocks.findings,
-    )
+ACTIVE_LEARNING_BLOCKS = declare(
+    name="active-learning-blocks",
+    title="Active learning strategies on the block tasks: solo, pairs and triads of instructors",
+    reference="§2.2.7–2.2.10, Figure 2.10",
+    parts=(blocks,),
+    plots=blocks_plots,
 )
 """The registered Figure 2.10 experiment."""
 
-ACTIVE_LEARNING = register(
-    Experiment(
-        name="active-learning",
-        title="Active learning strategies on 12 food tasks: solo vs pooled instructors",
-        reference="§2.2.10.1, Figure 2.11",
-        thesis=food.THESIS,
-        default_trials=food.DEFAULT_TRIALS,
-        make_trials=food.make_trials,
-        run_trial=food.run_trial,
-        summarize=food.summarize,
-        report=food.report,
-        plots=food_plots,
-        headline=food.headline,
-        readings=food.READINGS,
-        findings=food.findings,
-    )
+ACTIVE_LEARNING = declare(
+    name="active-learning",
+    title="Active learning strategies on 12 food tasks: solo vs pooled instructors",
+    reference="§2.2.10.1, Figure 2.11",
+    parts=(food,),
+    plots=food_plots,
 )
 """The registered Figure 2.11 experiment."""

@@ -28,6 +28,7 @@ from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import count_orderings
@@ -224,62 +225,56 @@ def _thesis_gain(thesis: Mapping[str, Any], group: str, number: int, strategy: s
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report: path counts per task, group and condition, and the gains beside the thesis's."""
+    """The markdown report: path counts per task, group and condition, and the gains beside the thesis's (its
+    prose: ``templates/blocks.md``)."""
+    return render(
+        __package__,
+        "blocks.md",
+        metrics,
+        claims=[f"* {claim}" for claim in metrics["thesis"]["claims"]],
+        tasks="\n\n".join(_task_section(metrics, task) for task in metrics["tasks"]),
+        verdict=verdict(metrics),
+    )
+
+
+def _task_section(metrics: Mapping[str, Any], task: Mapping[str, Any]) -> str:
+    """One task's section: known paths per group and condition, then the gains over random and the ANOVAs."""
     thesis = metrics["thesis"]
-    panels = metrics["panels"]
-    lines = [
-        "# Active learning on the block tasks (§2.2.7–2.2.10, Figure 2.10)",
-        "",
-        f"Seed {metrics['seed']}, {panels} simulated panels of {metrics['panel']} instructors. Each instructor "
-        f"teaches each block task {metrics['demonstrations']} times per condition on the thesis's schedule "
-        "(3 queries per demonstration, none in the first); measure: known unique origin→terminal paths of the "
-        "learned task graph; solo = each instructor, pairs = the 15 pairs, triads = the 20 triads of a panel "
-        "(graphs pooled). Means over panels with 95% confidence intervals; the passive condition never asks. "
-        f"Instructors' base paths: {metrics['base']} (own = a valid ordering drawn for each simulated "
-        "participant, as six different people would have; canonical = the structure's order for all), "
-        "perturbed either way.",
-        "",
-        "Thesis: 6 participants, one panel; tasks 1, 2, 3 have 720, 24, 6 valid orderings. The text gives "
-        "no means, only ANOVAs and Bonferroni post-hoc mean differences (feature strategy − random):",
-        "",
+    number = task["number"]
+    paths = []
+    for group, g in ((k, task["groups"][k]) for k in GROUPS):
+        c = g["conditions"]
+        complete = " / ".join(f"{100 * c[k]['complete']:.0f} %" for k in CONDITIONS)
+        paths.append([group, *(format_ci(c[k]["paths"], 1) for k in CONDITIONS), complete])
+    header = ["data set", "passive", "random", "distance", "connectivity", "complete (passive/random/distance/connectivity)"]
+    gains_rows = []
+    for group, g in ((k, task["groups"][k]) for k in GROUPS):
+        gains, test = g["gain_over_random"], g["anova"]
+        median = "–" if test["median_F"] is None else f"{test['median_F']:.1f}"
+        gains_rows.append(
+            [
+                group,
+                format_ci(gains["distance"]["paths"], 1),
+                _thesis_gain(thesis, group, number, "distance"),
+                format_ci(gains["connectivity"]["paths"], 1),
+                _thesis_gain(thesis, group, number, "connectivity"),
+                f"{test['panels_significant']} of {metrics['panels']}, F({test['df'][0]},{test['df'][1]}) = {median}",
+                _thesis_anova(thesis, group, number),
+            ]
+        )
+    gains_header = [
+        "data set", "distance − random", "thesis", "connectivity − random", "thesis",
+        "ANOVA: panels p < 0.05, median F", "thesis",
     ]
-    lines += [f"* {claim}" for claim in thesis["claims"]]
-    for task in metrics["tasks"]:
-        name, number, orderings = task["name"], task["number"], task["orderings"]
-        lines += [
+    return "\n".join(
+        [
+            f"## Task {number}: {task['name']} ({task['orderings']} valid orderings)",
             "",
-            f"## Task {number}: {name} ({orderings} valid orderings)",
+            *markdown_table(header, paths, align="lrrrrl"),
             "",
+            *markdown_table(gains_header, gains_rows, align="lrrrrll"),
         ]
-        paths = []
-        for group, g in ((k, task["groups"][k]) for k in GROUPS):
-            c = g["conditions"]
-            complete = " / ".join(f"{100 * c[k]['complete']:.0f} %" for k in CONDITIONS)
-            paths.append([group, *(format_ci(c[k]["paths"], 1) for k in CONDITIONS), complete])
-        header = ["data set", "passive", "random", "distance", "connectivity", "complete (passive/random/distance/connectivity)"]
-        lines += [*markdown_table(header, paths, align="lrrrrl"), ""]
-        gains_rows = []
-        for group, g in ((k, task["groups"][k]) for k in GROUPS):
-            gains, test = g["gain_over_random"], g["anova"]
-            median = "–" if test["median_F"] is None else f"{test['median_F']:.1f}"
-            gains_rows.append(
-                [
-                    group,
-                    format_ci(gains["distance"]["paths"], 1),
-                    _thesis_gain(thesis, group, number, "distance"),
-                    format_ci(gains["connectivity"]["paths"], 1),
-                    _thesis_gain(thesis, group, number, "connectivity"),
-                    f"{test['panels_significant']} of {panels}, F({test['df'][0]},{test['df'][1]}) = {median}",
-                    _thesis_anova(thesis, group, number),
-                ]
-            )
-        header = [
-            "data set", "distance − random", "thesis", "connectivity − random", "thesis",
-            "ANOVA: panels p < 0.05, median F", "thesis",
-        ]
-        lines += markdown_table(header, gains_rows, align="lrrrrll")
-    lines += ["", "## Verdict", "", *verdict(metrics), ""]
-    return "\n".join(lines)
+    )
 
 
 def verdict(metrics: Mapping[str, Any]) -> list[str]:

@@ -29,6 +29,7 @@ from supportive.experiments.readings import Finding, Reading, reading_names, rea
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci, mean_ci
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.learning.active import QuerySchedule
 from supportive.tasks.htn import count_orderings
@@ -304,59 +305,57 @@ def _readings(metrics: Mapping[str, Any]) -> list[str]:
 
 def report(metrics: Mapping[str, Any]) -> str:
     """The markdown report: comprehension per reading, strategy and iteration beside the thesis's, the
-    instructors' ceiling, pooled vs solo, and per task."""
-    thesis = metrics["thesis"]["comprehension_percent"]
-    trials = metrics["trials"]
-    its = metrics["iterations"]
+    instructors' ceiling, pooled vs solo, and per task (its prose: ``templates/food.md``)."""
     readings = _readings(metrics)
-    lines = [
-        "# Active learning on 12 food-preparation tasks (§2.2.10.1, Figure 2.11)",
-        "",
-        f"Seed {metrics['seed']}, {trials} trials (thesis: 50). One trial = a panel of {metrics['instructors']} "
-        f"simulated instructors on all {metrics['task_count']} tasks, at most 3 queries per demonstration, none "
-        "in the first. Comprehension = known paths of the learned task graph ÷ the task's valid orderings, %, "
-        "averaged over the tasks; this run's mean with its 95% confidence interval over trials, the thesis's "
-        "mean beside it. Solo: instructor 1 alone, 4, 8, 12 demonstrations; multi-instructor: instructor 1's 4, "
-        "then pooled with instructor 2's 4, then with instructor 3's 4 (iteration 4 is the same learner in "
-        "both). Instructors' base path: "
-        + (
-            "a valid ordering drawn for each instructor"
-            if metrics["base"] == "own"
-            else "the structure's order"
-        )
-        + ' (the thesis: "a fixed arbitrarily chosen canonical base path"), perturbed per instructor.',
-        "",
-        "**Ceiling**: the known paths of *every* demonstration the same instructors could have given under the "
-        "reading's schedule, whatever the learner asked (each query heeded within 3 steps, or ignored) — a "
-        "bound no strategy can pass with these instructors. Where a curve meets it, the instructor model, not "
-        "the strategy, is what limits it.",
-        "",
-        "## Readings: when the learner asks",
-        "",
-        *readings_table(READINGS, readings, "schedule"),
-    ]
-    for condition in CONDITIONS:
-        rows = []
-        for row in (*STRATEGIES, "ceiling"):
-            for name in readings:
-                ours = metrics["by_reading"][name]["comprehension"][condition][row]
-                theirs = (
-                    " / ".join(f"{v:.1f}" for v in thesis[condition][row])
-                    if row in thesis[condition]
-                    else "–"
-                )
-                rows.append([row, f"`{name}`", *(format_ci(ours[i], 1) for i in range(len(its))), theirs])
-        header = ["strategy", "reading", *(f"iteration {n}" for n in its), "thesis"]
-        lines += ["", f"## {LABELS[condition]}", "", *markdown_table(header, rows, align="ll" + "r" * (len(its) + 1))]
-    pooled = []
+    return render(
+        __package__,
+        "food.md",
+        metrics,
+        base="a valid ordering drawn for each instructor" if metrics["base"] == "own" else "the structure's order",
+        readings_table=readings_table(READINGS, readings, "schedule"),
+        curves="\n\n".join(_section(LABELS[condition], _curve_table(metrics, condition)) for condition in CONDITIONS),
+        pooled_table=_pooled_table(metrics),
+        per_task="\n\n".join(
+            _section(
+                f"Per task, `{name}` (mean % over trials at iterations " + ", ".join(map(str, metrics["iterations"])) + ")",
+                _task_table(metrics, name),
+            )
+            for name in readings
+        ),
+        verdict=verdict(metrics),
+    )
+
+
+def _section(title: str, table: list[str]) -> str:
+    return "\n".join([f"## {title}", "", *table])
+
+
+def _curve_table(metrics: Mapping[str, Any], condition: str) -> list[str]:
+    """Comprehension per strategy (and the ceiling) and reading at each iteration, beside the thesis's."""
+    thesis = metrics["thesis"]["comprehension_percent"][condition]
+    its = metrics["iterations"]
+    rows = []
+    for row in (*STRATEGIES, "ceiling"):
+        for name in _readings(metrics):
+            ours = metrics["by_reading"][name]["comprehension"][condition][row]
+            theirs = " / ".join(f"{v:.1f}" for v in thesis[row]) if row in thesis else "–"
+            rows.append([row, f"`{name}`", *(format_ci(ours[i], 1) for i in range(len(its))), theirs])
+    header = ["strategy", "reading", *(f"iteration {n}" for n in its), "thesis"]
+    return markdown_table(header, rows, align="ll" + "r" * (len(its) + 1))
+
+
+def _pooled_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Pooled minus solo comprehension per strategy, reading and iteration (after the first)."""
+    thesis = metrics["thesis"]["comprehension_percent"]
+    rows = []
     for strategy in STRATEGIES:
-        for name in readings:
-            for i, n in enumerate(its):
+        for name in _readings(metrics):
+            for i, n in enumerate(metrics["iterations"]):
                 if i == 0:
                     continue
                 gain = metrics["by_reading"][name]["pooled_minus_solo"][strategy][str(n)]
                 theirs = thesis["multi"][strategy][i] - thesis["solo"][strategy][i]
-                pooled.append(
+                rows.append(
                     [
                         strategy,
                         f"`{name}`",
@@ -370,37 +369,28 @@ def report(metrics: Mapping[str, Any]) -> str:
         "strategy", "reading", "iteration", "multi − solo (percentage points)", "trials multi better / worse",
         "thesis multi − solo",
     ]
-    lines += [
-        "",
-        "## Pooled instructors vs a solo instructor with the same number of demonstrations",
-        "",
-        *markdown_table(header, pooled, align="llrrrr"),
+    return markdown_table(header, rows, align="llrrrr")
+
+
+def _task_table(metrics: Mapping[str, Any], name: str) -> list[str]:
+    """Per task, the mean % known at each iteration under reading ``name``, per condition and strategy."""
+    rows = [
+        [
+            task_name,
+            str(task["orderings"]),
+            *(
+                "/".join(f"{v:.0f}" for v in task[condition][row])
+                for condition in CONDITIONS
+                for row in (*STRATEGIES, "ceiling")
+            ),
+        ]
+        for task_name, task in metrics["by_reading"][name]["tasks"].items()
     ]
-    for name in readings:
-        per_task = [
-            [
-                task_name,
-                str(task["orderings"]),
-                *(
-                    "/".join(f"{v:.0f}" for v in task[condition][row])
-                    for condition in CONDITIONS
-                    for row in (*STRATEGIES, "ceiling")
-                ),
-            ]
-            for task_name, task in metrics["by_reading"][name]["tasks"].items()
-        ]
-        header = [
-            "task", "orderings", "solo random", "solo distance", "solo connectivity", "solo ceiling",
-            "multi random", "multi distance", "multi connectivity", "multi ceiling",
-        ]
-        lines += [
-            "",
-            f"## Per task, `{name}` (mean % over trials at iterations " + ", ".join(map(str, its)) + ")",
-            "",
-            *markdown_table(header, per_task, align="lr" + "l" * 8),
-        ]
-    lines += ["", "## Verdict", "", *verdict(metrics), ""]
-    return "\n".join(lines)
+    header = [
+        "task", "orderings", "solo random", "solo distance", "solo connectivity", "solo ceiling",
+        "multi random", "multi distance", "multi connectivity", "multi ceiling",
+    ]
+    return markdown_table(header, rows, align="lr" + "l" * 8)
 
 
 def _gap(metrics: Mapping[str, Any], name: str, condition: str, strategy: str) -> float:

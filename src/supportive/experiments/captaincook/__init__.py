@@ -9,57 +9,15 @@ instructor following the published graph); see :mod:`.measure`.
 10
 """
 
-from supportive.experiments.captaincook.measure import (
-    CONDITIONS,
-    DEFAULT_TRIALS,
-    HORIZON,
-    METRICS,
-    SCHEDULE,
-    make_trials,
-    partial_order,
-    recipe_rng,
-    run_recipe,
-    run_trial,
-    summarize,
-)
-from supportive.experiments.captaincook.report import CURVES_PLOT, THESIS, findings, headline, plots, report
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.captaincook import measure, report
+from supportive.experiments.registry import declare
 
-__all__ = [
-    "CAPTAINCOOK",
-    "CONDITIONS",
-    "CURVES_PLOT",
-    "DEFAULT_TRIALS",
-    "HORIZON",
-    "METRICS",
-    "SCHEDULE",
-    "THESIS",
-    "findings",
-    "headline",
-    "make_trials",
-    "partial_order",
-    "plots",
-    "recipe_rng",
-    "report",
-    "run_recipe",
-    "run_trial",
-    "summarize",
-]
+__all__ = ["CAPTAINCOOK"]
 
-CAPTAINCOOK = register(
-    Experiment(
-        name="captaincook",
-        title="CaptainCook4D: learning curves, passive vs active, against published task graphs",
-        reference="§2.2 (active learning), on CaptainCook4D (issue #4)",
-        thesis=THESIS,
-        default_trials=DEFAULT_TRIALS,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        findings=findings,
-    )
+CAPTAINCOOK = declare(
+    name="captaincook",
+    title="CaptainCook4D: learning curves, passive vs active, against published task graphs",
+    reference="§2.2 (active learning), on CaptainCook4D (issue #4)",
+    parts=(measure, report),
 )
 """The registered experiment."""

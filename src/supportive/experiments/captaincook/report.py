@@ -12,6 +12,7 @@ from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, error_bar, format_ci
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 
 __all__ = ["CURVES_PLOT", "THESIS", "findings", "headline", "plots", "report"]
 
@@ -56,100 +57,68 @@ def _verdict(metrics: Mapping[str, Any]) -> list[str]:
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report: curves per k, passive vs each strategy, beside the thesis's qualitative claims."""
-    curves = metrics["curves"]
+    """The markdown report: curves per k, passive vs each strategy, beside the thesis's qualitative claims (its
+    prose: ``templates/report.md``)."""
     demos = metrics["demonstrations"]
-    lines = [
-        f"# {metrics.get('title', 'CaptainCook4D learning curves')}",
-        "",
-        f"Seed {metrics.get('seed')}, {metrics.get('trials')} trials, {metrics['recipes_run']} recipes, "
-        f"{demos['min']}–{demos['max']} error-free recordings each (K).",
-        "",
-        '**Measured.** After each demonstration k = 1..K, the learned CC-HTN\'s implied "must come before" '
-        "pairs against the recipe's published task graph (transitive closure). Passive: the real recordings "
-        "in a trial-seeded order. Active: K demonstrations by a simulated instructor who follows the published "
-        "partial order, prefers one real recording (trial-seeded), heeds queries within "
-        f"{metrics['horizon']} steps; queries after steps {', '.join(map(str, metrics['schedule']['after_steps']))},"
-        " none in the first demonstration.",
-        "",
-        f"**The thesis.** {THESIS['note']}. Its qualitative claims:",
-        "",
-        *[f"* {claim}" for claim in THESIS["claims"]],
-        "",
-        "## F1 per demonstration (mean over recipes with ≥ k recordings, 95% CI over trials)",
-        "",
-        *markdown_table(
-            ["k", "recipes", *CONDITIONS],
-            [
-                [key, str(row["recipes"]), *(format_ci(row[c]["f1"]) for c in CONDITIONS)]
-                for key, row in sorted(curves.items(), key=lambda item: int(item[0]))
-            ],
-            align="r" * (2 + len(CONDITIONS)),
+    return render(
+        __package__,
+        "report.md",
+        metrics,
+        title=metrics.get("title", "CaptainCook4D learning curves"),
+        seed=metrics.get("seed"),
+        trials=metrics.get("trials"),
+        recipes=metrics["recipes_run"],
+        recordings=f"{demos['min']}–{demos['max']}",
+        after_steps=", ".join(map(str, metrics["schedule"]["after_steps"])),
+        note=THESIS["note"],
+        claims=[f"* {claim}" for claim in THESIS["claims"]],
+        f1_table=_f1_table(metrics["curves"]),
+        delta_table=_delta_table(metrics),
+        metric_tables="\n\n".join(
+            "\n".join([f"## {metric.capitalize()} per demonstration (means)", "", *_metric_table(metrics["curves"], metric)])
+            for metric in ("precision", "recall")
         ),
-        "",
-        "## Δ F1, strategy − passive (paired by trial; bold: the CI excludes 0)",
-        "",
-        *markdown_table(
-            ["k", *CONDITIONS[1:]],
-            [
-                *(
-                    [key, *(_signed(row[s]) for s in CONDITIONS[1:])]
-                    for key, row in sorted(metrics["delta_f1"].items(), key=lambda item: int(item[0]))
-                ),
-                ["own K", *(_signed(metrics["delta_f1_at_own_k"][s]) for s in CONDITIONS[1:])],
-            ],
-            align="r" * len(CONDITIONS),
+        at_own_k_table=markdown_table(
+            ["condition", "precision", "recall", "F1"],
+            [[c, *(format_ci(metrics["at_own_k"][c][m]) for m in METRICS)] for c in CONDITIONS],
         ),
+        queries_table=_queries_table(metrics),
+        valid="yes." if metrics["active_demonstrations_valid"] else "**no**.",
+        verdict=_verdict(metrics),
+    )
+
+
+def _by_k(table: Mapping[str, Any]) -> list[tuple[str, Any]]:
+    return sorted(table.items(), key=lambda item: int(item[0]))
+
+
+def _f1_table(curves: Mapping[str, Any]) -> list[str]:
+    """F1 per demonstration k, per condition, with its CI."""
+    rows = [[key, str(row["recipes"]), *(format_ci(row[c]["f1"]) for c in CONDITIONS)] for key, row in _by_k(curves)]
+    return markdown_table(["k", "recipes", *CONDITIONS], rows, align="r" * (2 + len(CONDITIONS)))
+
+
+def _delta_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Strategy − passive F1 per k and at each recipe's own K."""
+    rows = [[key, *(_signed(row[s]) for s in CONDITIONS[1:])] for key, row in _by_k(metrics["delta_f1"])]
+    rows.append(["own K", *(_signed(metrics["delta_f1_at_own_k"][s]) for s in CONDITIONS[1:])])
+    return markdown_table(["k", *CONDITIONS[1:]], rows, align="r" * len(CONDITIONS))
+
+
+def _metric_table(curves: Mapping[str, Any], metric: str) -> list[str]:
+    """Mean ``metric`` (precision or recall) per demonstration k, per condition."""
+    rows = [[key, *(f"{row[c][metric]['mean']:.3f}" for c in CONDITIONS)] for key, row in _by_k(curves)]
+    return markdown_table(["k", *CONDITIONS], rows, align="r" * (1 + len(CONDITIONS)))
+
+
+def _queries_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Queries asked and heeded per strategy, and how many distinct demonstrations they gave."""
+    total = metrics["demonstrations"]["total"] * (metrics.get("trials") or 1)
+    rows = [
+        [s, str(q["asked"]), str(q["honoured"]), f"{q['distinct_demonstrations']} of {total}"]
+        for s, q in metrics["queries"].items()
     ]
-    for metric in ("precision", "recall"):
-        lines += [
-            "",
-            f"## {metric.capitalize()} per demonstration (means)",
-            "",
-            *markdown_table(
-                ["k", *CONDITIONS],
-                [
-                    [key, *(f"{row[c][metric]['mean']:.3f}" for c in CONDITIONS)]
-                    for key, row in sorted(curves.items(), key=lambda item: int(item[0]))
-                ],
-                align="r" * (1 + len(CONDITIONS)),
-            ),
-        ]
-    last = metrics["at_own_k"]
-    lines += [
-        "",
-        "## After each recipe's K demonstrations (mean over all recipes)",
-        "",
-        *markdown_table(
-            ["condition", "precision", "recall", "F1"], [[c, *(format_ci(last[c][m]) for m in METRICS)] for c in CONDITIONS]
-        ),
-        "",
-        "Queries (all trials and recipes):",
-        "",
-        *markdown_table(
-            ["strategy", "asked", "heeded", "distinct demonstrations"],
-            [
-                [
-                    s,
-                    str(q["asked"]),
-                    str(q["honoured"]),
-                    f"{q['distinct_demonstrations']} of {demos['total'] * (metrics.get('trials') or 1)}",
-                ]
-                for s, q in metrics["queries"].items()
-            ],
-        ),
-        "",
-        "Every active demonstration respected the published order: "
-        + ("yes." if metrics["active_demonstrations_valid"] else "**no**."),
-        "",
-        "## Beside the thesis",
-        "",
-        *_verdict(metrics),
-        "",
-        "The thesis gives no CaptainCook4D numbers, so only the direction of its claims can be compared.",
-        "",
-    ]
-    return "\n".join(lines)
+    return markdown_table(["strategy", "asked", "heeded", "distinct demonstrations"], rows)
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:

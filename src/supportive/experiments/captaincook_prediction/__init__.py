@@ -9,43 +9,15 @@ One trial per recipe (24); :func:`~supportive.evaluation.crossval.evaluate_task`
 24
 """
 
-from supportive.experiments.captaincook_prediction.measure import (
-    MODELS,
-    RECIPES,
-    make_trials,
-    run_trial,
-    summarize,
-)
-from supportive.experiments.captaincook_prediction.report import findings, headline, plots, report
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.captaincook_prediction import measure, report
+from supportive.experiments.registry import declare
 
-__all__ = [
-    "CAPTAINCOOK_PREDICTION",
-    "MODELS",
-    "RECIPES",
-    "findings",
-    "headline",
-    "make_trials",
-    "plots",
-    "report",
-    "run_trial",
-    "summarize",
-]
+__all__ = ["CAPTAINCOOK_PREDICTION"]
 
-CAPTAINCOOK_PREDICTION = register(
-    Experiment(
-        name="captaincook-prediction",
-        title="CaptainCook4D: next-step prediction, progress-aware vs simple baselines (leave one out)",
-        reference="§2.1.7 (goal inference), on CaptainCook4D (issue #14); not in the thesis",
-        thesis={},
-        default_trials=RECIPES,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        findings=findings,
-    )
+CAPTAINCOOK_PREDICTION = declare(
+    name="captaincook-prediction",
+    title="CaptainCook4D: next-step prediction, progress-aware vs simple baselines (leave one out)",
+    reference="§2.1.7 (goal inference), on CaptainCook4D (issue #14); not in the thesis",
+    parts=(measure, report),
 )
 """The registered experiment."""

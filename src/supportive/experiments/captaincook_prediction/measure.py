@@ -12,10 +12,12 @@ from supportive.evaluation.crossval import PREDICTOR
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.io.captaincook import load_captaincook
 
-__all__ = ["MODELS", "RECIPES", "make_trials", "run_trial", "summarize"]
+__all__ = ["DEFAULT_TRIALS", "MODELS", "RECIPES", "make_trials", "run_trial", "summarize"]
 
 RECIPES = 24
 """Recipes of the dataset: one trial each."""
+DEFAULT_TRIALS = RECIPES
+"""Trials of a full run: every recipe."""
 MODELS = (PREDICTOR, *BASELINES)
 """The predictors compared, the progress-aware one first."""
 

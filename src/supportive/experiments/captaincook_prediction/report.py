@@ -10,58 +10,39 @@ from supportive.experiments.captaincook_prediction.measure import MODELS
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 
 __all__ = ["findings", "headline", "plots", "report"]
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """Markdown: what was measured, the models side by side, the verdict, per-recipe admission."""
+    """Markdown: what was measured, the models side by side, the verdict, per-recipe admission (its prose:
+    ``templates/report.md``)."""
     models = metrics["models"]
-    rows = [
-        [
-            name, f"{m['top1']:.3f}", f"{m['top3']:.3f}", f"{m['zero']:.3f}", f"{m['log2']:.3f}", f"{m['done_top1']:.3f}",
-            f"{m['ece']:.3f}",
-        ]
-        for name, m in models.items()
-    ]
     ours, masked = models[MODELS[0]], models["masked bigram"]
     admission = metrics["admission"]
-    lines = [
-        "# CaptainCook4D: next-step prediction (leave one out)",
-        "",
-        "Every recording of every recipe, errors included, is held out in turn; the hierarchy and its frequencies",
-        "are learned from the others (the default learner), and at each step of the held-out recording (and after its",
-        "last, where the truth is `<end>`) each model gives the probability of what is done next. Not in the thesis.",
-        "",
-        *markdown_table(
-            ["model", "top-1", "top-3", "P = 0", "log2 P per step", "top-1 already done", "calibration error"], rows
+    keys = ("top1", "top3", "zero", "log2", "done_top1", "ece")
+    return render(
+        __package__,
+        "report.md",
+        models_table=markdown_table(
+            ["model", "top-1", "top-3", "P = 0", "log2 P per step", "top-1 already done", "calibration error"],
+            [[name, *(f"{m[k]:.3f}" for k in keys)] for name, m in models.items()],
         ),
-        "",
-        "`log2 P per step` is the mean over the steps a model gave a probability above 0 (the share it gave 0 is",
-        "`P = 0`); `top-1 already done` counts a top-1 action already done as often as any training recording does it;",
-        "`calibration error` is the expected calibration error of the top-1 probability (ten equal bins: the mean",
-        "over steps of |share right − mean probability| of their bin). The progress-aware predictor mixes in an",
-        "add-one bigram and smooths its choices with the weight and pseudo-counts that cross-validation over the",
-        "training recordings picks (docs/inference.md).",
-        "",
-        "Reliability of the progress-aware predictor's top-1 probability (`reliability.png` draws every model's):",
-        "",
-        *markdown_table(
+        reliability_table=markdown_table(
             ["top-1 probability", "steps", "mean probability", "right"],
             [
                 [f"{r['from']:.1f}–{r['to']:.1f}", str(r["predictions"]), f"{r['confidence']:.3f}", f"{r['accuracy']:.3f}"]
                 for r in ours["reliability"]
             ],
         ),
-        "",
-        f"* The progress-aware predictor's top-1 is {ours['top1'] - masked['top1']:+.3f} against the masked bigram's,",
-        f"  with probability 0 on {ours['zero']:.1%} of steps (masked bigram {masked['zero']:.1%}).",
-        f"* The hierarchy learned from the other recordings admits {admission['admitted']} of {admission['held_out']}",
-        f"  held-out recordings ({admission['share']:.1%}); recordings with errors are often off-script by design.",
-        "",
-        "## Per recipe",
-        "",
-        *markdown_table(
+        top1_gain=f"{ours['top1'] - masked['top1']:+.3f}",
+        zero=f"{ours['zero']:.1%}",
+        masked_zero=f"{masked['zero']:.1%}",
+        admitted=admission["admitted"],
+        held_out=admission["held_out"],
+        share=f"{admission['share']:.1%}",
+        recipes_table=markdown_table(
             ["recipe", "held out", "admitted", "top-1 (ours)", "top-1 (masked bigram)"],
             [
                 [
@@ -74,8 +55,7 @@ def report(metrics: Mapping[str, Any]) -> str:
                 for r in metrics["recipes"]
             ],
         ),
-    ]
-    return "\n".join(lines) + "\n"
+    )
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:

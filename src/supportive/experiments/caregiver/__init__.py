@@ -10,62 +10,15 @@ damage of 15, cells explored until then, each with its standard deviation (:mod:
 100
 """
 
-from supportive.experiments.caregiver.measure import (
-    CONDITIONS,
-    DEFAULT_EPISODES,
-    MAP,
-    MEMORIES,
-    READINGS,
-    make_trials,
-    run_trial,
-)
-from supportive.experiments.caregiver.plots import FILES, plots
-from supportive.experiments.caregiver.report import (
-    MEASURES,
-    THESIS,
-    findings,
-    headline,
-    report,
-    summarize,
-    verdict,
-)
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.caregiver import measure, plots, report
+from supportive.experiments.registry import declare
 
-__all__ = [
-    "CAREGIVER",
-    "CONDITIONS",
-    "DEFAULT_EPISODES",
-    "FILES",
-    "MAP",
-    "MEASURES",
-    "MEMORIES",
-    "READINGS",
-    "THESIS",
-    "findings",
-    "headline",
-    "make_trials",
-    "plots",
-    "report",
-    "run_trial",
-    "summarize",
-    "verdict",
-]
+__all__ = ["CAREGIVER"]
 
-CAREGIVER = register(
-    Experiment(
-        name="caregiver",
-        title="Caregiver: keeping a novice safe while it explores",
-        reference="§3.5, Tables 3.1–3.3, Figures 3.14–3.16",
-        thesis=THESIS,
-        default_trials=DEFAULT_EPISODES,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        readings=READINGS,
-        findings=findings,
-    )
+CAREGIVER = declare(
+    name="caregiver",
+    title="Caregiver: keeping a novice safe while it explores",
+    reference="§3.5, Tables 3.1–3.3, Figures 3.14–3.16",
+    parts=(measure, plots, report),
 )
 """The registered experiment."""

@@ -19,13 +19,13 @@ from supportive.safety.episode import EPISODE_STEPS, THRESHOLD, run_episode
 from supportive.worlds.household.grid_map import load_map
 from supportive.worlds.household.novice import NOVICE_TYPES
 
-__all__ = ["CONDITIONS", "DEFAULT_EPISODES", "MAP", "MEMORIES", "READINGS", "make_trials", "run_trial"]
+__all__ = ["CONDITIONS", "DEFAULT_TRIALS", "MAP", "MEMORIES", "READINGS", "make_trials", "run_trial"]
 
 MAP = "house"
 """The shipped map the experiment runs on (modelled on Figure 3.13)."""
 CONDITIONS = ("without", "with")
 """Without and with the caregiver."""
-DEFAULT_EPISODES = 100
+DEFAULT_TRIALS = 100
 """Episodes per novice type and condition in a full run. The thesis ran 20; at about one damage point per
 episode for the most goal-directed novice, 20 episodes leave its reduction to chance (§ docs/caregiver.md)."""
 

@@ -10,6 +10,7 @@ from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, format_sd, mean_sd, ratio_ci
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 from supportive.worlds.household.novice import NOVICE_TYPES
 
 __all__ = ["MEASURES", "THESIS", "findings", "headline", "report", "summarize", "thesis_reduction", "verdict"]
@@ -185,34 +186,43 @@ def verdict(metrics: Mapping[str, Any]) -> list[str]:
 
 def report(metrics: Mapping[str, Any]) -> str:
     """Markdown: each measure per novice type without the caregiver and with it under every reading (mean ±
-    sd), the thesis beside; damage reductions with 95% CIs."""
+    sd), the thesis beside; damage reductions with 95% CIs (the prose: ``templates/report.md``)."""
     readings = _readings(metrics)
-    lines = [
-        "# Caregiver: keeping a novice safe while it explores (§3.5, Tables 3.1–3.3)",
-        "",
-        f"Map `{metrics['map']}`; {metrics['episodes']} episodes of {THESIS['steps']} steps per novice type and "
-        f"condition (thesis: {THESIS['episodes']}; the same seed without the caregiver and with it under every "
-        f"reading); critical damage {THESIS['threshold']}. Damage is normalised by the largest damage of one "
-        f"episode in this run ({metrics['max_damage']}). Mean ± standard deviation over episodes (the thesis's "
-        "error bars), the thesis's mean beside; damage reductions = 1 − mean damage with / without, with a 95% "
-        "confidence interval (paired episodes, delta method).",
-        "",
-        "## Readings: how much of the trajectory P(safe | τ) weighs",
-        "",
-        *readings_table(
+    return render(
+        __package__,
+        "report.md",
+        metrics,
+        steps=THESIS["steps"],
+        thesis_episodes=THESIS["episodes"],
+        threshold=THESIS["threshold"],
+        readings_table=readings_table(
             READINGS, readings, "P(safe | τ)", ("memory γ", {n: f"{metrics['memory'][n]:g}" for n in readings})
         ),
-    ]
-    for key, title in MEASURES.items():
-        digits = _DIGITS[key]
-        rows = []
-        for label in NOVICE_TYPES:
-            ours = metrics["measures"][key][label]
-            theirs = THESIS[key][label]
-            with_cells = [format_sd(ours["with"][name], digits) for name in readings]
-            rows.append([label, format_sd(ours["without"], digits), f"{theirs[0]}", *with_cells, f"{theirs[1]}"])
-        header = ["novice", "no caregiver", "thesis", *(f"with, `{name}`" for name in readings), "thesis, with"]
-        lines += ["", f"## {title}", "", *markdown_table(header, rows)]
+        measures="\n\n".join(
+            "\n".join([f"## {title}", "", *_measure_table(metrics, key)]) for key, title in MEASURES.items()
+        ),
+        reduction_table=_reduction_table(metrics),
+        verdict=verdict(metrics),
+    )
+
+
+def _measure_table(metrics: Mapping[str, Any], key: str) -> list[str]:
+    """One measure per novice type: without the caregiver and with it under each reading, the thesis beside."""
+    readings = _readings(metrics)
+    digits = _DIGITS[key]
+    rows = []
+    for label in NOVICE_TYPES:
+        ours = metrics["measures"][key][label]
+        theirs = THESIS[key][label]
+        with_cells = [format_sd(ours["with"][name], digits) for name in readings]
+        rows.append([label, format_sd(ours["without"], digits), f"{theirs[0]}", *with_cells, f"{theirs[1]}"])
+    header = ["novice", "no caregiver", "thesis", *(f"with, `{name}`" for name in readings), "thesis, with"]
+    return markdown_table(header, rows)
+
+
+def _reduction_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Damage reduction per novice type and reading, and the episodes that never reached the threshold."""
+    readings = _readings(metrics)
     rows = []
     for label in NOVICE_TYPES:
         done = metrics["episodes_completed"][label]
@@ -230,9 +240,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         "thesis",
         "episodes not reaching the threshold: none / " + " / ".join(readings),
     ]
-    lines += ["", "## Damage reduction (95% CI) and completed episodes", "", *markdown_table(header, rows)]
-    lines += ["", "## Verdict", "", *verdict(metrics), ""]
-    return "\n".join(lines)
+    return markdown_table(header, rows)
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:

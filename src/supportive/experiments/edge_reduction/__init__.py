@@ -9,53 +9,15 @@ ordering when there are few enough), see :mod:`.measure`.
 76
 """
 
-from supportive.experiments.edge_reduction.measure import (
-    DEMONSTRATIONS,
-    ORDERINGS_LIMIT,
-    SIZES,
-    make_trials,
-    measure_task,
-    model_sizes,
-    run_trial,
-    task_for,
-)
-from supportive.experiments.edge_reduction.plots import plots
-from supportive.experiments.edge_reduction.report import THESIS, findings, headline, report
-from supportive.experiments.edge_reduction.summary import summarize
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.edge_reduction import measure, plots, report, summary
+from supportive.experiments.registry import declare
 
-__all__ = [
-    "DEMONSTRATIONS",
-    "EDGE_REDUCTION",
-    "ORDERINGS_LIMIT",
-    "SIZES",
-    "THESIS",
-    "findings",
-    "headline",
-    "make_trials",
-    "measure_task",
-    "model_sizes",
-    "plots",
-    "report",
-    "run_trial",
-    "summarize",
-    "task_for",
-]
+__all__ = ["EDGE_REDUCTION"]
 
-EDGE_REDUCTION = register(
-    Experiment(
-        name="edge-reduction",
-        title="Edge reduction: flat task model vs CC-HTN",
-        reference="§2.1.7.2–2.1.7.3, Figure 2.5",
-        thesis=THESIS,
-        default_trials=THESIS["tasks"],
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        findings=findings,
-    )
+EDGE_REDUCTION = declare(
+    name="edge-reduction",
+    title="Edge reduction: flat task model vs CC-HTN",
+    reference="§2.1.7.2–2.1.7.3, Figure 2.5",
+    parts=(measure, plots, report, summary),
 )
 """The registered experiment."""

@@ -9,8 +9,9 @@ from supportive.experiments.edge_reduction.summary import MODELS
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 
-__all__ = ["LABELS", "THESIS", "findings", "headline", "report", "verdict"]
+__all__ = ["DEFAULT_TRIALS", "LABELS", "THESIS", "findings", "headline", "report", "verdict"]
 
 THESIS: dict[str, Any] = {
     "tasks": 76,
@@ -41,6 +42,8 @@ LABELS = {
     "all_orderings": "(c) learned from all valid orderings",
 }
 """How the report names the three models."""
+DEFAULT_TRIALS = THESIS["tasks"]
+"""Trials of a full run: one per task of the thesis."""
 
 
 def _f(value: float | None, digits: int = 1) -> str:
@@ -99,79 +102,57 @@ def verdict(metrics: Mapping[str, Any], model: str) -> str:
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report of an edge-reduction run."""
+    """The markdown report of an edge-reduction run (its prose: ``templates/report.md``)."""
     thesis = metrics["thesis"]
-    depth = thesis["mean_action_depth"]
     models = metrics["models"]
     every = metrics["all_orderings"]
     sizes = metrics["subgoals"]
-    demos = sorted({t["demonstrations"] for t in metrics["tasks"]})
-    lines = [
-        f"# {metrics['title']}",
-        "",
-        f"Thesis: {metrics['reference']}. This run: {metrics['trials']} generated IKEA-like tasks of "
-        f"{sizes['min']}–{sizes['max']} subgoals, {', '.join(map(str, demos))} random execution paths each, "
-        f"seed {metrics['seed']} (thesis: {thesis['tasks']} tasks of {thesis['subgoals']['min']}–"
-        f"{thesis['subgoals']['max']} subgoals, {thesis['demonstrations_per_task']} random execution paths "
-        "each).",
-        "",
-        "## What is counted",
-        "",
-        f"The thesis (§2.1.7.3): “{thesis['edge_argument']}”",
-        "",
-        "* **flat edges**: the immediate-successor transitions between subgoals that the model allows "
-        "(`HTN.successor_pairs()`): the transitions a flat HMM over the same subgoals needs.",
-        "* **CC-HTN edges** (`HTN.edge_count()`): the transitions the hierarchy needs, counted as the thesis "
-        "counts them. A chain of k children needs k − 1 (one between consecutive children; entering and "
-        "leaving the chain is its parent's single edge); a clique of k children needs k (one between each "
-        "member and the clique node: any member may start or end it); summed over every chain and clique, "
-        "plus, for a partial hierarchy, the transitions of its top-level graph.",
-        "* So a clique of k primitives costs k² − k flat edges against k; a chain of k primitives k − 1 "
-        "against k − 1; a transition into or out of a clique of k members k flat edges against 1. For "
-        "example chain[a, clique{b, c, d}, e]: flat 3 + 6 + 3 = 12 (a→b, c, d; the clique's 6 orderings; "
-        "b, c, d→e), CC-HTN 2 + 3 = 5. A complete hierarchy never needs more edges than its flat model (a "
-        "chain or clique of k ≥ 2 children has at least k − 1, resp. k² − k ≥ k, flat pairs of its own); a "
-        "partial one can, through its top-level transitions (one per edge of the top-level graph, which may "
-        "perform the same root from several states).",
-        "* **depth**: the mean number of chain/clique ancestors of a primitive, per task.",
-        "",
-        "Three models of each task:",
-        "",
-        f"* {LABELS['learned']} (as in the thesis), by the general learner, which accepts what the evidence "
-        "supports (docs/learning.md; the strict one, which compacts only what was seen in full, leaves most of "
-        "these hierarchies partial and shallower than the truth): "
-        f"{models['learned']['complete']} of {metrics['trials']} learned hierarchies are complete.",
-        f"* {LABELS['ground_truth']}: the generator's structure of the same task.",
-        f"* {LABELS['all_orderings']}: for the {every['qualified']} of {metrics['trials']} tasks with at most "
-        f"{every['limit']} valid orderings; invariant 3 says this recovers the structure, and it did for "
-        f"{every['recovered']} of {every['qualified']}.",
-        "",
-        "## Mean depth of a primitive",
-        "",
-        *markdown_table(
-            ["model", "tasks", "mean", "min", "max"],
-            [
-                [
-                    f"**thesis**: the CC-HTNs of its {thesis['tasks']} tasks",
-                    str(thesis["tasks"]),
-                    f"{depth['mean']:.2f}",
-                    f"{depth['min']:.2f}",
-                    f"{depth['max']:.2f}",
-                ],
-                *(
-                    [
-                        LABELS[model],
-                        str(s["tasks"]),
-                        f"{s['depth']['mean']:.2f}",
-                        f"{s['depth']['min']:.2f}",
-                        f"{s['depth']['max']:.2f}",
-                    ]
-                    for model in MODELS
-                    if (s := models[model]) is not None
-                ),
-            ],
-        ),
+    return render(
+        __package__,
+        "report.md",
+        metrics,
+        subgoals=f"{sizes['min']}–{sizes['max']}",
+        demonstrations=", ".join(map(str, sorted({t["demonstrations"] for t in metrics["tasks"]}))),
+        thesis_tasks=thesis["tasks"],
+        thesis_subgoals=f"{thesis['subgoals']['min']}–{thesis['subgoals']['max']}",
+        thesis_demonstrations=thesis["demonstrations_per_task"],
+        edge_argument=thesis["edge_argument"],
+        complete=models["learned"]["complete"],
+        qualified=every["qualified"],
+        limit=every["limit"],
+        recovered=every["recovered"],
+        depth_table=_depth_table(metrics),
+        bins_table=_bins_table(metrics),
+        models_table=_models_table(models),
+        figure_2_5=thesis["figure_2_5"],
+        clique_flat=thesis["clique_edges"]["flat"],
+        clique_cc_htn=thesis["clique_edges"]["cc_htn"],
+        transition_flat=thesis["clique_transition_edges"]["flat"],
+        transition_cc_htn=thesis["clique_transition_edges"]["cc_htn"],
+        verdicts=[f"* {verdict(metrics, model)}" for model in MODELS],
+        **LABELS,
+    )
+
+
+def _depth_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Mean primitive depth: the thesis's, then each model's."""
+    thesis = metrics["thesis"]
+    depth = thesis["mean_action_depth"]
+    rows = [
+        [
+            f"**thesis**: the CC-HTNs of its {thesis['tasks']} tasks",
+            str(thesis["tasks"]),
+            *(f"{depth[k]:.2f}" for k in ("mean", "min", "max")),
+        ]
     ]
+    for model in MODELS:
+        if (s := metrics["models"][model]) is not None:
+            rows.append([LABELS[model], str(s["tasks"]), *(f"{s['depth'][k]:.2f}" for k in ("mean", "min", "max"))])
+    return markdown_table(["model", "tasks", "mean", "min", "max"], rows)
+
+
+def _bins_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Edges per task by size bin, for the three models."""
     rows = []
     for b in metrics["bins"]:
         a, g, c = b["learned"], b["ground_truth"], b["all_orderings"]
@@ -186,14 +167,11 @@ def report(metrics: Mapping[str, Any]) -> str:
         "subgoals", "tasks", "(a) flat", "(a) CC-HTN", "(a) ÷", "(b) flat", "(b) CC-HTN", "(b) ÷", "(c) tasks",
         "(c) flat", "(c) CC-HTN", "(c) ÷",
     ]
-    lines += [
-        "",
-        "## Edges per task, by task size",
-        "",
-        "Means over the tasks of each bin; ÷ is total flat edges over total CC-HTN edges.",
-        "",
-        *markdown_table(header, rows),
-    ]
+    return markdown_table(header, rows)
+
+
+def _models_table(models: Mapping[str, Any]) -> list[str]:
+    """Edges per task over all tasks, one row per model."""
     header = [
         "model", "tasks", "complete", "flat edges", "CC-HTN edges", "flat ÷ CC-HTN", "tasks with fewer CC-HTN edges",
         "with more",
@@ -212,26 +190,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         for model in MODELS
         if (s := models[model]) is not None
     ]
-    lines += ["", "## All tasks", "", *markdown_table(header, rows), ""]
-    lines += [
-        "## Beside Figure 2.5",
-        "",
-        f"The thesis's caption: “{thesis['figure_2_5']}” Its text gives no values for the figure; it argues "
-        f"that a clique of |V| subgoals needs {thesis['clique_edges']['flat']} flat edges but "
-        f"{thesis['clique_edges']['cc_htn']} in the CC-HTN, and {thesis['clique_transition_edges']['cc_htn']} "
-        f"instead of {thesis['clique_transition_edges']['flat']} for each transition into or out of a clique. "
-        "The claim to check is qualitative: fewer edges in the CC-HTN, the gap growing with the number of "
-        "subgoals. Whether the reduction is “dramatic” cannot be checked against a number.",
-        "",
-    ]
-    lines += [f"* {verdict(metrics, model)}" for model in MODELS]
-    lines += [
-        "",
-        "The saving comes only from order-free parts: a chain costs the same in both models, so the ratio "
-        "reflects how much of a task is cliques, and how large they are.",
-        "",
-    ]
-    return "\n".join(lines)
+    return markdown_table(header, rows)
 
 
 def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:

@@ -12,36 +12,15 @@
 324
 """
 
-from supportive.experiments.generalisation.measure import SYNTHETIC, make_trials, run_trial, summarize
-from supportive.experiments.generalisation.report import findings, headline, plots, report
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.generalisation import measure, report
+from supportive.experiments.registry import declare
 
-__all__ = [
-    "GENERALISATION",
-    "SYNTHETIC",
-    "findings",
-    "headline",
-    "make_trials",
-    "plots",
-    "report",
-    "run_trial",
-    "summarize",
-]
+__all__ = ["GENERALISATION"]
 
-GENERALISATION = register(
-    Experiment(
-        name="generalisation",
-        title="Generalisation: general vs strict learner on generated tasks and CaptainCook4D",
-        reference="§2.1.4 (compaction), on generated tasks and CaptainCook4D (issue #13)",
-        thesis={},
-        default_trials=SYNTHETIC + 24,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        findings=findings,
-    )
+GENERALISATION = declare(
+    name="generalisation",
+    title="Generalisation: general vs strict learner on generated tasks and CaptainCook4D",
+    reference="§2.1.4 (compaction), on generated tasks and CaptainCook4D (issue #13)",
+    parts=(measure, report),
 )
 """The registered experiment."""

@@ -17,10 +17,12 @@ from supportive.learning.graph_edges import edge_scores
 from supportive.learning.precedence import implied_precedences, precedence_scores
 from supportive.tasks.htn import HTN, count_orderings, iter_orderings, sample_ordering, to_leaves
 
-__all__ = ["LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
+__all__ = ["DEFAULT_TRIALS", "LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
 
 SYNTHETIC = 300
 """Generated tasks of a full run (half of each profile)."""
+DEFAULT_TRIALS = SYNTHETIC + 24
+"""Trials of a full run: the generated tasks, then the 24 recipes."""
 LEARNERS = ("auto", "general", "strict")
 """The default learner (``auto``: the reading chosen by held-out likelihood), the ``general`` reading alone, and
 the thesis's ``strict`` one."""

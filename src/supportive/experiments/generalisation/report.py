@@ -12,6 +12,7 @@ from supportive.experiments.generalisation.measure import DEMONSTRATIONS, LEARNE
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render, section
 from supportive.learning.graph_edges import PEERS
 
 __all__ = ["findings", "headline", "plots", "report"]
@@ -21,15 +22,16 @@ DEFAULT, STRICT = LEARNERS[0], LEARNERS[-1]
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """Markdown tables: generated tasks per profile; CaptainCook4D admission and precedence scores."""
-    lines = [
-        "# Generalisation: the default learner and the general reading beside the strict one",
-        "",
-        f"Generated chain/clique tasks of {SIZES[0]}–{SIZES[1]} actions, {DEMONSTRATIONS} sampled demonstrations each:",
-        "recall is the share of the valid orderings the learned hierarchy admits, precision the share of its",
-        "orderings that are valid (issue #13 asks recall ≥ 0.6 with precision ≥ 0.95).",
-        "",
-        *markdown_table(
+    """Markdown tables: generated tasks per profile; CaptainCook4D admission and precedence scores (the prose:
+    ``templates/report.md``, ``slips.md``, ``captaincook.md``)."""
+    slips = metrics.get("slips")
+    captaincook = metrics["captaincook"]
+    return render(
+        __package__,
+        "report.md",
+        sizes=f"{SIZES[0]}–{SIZES[1]}",
+        demonstrations=DEMONSTRATIONS,
+        synthetic_table=markdown_table(
             ["profile", "learner", "tasks", "recall", "precision", "complete"],
             [
                 [profile, mode, str(m["tasks"]), f"{m['recall']:.3f}", f"{m['precision']:.3f}", str(m["complete"])]
@@ -37,75 +39,57 @@ def report(metrics: Mapping[str, Any]) -> str:
                 for mode, m in by_mode.items()
             ],
         ),
+        slips=section(__package__, "slips.md", clean=str(SLIP_CLEAN), slipped=str(SLIPPED), table=_slips_table(slips))
+        if slips
+        else "",
+        captaincook=section(
+            __package__,
+            "captaincook.md",
+            scores_table=_scores_table(captaincook),
+            few_shot=FEW_SHOT,
+            peers=", ".join(f"{name} {', '.join(f'{k} {v:.3f}' for k, v in f1.items())}" for name, f1 in PEERS.items()),
+            edges_table=_edges_table(captaincook),
+        )
+        if captaincook
+        else "",
+    )
+
+
+def _slips_table(slips: Mapping[str, Any]) -> list[str]:
+    """Recall / precision per profile on clean data, with slips, and with slips but none set aside."""
+    data = ("clean", "with_slips", "with_slips_none_set_aside")
+    return markdown_table(
+        ["profile", "clean: recall / precision", "with slips", "with slips, none set aside"],
+        [[profile] + [f"{m[d]['recall']:.3f} / {m[d]['precision']:.3f}" for d in data] for profile, m in slips.items()],
+    )
+
+
+def _scores_table(captaincook: Mapping[str, Any]) -> list[str]:
+    """Per learner: held-out recordings admitted, and precedence precision / recall with and without errors."""
+    header = [
+        "learner", "admitted", "P (error-free)", "R (error-free)", "P (with errors)", "R (with errors)",
+        "P (with errors, all pairs)",
     ]
-    if metrics.get("slips"):
-        lines += [
-            "",
-            f"Slips on the same tasks (general learner): {SLIP_CLEAN} sampled demonstrations, then those and {SLIPPED}",
-            "more with one step moved to a random place; the last column sets nothing aside (`slips=False`). A",
-            "moved step that lands inside another subtask breaks its contiguity rather than an order, which the",
-            "slip search does not look for (docs/learning.md).",
-            "",
-            *markdown_table(
-                ["profile", "clean: recall / precision", "with slips", "with slips, none set aside"],
-                [
-                    [profile]
-                    + [f"{m[data]['recall']:.3f} / {m[data]['precision']:.3f}" for data in ("clean", "with_slips", "with_slips_none_set_aside")]
-                    for profile, m in metrics["slips"].items()
-                ],
-            ),
+    keys = ("error_free_precision", "error_free_recall", "with_errors_precision", "with_errors_recall", "with_errors_all_precision")
+    rows = [
+        [mode, f"{m['admitted']}/{m['held_out']} ({m['admission']:.1%})", *(f"{m[k]:.3f}" for k in keys)]
+        for mode, m in captaincook.items()
+    ]
+    return markdown_table(header, rows)
+
+
+def _edges_table(captaincook: Mapping[str, Any]) -> list[str]:
+    """Per learner: task-graph edge precision / recall / F1, from all error-free recordings and 5-shot."""
+    rows = [
+        [mode]
+        + [
+            f"{m['edges'][setting]['precision']:.3f} / {m['edges'][setting]['recall']:.3f} / "
+            f"**{m['edges'][setting]['f1']:.3f}**"
+            for setting in ("full", "5-shot")
         ]
-    if metrics["captaincook"]:
-        lines += [
-            "",
-            "CaptainCook4D: learned from the first half of each recipe's error-free recordings, the share of the other",
-            "half admitted (issue #13 asks ≥ 0.60); learned from every error-free recording, and from every recording",
-            "errors included, the precision and recall of the implied \"must come before\" pairs among the graph's steps",
-            "against the published graphs (asked: with errors within 0.03 of without). Recordings with errors add",
-            "performances the graph lacks (a step done twice, an off-graph step); \"P (all pairs)\" counts their orders",
-            "as wrong too.",
-            "",
-            *markdown_table(
-                [
-                    "learner", "admitted", "P (error-free)", "R (error-free)", "P (with errors)", "R (with errors)",
-                    "P (with errors, all pairs)",
-                ],
-                [
-                    [
-                        mode,
-                        f"{m['admitted']}/{m['held_out']} ({m['admission']:.1%})",
-                        f"{m['error_free_precision']:.3f}",
-                        f"{m['error_free_recall']:.3f}",
-                        f"{m['with_errors_precision']:.3f}",
-                        f"{m['with_errors_recall']:.3f}",
-                        f"{m['with_errors_all_precision']:.3f}",
-                    ]
-                    for mode, m in metrics["captaincook"].items()
-                ],
-            ),
-        ]
-        lines += [
-            "",
-            "CaptainCook4D task graphs with the protocol of *Differentiable Task Graph Learning* (Seminara et al.,",
-            "NeurIPS 2024): the learned \"before\" relation transitively reduced, START and END added, its edges",
-            "against the published graph's, precision / recall / F1 per recipe and their means; learned from every",
-            f"error-free recording (full) and from each recipe's first {FEW_SHOT} (5-shot). Their published F1s:",
-            ", ".join(f"{name} {', '.join(f'{k} {v:.3f}' for k, v in f1.items())}" for name, f1 in PEERS.items()) + ".",
-            "",
-            *markdown_table(
-                ["learner", "full: P / R / F1", "5-shot: P / R / F1"],
-                [
-                    [mode]
-                    + [
-                        f"{m['edges'][setting]['precision']:.3f} / {m['edges'][setting]['recall']:.3f} / "
-                        f"**{m['edges'][setting]['f1']:.3f}**"
-                        for setting in ("full", "5-shot")
-                    ]
-                    for mode, m in metrics["captaincook"].items()
-                ],
-            ),
-        ]
-    return "\n".join(lines) + "\n"
+        for mode, m in captaincook.items()
+    ]
+    return markdown_table(["learner", "full: P / R / F1", "5-shot: P / R / F1"], rows)
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:

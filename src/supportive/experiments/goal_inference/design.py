@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from supportive.experiments.trials import Trial, spawn_trials
 
 __all__ = [
+    "DEFAULT_TRIALS",
     "EVENTS_PER_ACTION",
     "MEAN_DURATION",
     "SETTINGS",
@@ -29,6 +30,8 @@ SIZES = (10, 20, 50, 100, 200, 500, 1000)
 """Subgoals per task, from the thesis's smallest task (10) to ten times its largest (100)."""
 TRIALS_PER_SIZE = 5
 """Tasks per size in a full run."""
+DEFAULT_TRIALS = TRIALS_PER_SIZE * len(SIZES)
+"""Trials of a full run: one per task."""
 MEAN_DURATION = 5.0
 """Mean number of steps spent on a subgoal, in the streams and in both filters."""
 EVENTS_PER_ACTION = 3

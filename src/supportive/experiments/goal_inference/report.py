@@ -20,6 +20,7 @@ from supportive.experiments.output import TIMING_FILE
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import above_zero, below_zero, format_ci
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 
 __all__ = ["LABELS", "accuracy_verdict", "headline", "report", "setting_label", "timing_markdown"]
 
@@ -156,94 +157,34 @@ def _work_table(metrics: Mapping[str, Any]) -> list[str]:
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report of a goal-inference run (deterministic: from the metrics alone)."""
+    """The markdown report of a goal-inference run (deterministic: from the metrics alone; its prose:
+    ``templates/report.md``)."""
     thesis = metrics["thesis"]
     design = metrics["design"]
-    steps = (
-        f"{steps_for(200):,} steps up to 200 subgoals, {steps_for(500):,} up to 500 and {steps_for(1000):,} "
-        "beyond"
+    return render(
+        __package__,
+        "report.md",
+        metrics,
+        sizes=_sizes_line(metrics),
+        thesis_tasks=thesis["tasks"],
+        thesis_subgoals=f"{thesis['subgoals']['min']}–{thesis['subgoals']['max']}",
+        mean_duration=f"{MEAN_DURATION:g}",
+        events_per_action=design["events_per_action"],
+        steps=f"{steps_for(200):,} steps up to 200 subgoals, {steps_for(500):,} up to 500 and {steps_for(1000):,} beyond",
+        timed_setting=design["timed_setting"],
+        figure_2_4=thesis["figure_2_4"],
+        computational_claim=thesis["computational_claim"],
+        accuracy_statement=thesis["accuracy_statement"],
+        cpu=thesis["cpu"],
+        accuracy_table=_accuracy_table(metrics),
+        verdicts=[f"* {paragraph}" for paragraph in accuracy_verdict(metrics)],
+        size_table=_size_table(metrics),
+        progress_table=_progress_table(metrics),
+        work_table=_work_table(metrics),
+        timing_report=TIMING_REPORT,
+        timing_file=TIMING_FILE,
+        timing_plot=TIMING_PLOT,
     )
-    lines = [
-        f"# {metrics['title']}",
-        "",
-        f"Thesis: {metrics['reference']}. This run: {metrics['trials']} generated IKEA-like tasks (tasks × "
-        f"subgoals: {_sizes_line(metrics)}), seed {metrics['seed']}. The thesis's evaluation set (§2.1.7.2): "
-        f"{thesis['tasks']} tasks of {thesis['subgoals']['min']}–{thesis['subgoals']['max']} subgoals.",
-        "",
-        "## What is measured",
-        "",
-        "* **Tasks.** One task per trial, drawn like edge-reduction's (`ikea_task_set`: mean primitive depth "
-        "within the thesis's 1.99–3.61). Both models are built from its ground-truth structure, "
-        "`HTN(task, (structure,))`, so they share the same subgoals and valid transitions.",
-        "* **Models.** The flat HMM (`FlatHMM`: a dense subgoal-to-subgoal matrix, uniform over the valid "
-        "successors) and the hierarchical HMM (`HierarchicalHMM`: the moves routed through the CC-HTN's chains "
-        f"and cliques), both expecting a subgoal to last {MEAN_DURATION:g} steps.",
-        f"* **Streams.** For each setting, a synthetic observation model ({design['events_per_action']} "
-        "contact events per action) and a labelled stream: valid orderings performed back to back, each "
-        f"subgoal lasting a geometric number of steps (mean {MEAN_DURATION:g}), cut at {steps} "
-        "(for the largest tasks, a prefix of one execution). *Overlap* is the share of an action's events drawn from a small "
-        "pool other actions use too; *noisy* means more stray contacts and events seen less reliably.",
-        "* **Accuracy.** The share of steps at which the online filter ranks the true current subgoal first "
-        "(*subgoal*) and the true enclosing subtask — the subgoal's parent node — first (*subtask*) "
-        "(`supportive.inference.accuracy.inference_accuracy`). Means over trials with a 95% confidence interval "
-        "(Student's t); Δ is hierarchical − flat, paired by trial.",
-        "* **Work per update** (deterministic): the entries one update multiplies with to move the belief (flat: "
-        "its dense subgoals × subgoals matrix; hierarchical: a dense matrix up to 128 subgoals, else the "
-        "non-zeros of its sparse factors), and the non-zero transitions between subgoals of each model.",
-        "* **Time per update** (not deterministic): the median over a stream's steps of the wall-clock time of "
-        f"`GoalFilter.update`, per model, on the `{design['timed_setting']}` stream, numpy on one thread. See "
-        "*Computation time per update* below for where it is.",
-        "",
-        "## What the thesis reports",
-        "",
-        f"* Figure 2.4's caption: “{thesis['figure_2_4']}”",
-        f"* §2.1.7.3: “{thesis['computational_claim']}” and “{thesis['accuracy_statement']}”",
-        "* The thesis prints no values for Figure 2.4 and **no accuracy numbers** at all: it says only that the "
-        "accuracy benefits of the hierarchical model depend on observation overlap between subtasks. Accuracy "
-        "here can be compared with that statement only, and times with “faster than 1Hz” (under 1 s per update, "
-        f"{thesis['cpu']}) and with “considerable computational benefits over flat task models”.",
-        "",
-        "## Accuracy",
-        "",
-        *_accuracy_table(metrics),
-        "",
-        *[f"* {paragraph}" for paragraph in accuracy_verdict(metrics)],
-        "",
-        "## Accuracy by task size",
-        "",
-        "Mean subgoal accuracy, flat / hierarchical.",
-        "",
-        *_size_table(metrics),
-        "",
-        "## The progress-aware tracker beside the hierarchical HMM",
-        "",
-        "Mean subgoal accuracy, hierarchical HMM → progress-aware tracker (`supportive.inference.ProgressHMM`, "
-        "which knows what is done and that each subgoal is performed once; with `restart`, since every stream "
-        "chains several executions), and the paired difference with its 95% CI, per size and setting. Both "
-        "are built from the task's ground-truth structure, which carries no counts, so the tracker's choices "
-        "are uniform: the gain is knowing what is done, not learned frequencies.",
-        "",
-        *_progress_table(metrics),
-        "",
-        "## Work per update",
-        "",
-        *_work_table(metrics),
-        "",
-        "Both models have the same non-zero transitions (the hierarchical operator, compiled, is the flat "
-        "matrix's sparsity pattern); what differs is how much an update touches: the flat filter multiplies "
-        "with every entry of its dense matrix, the hierarchical one, past 128 subgoals, only with its sparse "
-        "factors' non-zeros.",
-        "",
-        "## Computation time per update",
-        "",
-        "Wall-clock times differ from run to run, so they are kept out of `metrics.json` and out of this report "
-        "(both byte-identical for the same seed, however many workers ran the trials). The same run writes "
-        f"them beside this file, like `run.json`: `{TIMING_REPORT}` (the per-size table beside Figure 2.4), "
-        f"`{TIMING_FILE}` (every trial's times, with the processor) and `{TIMING_PLOT}` (time vs subgoals, "
-        "log-log). From Python, the trials' times are in `RunResult.timings`.",
-        "",
-    ]
-    return "\n".join(lines)
 
 
 def _rows_by_size(document: Mapping[str, Any]) -> dict[int, Sequence[Mapping[str, Any]]]:
@@ -266,28 +207,54 @@ def _same_cost(sizes: Sequence[Mapping[str, Any]]) -> str:
 
 def timing_markdown(document: Mapping[str, Any]) -> str:
     """``timing.md``: the per-size per-update times of a run (its timing ``document``, see
-    :func:`~.timing.timing_summary`) beside Figure 2.4. Not deterministic."""
-    thesis = THESIS
-    bound_us = thesis["update_seconds_bound"] * 1e6
-    sizes = document["sizes"]
+    :func:`~.timing.timing_summary`) beside Figure 2.4 (its prose: ``templates/timing.md``). Not
+    deterministic."""
+    bound_us = THESIS["update_seconds_bound"] * 1e6
+    sizes, trials = document["sizes"], document["trials"]
+    worst = max(sizes, key=lambda row: row["hierarchical"]["median_us"])
+    under = sum(t["hierarchical"]["max_us"] < bound_us for t in trials)
+    largest, smallest = sizes[-1], sizes[0]
+    grows = (largest["ratio"] or 0) > (smallest["ratio"] or 0) and (largest["ratio"] or 0) > 1
+    return render(
+        __package__,
+        "timing.md",
+        trials=len(trials),
+        cpus=", ".join(document["cpus"]),
+        python=document["python"],
+        settings=" / ".join(sorted({str(t.get("setting")) for t in trials})),
+        table=_timing_table(document),
+        figure_2_4=THESIS["figure_2_4"],
+        worst_subgoals=worst["subgoals"],
+        worst_us=f"{worst['hierarchical']['median_us']:.1f}",
+        margin=f"{bound_us / worst['hierarchical']['median_us']:,.0f}",
+        slowest_us=f"{max(t['hierarchical']['max_us'] for t in trials):.1f}",
+        slowest_flat_us=f"{max(t['flat']['max_us'] for t in trials):.1f}",
+        under=under,
+        holds="the claim holds, for every trial." if under == len(trials) else "not in every trial.",
+        smallest_ratio=_ratio(smallest),
+        smallest=smallest["subgoals"],
+        largest_ratio=_ratio(largest),
+        largest=largest["subgoals"],
+        grows=(
+            "The hierarchical filter's advantage grows with task size."
+            if grows
+            else "No advantage that grows with task size in this run."
+        ),
+        same_cost=_same_cost(sizes),
+    )
+
+
+def _ratio(row: Mapping[str, Any]) -> str:
+    return "–" if row["ratio"] is None else format(row["ratio"], ".2f")
+
+
+def _timing_table(document: Mapping[str, Any]) -> list[str]:
+    """One row per task size: median and mean update times of both models."""
     by_size = _rows_by_size(document)
-    lines = [
-        "# Per-update computation time: goal-inference",
-        "",
-        f"{len(document['trials'])} trials (those of the `metrics.json` beside this file). **Not "
-        f"deterministic**: wall-clock times, measured on {', '.join(document['cpus'])} with numpy on one "
-        f"thread, Python {document['python']}. Each trial times every `GoalFilter.update` on its "
-        f"`{' / '.join(sorted({str(t.get('setting')) for t in document['trials']}))}` stream "
-        "(`time.perf_counter` around each update) and keeps the median and the mean over the steps; per size "
-        "below, the median over trials of those medians (least–greatest) and the mean of the means (Figure 2.4 "
-        "plots means).",
-        "",
-    ]
     rows = []
-    for row in sizes:
+    for row in document["sizes"]:
         f, h = row["flat"], row["hierarchical"]
         steps = sum(t["steps"] for t in by_size[row["subgoals"]]) / row["trials"]
-        ratio = "–" if row["ratio"] is None else f"{row['ratio']:.2f}"
         rows.append(
             [
                 str(row["subgoals"]),
@@ -295,7 +262,7 @@ def timing_markdown(document: Mapping[str, Any]) -> str:
                 f"{steps:.0f}",
                 _range(f),
                 _range(h),
-                ratio,
+                _ratio(row),
                 f"{f['mean_us']:.1f}",
                 f"{h['mean_us']:.1f}",
                 f"{1e6 / h['median_us']:,.0f}",
@@ -305,39 +272,7 @@ def timing_markdown(document: Mapping[str, Any]) -> str:
         "subgoals", "trials", "steps", "flat: median µs (range)", "hierarchical: median µs (range)",
         "flat ÷ hierarchical", "flat: mean µs", "hierarchical: mean µs", "hierarchical updates per second",
     ]
-    lines += markdown_table(header, rows)
-    slowest = max(t["hierarchical"]["max_us"] for t in document["trials"])
-    slowest_flat = max(t["flat"]["max_us"] for t in document["trials"])
-    worst = max(sizes, key=lambda row: row["hierarchical"]["median_us"])
-    under = sum(t["hierarchical"]["max_us"] < bound_us for t in document["trials"])
-    largest, smallest = sizes[-1], sizes[0]
-    lines += [
-        "",
-        "## Beside Figure 2.4",
-        "",
-        f"The caption: “{thesis['figure_2_4']}” The thesis prints no values, so two statements can be "
-        "compared:",
-        "",
-        f"* **Faster than 1 Hz.** The median hierarchical update took longest at {worst['subgoals']} "
-        f"subgoals: {worst['hierarchical']['median_us']:.1f} µs, "
-        f"{bound_us / worst['hierarchical']['median_us']:,.0f} times less than 1 s; the slowest single hierarchical "
-        f"update of any trial took {slowest:.1f} µs (flat: {slowest_flat:.1f} µs). In {under} of "
-        f"{len(document['trials'])} trials every hierarchical update was faster than 1 Hz: "
-        + ("the claim holds, for every trial." if under == len(document["trials"]) else "not in every trial.")
-        + " (On another processor than the thesis's i7-3930K: compare margins, not microseconds.)",
-        f"* **Computational benefit over the flat model.** Flat ÷ hierarchical median time: "
-        f"{'–' if smallest['ratio'] is None else format(smallest['ratio'], '.2f')} at {smallest['subgoals']} "
-        f"subgoals, {'–' if largest['ratio'] is None else format(largest['ratio'], '.2f')} at "
-        f"{largest['subgoals']}. "
-        + (
-            "The hierarchical filter's advantage grows with task size."
-            if (largest["ratio"] or 0) > (smallest["ratio"] or 0) and (largest["ratio"] or 0) > 1
-            else "No advantage that grows with task size in this run."
-        )
-        + _same_cost(sizes),
-        "",
-    ]
-    return "\n".join(lines)
+    return markdown_table(header, rows)
 
 
 def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:

@@ -11,49 +11,15 @@ the setting the documented procedure picks (:func:`~supportive.experiments.learn
 462
 """
 
-from supportive.experiments.learner_settings.measure import (
-    CLEAN_TASKS,
-    DEMONSTRATIONS,
-    GRID,
-    TASKS,
-    choose,
-    make_trials,
-    run_trial,
-    settings_name,
-    summarize,
-)
-from supportive.experiments.learner_settings.report import findings, headline, plots, report
-from supportive.experiments.registry import Experiment, register
-from supportive.generate.mistakes import KINDS, PROFILES
+from supportive.experiments.learner_settings import measure, report
+from supportive.experiments.registry import declare
 
-__all__ = [
-    "GRID",
-    "LEARNER_SETTINGS",
-    "choose",
-    "findings",
-    "headline",
-    "make_trials",
-    "plots",
-    "report",
-    "run_trial",
-    "settings_name",
-    "summarize",
-]
+__all__ = ["LEARNER_SETTINGS"]
 
-LEARNER_SETTINGS = register(
-    Experiment(
-        name="learner-settings",
-        title="Learner settings: the slip search's defaults, chosen on generated tasks",
-        reference="issue #23 (not in the thesis): slips judged against the model, on generated tasks",
-        thesis={},
-        default_trials=TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(KINDS) + CLEAN_TASKS,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        findings=findings,
-    )
+LEARNER_SETTINGS = declare(
+    name="learner-settings",
+    title="Learner settings: the slip search's defaults, chosen on generated tasks",
+    reference="issue #23 (not in the thesis): slips judged against the model, on generated tasks",
+    parts=(measure, report),
 )
 """The registered experiment."""

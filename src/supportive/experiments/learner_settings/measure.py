@@ -25,6 +25,7 @@ from supportive.learning.general.noise import Deviation
 __all__ = [
     "CLEAN_DEMONSTRATIONS",
     "CLEAN_TASKS",
+    "DEFAULT_TRIALS",
     "DEMONSTRATIONS",
     "GRID",
     "KIND_OF_SLIP",
@@ -49,6 +50,8 @@ CLEAN_TASKS = 300
 """Generated tasks without mistakes (a full run), each with 1–200 demonstrations: how often a setting reports
 a slip where there is none."""
 CLEAN_DEMONSTRATIONS = (1, 200)
+DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(KINDS) + CLEAN_TASKS
+"""Trials of a full run: the tasks with mistakes, then the clean ones."""
 KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
 """Which kind of slip the learner should report for each kind of mistake put in."""
 GRID: dict[str, tuple[float, ...]] = {"slip_margin": (0.0, 1.0, 2.0), "slip_rate": (0.03, 0.1, 0.2)}

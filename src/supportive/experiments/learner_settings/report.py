@@ -16,32 +16,26 @@ from supportive.experiments.learner_settings.measure import (
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 from supportive.generate.mistakes import KINDS
 
 __all__ = ["findings", "headline", "plots", "report"]
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """Markdown: per setting, precision / recall per kind and number of demonstrations, and clean reports."""
-    table = metrics["settings"]
+    """Markdown: per setting, precision / recall per kind and number of demonstrations, and clean reports (its
+    prose: ``templates/report.md``)."""
     chosen = metrics["chosen"]
     cells = [f"{kind} {n}" for kind in KINDS for n in DEMONSTRATIONS]
-    lines = [
-        "# Learner settings: the slip search's defaults, chosen on generated tasks",
-        "",
-        f"Generated tasks of {SIZES[0]}–{SIZES[1]} steps (chain/clique structures of the `ikea` and `uniform` profiles,",
-        "and partial orders of interleaved chains), demonstrations drawn uniformly from their valid executions; in",
-        f"{SHARE:.0%} of them one step moved to a place it may not be, repeated later, or dropped. Each cell is the",
-        "precision / recall of the slips the general learner reports (right: of the kind put in, in a demonstration",
-        "with a mistake, and putting it right makes the demonstration valid). `clean` is the share of steps reported",
-        "on demonstrations without mistakes, and how many of those tasks had any report.",
-        "",
-        f"The clean tasks have {CLEAN_DEMONSTRATIONS[0]}–{CLEAN_DEMONSTRATIONS[1]} demonstrations each. The procedure:",
-        "among the settings that report at most 0.5 % of clean steps and a slip in at most 1 % of clean tasks, the",
-        f"best worst F1 over the cells (grid: {_grid()}).",
-        f"Chosen: **{chosen or 'none qualifies'}**.",
-        "",
-        *markdown_table(
+    return render(
+        __package__,
+        "report.md",
+        sizes=f"{SIZES[0]}–{SIZES[1]}",
+        share=f"{SHARE:.0%}",
+        clean_demonstrations=f"{CLEAN_DEMONSTRATIONS[0]}–{CLEAN_DEMONSTRATIONS[1]}",
+        grid=_grid(),
+        chosen=chosen or "none qualifies",
+        table=markdown_table(
             ["setting", *cells, "clean", "worst F1"],
             [
                 [
@@ -50,11 +44,10 @@ def report(metrics: Mapping[str, Any]) -> str:
                     f"{row['clean_flagged']:.4f} ({row['clean_tasks_flagged']}/{row['clean_tasks']})",
                     f"{row['worst_f1']:.3f}",
                 ]
-                for name, row in table.items()
+                for name, row in metrics["settings"].items()
             ],
         ),
-    ]
-    return "\n".join(lines) + "\n"
+    )
 
 
 def _grid() -> str:

@@ -11,33 +11,15 @@ precision-recall plot.
 54
 """
 
-from supportive.experiments.mistake_detection.measure import (
-    GENERATED,
-    RECIPES,
-    choose,
-    make_trials,
-    run_trial,
-    summarize,
-)
-from supportive.experiments.mistake_detection.report import findings, headline, plots, report
-from supportive.experiments.registry import Experiment, register
+from supportive.experiments.mistake_detection import measure, report
+from supportive.experiments.registry import declare
 
-__all__ = ["MISTAKE_DETECTION", "choose", "findings", "headline", "make_trials", "plots", "report", "run_trial", "summarize"]
+__all__ = ["MISTAKE_DETECTION"]
 
-MISTAKE_DETECTION = register(
-    Experiment(
-        name="mistake-detection",
-        title="Online mistake detection: generated tasks, then CaptainCook4D",
-        reference="§3.1 (supportive behaviours), on generated tasks and CaptainCook4D (issue #24); not in the thesis",
-        thesis={},
-        default_trials=GENERATED + RECIPES,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        findings=findings,
-    )
+MISTAKE_DETECTION = declare(
+    name="mistake-detection",
+    title="Online mistake detection: generated tasks, then CaptainCook4D",
+    reference="§3.1 (supportive behaviours), on generated tasks and CaptainCook4D (issue #24); not in the thesis",
+    parts=(measure, report),
 )
 """The registered experiment."""

@@ -14,6 +14,7 @@ from supportive.inference.mistakes import MistakeDetector
 from supportive.io.captaincook import load_captaincook
 
 __all__ = [
+    "DEFAULT_TRIALS",
     "GENERATED",
     "KINDS",
     "POSITIVES",
@@ -31,6 +32,8 @@ __all__ = [
 GENERATED = 30
 """Generated tasks of a full run (the profiles in turn)."""
 RECIPES = 24
+DEFAULT_TRIALS = GENERATED + RECIPES
+"""Trials of a full run: the generated tasks, then every recipe."""
 SIZES = (6, 12)
 """Steps per generated task (inclusive range)."""
 TRAIN = 20

@@ -13,23 +13,24 @@ from supportive.experiments.plotting import new_figure, save_png
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render, section
 
 __all__ = ["findings", "headline", "plots", "report"]
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """Markdown: generated tasks per threshold, the choice, CaptainCook4D per method and kind."""
+    """Markdown: generated tasks per threshold, the choice, CaptainCook4D per method and kind (the prose:
+    ``templates/report.md``, ``captaincook.md``)."""
     chosen = metrics["chosen"]
-    lines = [
-        "# Online mistake detection",
-        "",
-        f"Generated tasks of {SIZES[0]}–{SIZES[1]} steps (chain/clique structures and partial orders), learned from {TRAIN}",
-        f"clean demonstrations; {TEST} clean held-out executions and {TEST} with each mistake (a step moved early, a",
-        "step skipped, a step repeated). Each held-out execution is judged step by step, using only the steps so",
-        "far. The procedure: among the thresholds flagging at most 1 % of clean steps, the best worst recall (ties:",
-        f"nearest 0.5). Chosen: **{chosen}**.",
-        "",
-        *markdown_table(
+    cc = metrics["captaincook"]
+    return render(
+        __package__,
+        "report.md",
+        sizes=f"{SIZES[0]}–{SIZES[1]}",
+        train=TRAIN,
+        test=TEST,
+        chosen=chosen,
+        generated_table=markdown_table(
             ["threshold", "false alarms (clean steps)", *(f"recall: {k}" for k in KINDS), "skip caught after (steps)"],
             [
                 [
@@ -41,40 +42,38 @@ def report(metrics: Mapping[str, Any]) -> str:
                 for t, row in metrics["generated"].items()
             ],
         ),
-    ]
-    cc = metrics["captaincook"]
-    if cc:
-        lines += [
-            "",
-            f"CaptainCook4D, {cc['recipes']} recipes, {cc['held_out']} recordings each held out in turn (learned from the",
-            f"others, labels unused); positives: {' and '.join(POSITIVES)} (the other labels a step sequence cannot show are",
-            f"counted apart). The detector at threshold {cc['threshold']}:",
-            "",
-            *markdown_table(
-                ["method", "precision", "recall", "F1", "flagged on error-free recordings", "not-visible labels flagged"],
+        captaincook=_captaincook(cc) if cc else "",
+    )
+
+
+def _captaincook(cc: Mapping[str, Any]) -> str:
+    """The CaptainCook4D part: every method's scores, per kind, and how late missing steps are caught."""
+    delay = cc["methods"][DETECTOR]["missing_delay"]
+    return section(
+        __package__,
+        "captaincook.md",
+        recipes=cc["recipes"],
+        held_out=cc["held_out"],
+        positives=" and ".join(POSITIVES),
+        threshold=cc["threshold"],
+        methods_table=markdown_table(
+            ["method", "precision", "recall", "F1", "flagged on error-free recordings", "not-visible labels flagged"],
+            [
                 [
-                    [
-                        name,
-                        f"{m['precision']:.3f}",
-                        f"{m['recall']:.3f}",
-                        f"**{m['f1']:.3f}**",
-                        f"{m['clean_flagged']:.4f}",
-                        f"{m['not_visible']['flagged']}/{m['not_visible']['labels']}",
-                    ]
-                    for name, m in cc["methods"].items()
-                ],
-            ),
-            "",
-            "Per kind (recall: the positives of that kind a method flags; precision: of the flags naming that",
-            "kind, the right ones — the precondition check names order, the unseen bigram no kind):",
-            "",
-            *markdown_table(list(KIND_HEADERS), kind_rows(cc["methods"])),
-            "",
-            f"Missing steps the detector found: {cc['methods'][DETECTOR]['missing_delay']['found']}, caught on average",
-            f"{cc['methods'][DETECTOR]['missing_delay']['mean']} steps after their place (0: at the step done instead).",
-            "`precision-recall.png` draws the detector over every threshold and the baselines' points.",
-        ]
-    return "\n".join(lines) + "\n"
+                    name,
+                    f"{m['precision']:.3f}",
+                    f"{m['recall']:.3f}",
+                    f"**{m['f1']:.3f}**",
+                    f"{m['clean_flagged']:.4f}",
+                    f"{m['not_visible']['flagged']}/{m['not_visible']['labels']}",
+                ]
+                for name, m in cc["methods"].items()
+            ],
+        ),
+        kinds_table=markdown_table(list(KIND_HEADERS), kind_rows(cc["methods"])),
+        found=delay["found"],
+        mean=delay["mean"],
+    )
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:

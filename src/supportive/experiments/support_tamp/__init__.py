@@ -14,81 +14,15 @@ time, support actions and conflicts (:mod:`.report`, :mod:`.plots`).
 '§3.2.9, Figures 3.5–3.6'
 """
 
-from pathlib import Path
-from typing import Any
+from supportive.experiments.registry import declare
+from supportive.experiments.support_tamp import measure, plots, report
 
-from supportive.experiments.registry import Experiment, register
-from supportive.experiments.support_tamp.measure import (
-    ENVIRONMENTS,
-    PAIRINGS,
-    READINGS,
-    SCENARIOS,
-    SEARCH_WEIGHT,
-    SLOW,
-    alone_plan,
-    make_trials,
-    run_trial,
-    staged_floor,
-)
-from supportive.experiments.support_tamp.plots import FILES, plots
-from supportive.experiments.support_tamp.report import (
-    GAINS,
-    THESIS,
-    findings,
-    headline,
-    report,
-    summarize,
-    timing_summary,
-)
+__all__ = ["SUPPORT_TAMP"]
 
-__all__ = [
-    "ENVIRONMENTS",
-    "FILES",
-    "GAINS",
-    "PAIRINGS",
-    "READINGS",
-    "SCENARIOS",
-    "SEARCH_WEIGHT",
-    "SLOW",
-    "SUPPORT_TAMP",
-    "THESIS",
-    "alone_plan",
-    "findings",
-    "headline",
-    "make_trials",
-    "plots",
-    "report",
-    "run_trial",
-    "staged_floor",
-    "summarize",
-    "timing_summary",
-]
-
-
-def _timing_report(timings: list[dict[str, Any]], directory: Path) -> list[Path]:
-    import json
-
-    path = directory / "timing-summary.json"
-    path.write_text(json.dumps(timing_summary(timings), indent=2) + "\n", encoding="utf-8")
-    return [path]
-
-
-SUPPORT_TAMP = register(
-    Experiment(
-        name="support-tamp",
-        title="Supportive-behavior TAMP: a support robot rearranges a circuit-building table",
-        reference="§3.2.9, Figures 3.5–3.6",
-        thesis=THESIS,
-        default_trials=30,
-        make_trials=make_trials,
-        run_trial=run_trial,
-        summarize=summarize,
-        report=report,
-        plots=plots,
-        headline=headline,
-        timing_report=_timing_report,
-        readings=READINGS,
-        findings=findings,
-    )
+SUPPORT_TAMP = declare(
+    name="support-tamp",
+    title="Supportive-behavior TAMP: a support robot rearranges a circuit-building table",
+    reference="§3.2.9, Figures 3.5–3.6",
+    parts=(measure, plots, report),
 )
 """The registered experiment."""

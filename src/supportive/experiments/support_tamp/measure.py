@@ -44,6 +44,7 @@ from supportive.planning.hypothetical import Hypothetical
 from supportive.planning.problem import SupportProblem
 
 __all__ = [
+    "DEFAULT_TRIALS",
     "ENVIRONMENTS",
     "PAIRINGS",
     "READINGS",
@@ -76,6 +77,8 @@ SEARCH_WEIGHT = 1.0
 """λ of the ``search-aware`` reading: a 1 % smaller search weighs as much as 1 % of the expected weighted
 duration (not tuned: the neutral weight of two relative changes)."""
 
+DEFAULT_TRIALS = 30
+"""Random tables of a full run."""
 READINGS = (
     Reading(
         "duration",

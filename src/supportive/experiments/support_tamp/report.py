@@ -10,8 +10,10 @@ over the unsupported agent scenario", and Figure 3.5 plots makespan) and the **s
 
 from __future__ import annotations
 
+import json
 import statistics
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 from supportive.experiments.readings import Finding, readings_table
@@ -19,8 +21,19 @@ from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci, mean_ci
 from supportive.experiments.support_tamp.measure import PAIRINGS, READINGS, SCENARIOS, SEARCH_WEIGHT
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 
-__all__ = ["CONDITIONS", "GAINS", "THESIS", "findings", "headline", "report", "summarize", "timing_summary"]
+__all__ = [
+    "CONDITIONS",
+    "GAINS",
+    "THESIS",
+    "findings",
+    "headline",
+    "report",
+    "summarize",
+    "timing_report",
+    "timing_summary",
+]
 
 CONDITIONS = ("alone", "supported")
 """The lead alone, and with the support agent."""
@@ -150,88 +163,88 @@ def timing_summary(timings: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     return out
 
 
+def timing_report(timings: list[dict[str, Any]], directory: Path) -> list[Path]:
+    """Write ``timing-summary.json`` (:func:`timing_summary` of the trials' timings) into ``directory``."""
+    path = directory / "timing-summary.json"
+    path.write_text(json.dumps(timing_summary(timings), indent=2) + "\n", encoding="utf-8")
+    return [path]
+
+
 def _readings(metrics: Mapping[str, Any]) -> list[str]:
     return list(metrics["readings"])
 
 
 def report(metrics: Mapping[str, Any]) -> str:
     """Markdown: makespan (Figure 3.5) and the lead's planning effort (Figure 3.6) per scenario, pairing and
-    reading, both readings of the gain, the motion model's ceiling, the thesis's gains beside."""
+    reading, both readings of the gain, the motion model's ceiling, the thesis's gains beside (its prose:
+    ``templates/report.md``)."""
+    return render(
+        __package__,
+        "report.md",
+        metrics,
+        readings_table=readings_table(READINGS, _readings(metrics), "the support agent minimises"),
+        scenarios="\n\n".join(_scenario(metrics, scenario) for scenario in SCENARIOS),
+        search_table=_search_table(metrics),
+        verdict=verdict(metrics),
+    )
+
+
+_SCENARIO_TITLES = {
+    "unpredictable": "unpredictable lead, conservative weights",
+    "heuristic": "greedy heuristic lead, aggressive weights",
+}
+_SCENARIO_NOTES = {
+    "unpredictable": "(A plan-following lead does no search the support agent could model: `search-aware` is the "
+    "same run as `duration` here.)",
+}
+
+
+def _scenario(metrics: Mapping[str, Any], scenario: str) -> str:
+    """One scenario's section: makespans per pairing and reading, then how much of the slow-fast gap closed."""
     readings = _readings(metrics)
-    lines = [
-        "# Supportive-behavior TAMP: circuit building with a support robot (§3.2.9, Figures 3.5, 3.6)",
-        "",
-        f"{metrics['tables']} random tables of the thesis-size task (two cells in series drive an LED on a "
-        "switched circuit; 14 pieces, excess wires, a lamp and a resistor). Each table is run with the lead "
-        "alone and with the support agent, for each scenario, pairing of speeds (fast 100 %, slow 33 %) and "
-        "reading. Means with 95 % confidence intervals.",
-        "",
-        "## Readings",
-        "",
-        "What the support agent minimises (each reading is a run):",
-        "",
-        *readings_table(READINGS, readings, "the support agent minimises"),
-        "",
-        "What the thesis's percentages measure (both computed from every run): **reduction** (default) = "
-        "1 − mean supported makespan / mean alone — §3.2.9.3 calls two of its numbers \"average time "
-        "improvements … over the unsupported agent scenario\" and Figure 3.5 plots makespan; **speed-up** = "
-        "mean alone / mean supported − 1 — the third is an \"efficiency increase\".",
-        "",
-        "**The motion model's ceiling.** Under our motion model the least time staging could leave the lead, "
-        "for the plan it follows alone, is that plan with every piece already on its target spot, turned "
-        "right: only the hand's travel between targets and a grasp and release per piece (1.4 s at full "
-        "speed) remain. The ceiling is the gain that floor would give: no support agent staging for that plan "
-        "could do better, however fast (one that makes the lead build a different circuit could, in "
-        "principle, go further).",
-    ]
-    for scenario in SCENARIOS:
-        title = (
-            "unpredictable lead, conservative weights"
-            if scenario == "unpredictable"
-            else "greedy heuristic lead, aggressive weights"
-        )
-        rows = []
-        for pairing in PAIRINGS:
-            entry = metrics["scenarios"][scenario][pairing]
-            for reading in readings:
-                helped = entry["supported"][reading]
-                gain = helped["gain"]
-                rows.append(
-                    [
-                        pairing,
-                        f"`{reading}`",
-                        format_ci(entry["alone"]["makespan"], 1),
-                        format_ci(helped["makespan"], 1),
-                        f"{gain['reduction']:.1f} %",
-                        f"{gain['speed-up']:.1f} %",
-                        f"{THESIS['makespan_gain_percent'][pairing]:.1f} %",
-                        f"{entry['ceiling']['reduction']:.1f} % / {entry['ceiling']['speed-up']:.1f} %",
-                        f"{helped['tables_faster']} / {helped['tables_slower']}",
-                        f"{entry['alone']['lead_nodes']['mean']:.0f} ({entry['alone']['lead_nodes_median']:.0f}) → "
-                        f"{helped['lead_nodes']['mean']:.0f} ({helped['lead_nodes_median']:.0f})",
-                    ]
-                )
-        header = [
-            "pairing", "reading", "makespan alone (s)", "supported (s)", "reduction", "speed-up", "thesis",
-            "ceiling: reduction / speed-up", "faster / slower tables",
-            "lead search nodes alone → supported, mean (median)",
-        ]
-        lines += ["", f"## Scenario `{scenario}`: {title}", "", *markdown_table(header, rows, align="ll" + "r" * 8)]
-        if scenario == "unpredictable":
-            lines += [
-                "",
-                "(A plan-following lead does no search the support agent could model: `search-aware` is the "
-                "same run as `duration` here.)",
-            ]
-        lines.append("")
+    rows = []
+    for pairing in PAIRINGS:
+        entry = metrics["scenarios"][scenario][pairing]
         for reading in readings:
-            gap = metrics["scenarios"][scenario]["slow lead helped vs fast lead alone"][reading]
-            lines.append(
-                f"* `{reading}`: a slow lead with a fast support agent took {gap['slow_supported']:.1f} s, against "
-                f"{gap['slow_alone']:.1f} s alone and {gap['fast_alone']:.1f} s for a fast lead alone — "
-                f"{gap['gap_closed_percent']}% of the gap closed (thesis: \"competitively with a single fast lead\")."
+            helped = entry["supported"][reading]
+            gain = helped["gain"]
+            rows.append(
+                [
+                    pairing,
+                    f"`{reading}`",
+                    format_ci(entry["alone"]["makespan"], 1),
+                    format_ci(helped["makespan"], 1),
+                    f"{gain['reduction']:.1f} %",
+                    f"{gain['speed-up']:.1f} %",
+                    f"{THESIS['makespan_gain_percent'][pairing]:.1f} %",
+                    f"{entry['ceiling']['reduction']:.1f} % / {entry['ceiling']['speed-up']:.1f} %",
+                    f"{helped['tables_faster']} / {helped['tables_slower']}",
+                    f"{entry['alone']['lead_nodes']['mean']:.0f} ({entry['alone']['lead_nodes_median']:.0f}) → "
+                    f"{helped['lead_nodes']['mean']:.0f} ({helped['lead_nodes_median']:.0f})",
+                ]
             )
-    lines += ["", "## Figure 3.6: the greedy lead's search, alone and with each objective", ""]
+    header = [
+        "pairing", "reading", "makespan alone (s)", "supported (s)", "reduction", "speed-up", "thesis",
+        "ceiling: reduction / speed-up", "faster / slower tables",
+        "lead search nodes alone → supported, mean (median)",
+    ]
+    lines = [f"## Scenario `{scenario}`: {_SCENARIO_TITLES[scenario]}", "", *markdown_table(header, rows, align="ll" + "r" * 8)]
+    if scenario in _SCENARIO_NOTES:
+        lines += ["", _SCENARIO_NOTES[scenario]]
+    lines.append("")
+    for reading in readings:
+        gap = metrics["scenarios"][scenario]["slow lead helped vs fast lead alone"][reading]
+        lines.append(
+            f"* `{reading}`: a slow lead with a fast support agent took {gap['slow_supported']:.1f} s, against "
+            f"{gap['slow_alone']:.1f} s alone and {gap['fast_alone']:.1f} s for a fast lead alone — "
+            f"{gap['gap_closed_percent']}% of the gap closed (thesis: \"competitively with a single fast lead\")."
+        )
+    return "\n".join(lines)
+
+
+def _search_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Figure 3.6: the greedy lead's search nodes per pairing, alone and under each reading."""
+    readings = _readings(metrics)
     heuristic = metrics["scenarios"]["heuristic"]
     rows = [
         [
@@ -246,9 +259,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         for pairing in PAIRINGS
     ]
     header = ["pairing", "alone, median (mean)", *(f"`{r}`, median (mean)" for r in readings)]
-    lines += markdown_table(header, rows)
-    lines += ["", "## Verdict", "", *verdict(metrics), ""]
-    return "\n".join(lines)
+    return markdown_table(header, rows)
 
 
 def verdict(metrics: Mapping[str, Any]) -> list[str]:

@@ -9,6 +9,7 @@ from supportive.experiments.readings import Finding, readings_table
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import below_zero, format_ci, mean_ci
 from supportive.experiments.tables import markdown_table
+from supportive.experiments.templates import render
 from supportive.experiments.transfer.explore import (
     ALPHA,
     COMPLETION,
@@ -18,11 +19,12 @@ from supportive.experiments.transfer.explore import (
     NOVELTY,
     STEP,
 )
-from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS
+from supportive.experiments.transfer.measure import CONDITIONS, MACRO_CONDITIONS, READINGS, SEEDS
 from supportive.experiments.transfer.sources import PRIOR_SCALE
 
 __all__ = [
     "CLAIM",
+    "DEFAULT_TRIALS",
     "LABELS",
     "THESIS",
     "column",
@@ -49,6 +51,8 @@ THESIS: dict[str, Any] = {
     "values": "Figure 2.6 plots iterations per condition; the text prints no numbers",
 }
 """What the thesis reports about the experiment."""
+DEFAULT_TRIALS = THESIS["tasks"] * SEEDS
+"""Trials of a full run: every task, :data:`~.measure.SEEDS` times."""
 
 LABELS = {
     "none": "(a) no transfer",
@@ -185,89 +189,78 @@ def verdict(metrics: Mapping[str, Any], reading: str) -> str:
 
 
 def report(metrics: Mapping[str, Any]) -> str:
-    """The markdown report: this run beside the thesis's claim, every reading side by side."""
-    m = metrics
-    readings = _readings(m)
-    lines = [
-        "# Transfer: task exploration with Q-function and CC-HTN transfer (§2.1.7.4, Figure 2.6)",
-        "",
-        f"**Thesis.** {m['thesis']['tasks']} food-preparation tasks of {m['thesis']['steps']} steps encoded as "
-        f"SMDPs (|A| = {m['thesis']['primitive_actions']}); iterations an ε-greedy explorer needs to capture "
-        "every valid subgoal ordering, without transfer, with flat Q-function transfer and with CC-HTN macro "
-        f'actions added. Claim: "{CLAIM}". Figure 2.6 prints no numbers.',
-        "",
-        "**This run.** Leave-one-out over the 25 transfer tasks (`supportive.examples.food.load_transfer`); "
-        f"{m['trials']} trials, one (task, seed) each, every condition explored with its own seed (the same "
-        "under every reading). A state is the set of completed actions; a primitive the task does not allow "
-        "next fails (the step is spent, the state kept); a macro runs one of its sequences and stops at the "
-        f"first disallowed action. Q-learning (α {ALPHA}, γ {GAMMA}, ε {EPSILON}); rewards {FAIL:+g} for a "
-        f"failure, {STEP:+g} for a valid step, {NOVELTY:+g} more for a transition never performed before and "
-        f"{COMPLETION:+g} more for completing along a new ordering. Comprehension: the completed episodes' "
-        "task graph has as many paths as the task has valid orderings. Iterations = episodes until then (a "
-        "censored run counts as its budget, a lower bound: see the censored column).",
-        "",
-        "Q-function transfer: the other tasks' converged Q-functions (exact, by value iteration), as "
-        "advantages Q − V, aggregated by the last action performed (max over the other tasks' states with that "
-        f"last action) and scaled by {PRIOR_SCALE:g} to initialise each new state's Q row: a prior that orders "
-        "untried options. The unscaled variants (′) start failing-elsewhere options near −1. CC-HTN macros: "
-        "the chains and cliques (≥ 2 actions) of the CC-HTNs learned from all valid orderings of the other "
-        "tasks, when every action of the macro belongs to the task.",
-        "",
-        "## Readings: what a CC-HTN macro performs",
-        "",
-        *readings_table(READINGS, readings, "a macro performs"),
-        "",
-        "## Episodes to full comprehension",
-        "",
-        *markdown_table(
+    """The markdown report: this run beside the thesis's claim, every reading side by side (its prose:
+    ``templates/report.md``)."""
+    thesis = metrics["thesis"]
+    columns = metrics["columns"]
+    return render(
+        __package__,
+        "report.md",
+        metrics,
+        thesis_tasks=thesis["tasks"],
+        thesis_steps=thesis["steps"],
+        primitive_actions=thesis["primitive_actions"],
+        claim=CLAIM,
+        alpha=ALPHA,
+        gamma=GAMMA,
+        epsilon=EPSILON,
+        fail=f"{FAIL:+g}",
+        step=f"{STEP:+g}",
+        novelty=f"{NOVELTY:+g}",
+        completion=f"{COMPLETION:+g}",
+        prior_scale=f"{PRIOR_SCALE:g}",
+        readings_table=readings_table(READINGS, _readings(metrics), "a macro performs"),
+        episodes_table=_episodes_table(metrics),
+        pairs_table=_pairs_table(metrics),
+        claim_table=markdown_table(
+            ["the thesis", "this run"], [[f'"{CLAIM}"', verdict(metrics, r)] for r in _readings(metrics)], align="ll"
+        ),
+        task_table=markdown_table(
+            ["task", "actions", "orderings", *(label(k) for k in columns)],
             [
-                "condition", "episodes to comprehension, mean [95% CI]", "censored", "macros in dictionary",
-                "macro uses", "primitive attempts",
-            ],
-            [
-                [
-                    label(key),
-                    format_ci(s["episodes"], 1),
-                    str(s["censored"]),
-                    f"{s['macros']:g}",
-                    f"{s['macro_uses']:g}",
-                    f"{s['steps']:g}",
-                ]
-                for key in m["columns"]
-                for s in (m["conditions"][key],)
+                [t["task"], str(t["actions"]), str(t["orderings"]), *(f"{t['episodes'][k]:g}" for k in columns)]
+                for t in metrics["tasks"]
             ],
         ),
-        "",
-        "## Trial by trial: wins, ties and losses",
-        "",
-        *markdown_table(
-            ["comparison", "wins (fewer episodes)", "ties", "losses (more)", "mean difference in episodes [95% CI]"],
-            [
-                [
-                    f"{label(p['first'])} vs {label(p['second'])}",
-                    f"{p['wins']} of {p['trials']}",
-                    str(p["ties"]),
-                    str(p["losses"]),
-                    format_ci(p["difference"], 1, signed=True),
-                ]
-                for p in m["pairs"]
-            ],
-        ),
-        "",
-        *markdown_table(["the thesis", "this run"], [[f'"{CLAIM}"', verdict(m, reading)] for reading in readings], align="ll"),
-        "",
-        "Per task (mean episodes over its trials):",
-        "",
-        *markdown_table(
-            ["task", "actions", "orderings", *(label(k) for k in m["columns"])],
-            [
-                [t["task"], str(t["actions"]), str(t["orderings"]), *(f"{t['episodes'][k]:g}" for k in m["columns"])]
-                for t in m["tasks"]
-            ],
-        ),
+    )
+
+
+def _episodes_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Episodes to full comprehension per condition, with censored runs and macro use."""
+    header = [
+        "condition", "episodes to comprehension, mean [95% CI]", "censored", "macros in dictionary", "macro uses",
+        "primitive attempts",
     ]
-    lines.append("")
-    return "\n".join(lines)
+    rows = []
+    for key in metrics["columns"]:
+        s = metrics["conditions"][key]
+        rows.append(
+            [
+                label(key),
+                format_ci(s["episodes"], 1),
+                str(s["censored"]),
+                f"{s['macros']:g}",
+                f"{s['macro_uses']:g}",
+                f"{s['steps']:g}",
+            ]
+        )
+    return markdown_table(header, rows)
+
+
+def _pairs_table(metrics: Mapping[str, Any]) -> list[str]:
+    """Trial by trial: wins, ties and losses of one condition against another."""
+    rows = [
+        [
+            f"{label(p['first'])} vs {label(p['second'])}",
+            f"{p['wins']} of {p['trials']}",
+            str(p["ties"]),
+            str(p["losses"]),
+            format_ci(p["difference"], 1, signed=True),
+        ]
+        for p in metrics["pairs"]
+    ]
+    header = ["comparison", "wins (fewer episodes)", "ties", "losses (more)", "mean difference in episodes [95% CI]"]
+    return markdown_table(header, rows)
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
