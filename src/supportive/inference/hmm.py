@@ -17,58 +17,19 @@ from __future__ import annotations
 import itertools
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Sequence
-from functools import cached_property
 from typing import Self
 
 import numpy as np
 
 from supportive.errors import LearningError
 from supportive.estimator import Estimator
+from supportive.inference.filtering import Belief, Labels
 from supportive.inference.observations import ObservationModel
 from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions, TaskLayout
-from supportive.tasks.htn import HTN, ActionNode, Leaf
+from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.naming import named
 
-__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
-
-
-class Belief:
-    """What the filter believes after one observation.
-
-    Attributes:
-        step: How many observations have been seen.
-        subgoals: Probability of each subgoal (in :attr:`GoalFilter.subgoal_labels` order) being the current one.
-        log_likelihood: log P(all observations so far).
-    """
-
-    def __init__(
-        self, step: int, subgoals: np.ndarray, arriving: np.ndarray, layout: TaskLayout, ll: float
-    ) -> None:
-        self.step = step
-        self.subgoals = subgoals
-        self.log_likelihood = ll
-        self._arriving = arriving
-        self._layout = layout
-
-    @cached_property
-    def subtasks(self) -> np.ndarray:
-        """Probability of each internal node of the HTN (in :attr:`GoalFilter.subtask_labels` order) being
-        under way: the mass of its leaves."""
-        return np.asarray(self._layout.membership @ self.subgoals)
-
-    @cached_property
-    def enclosing(self) -> np.ndarray:
-        """Probability of each internal node being the *immediate* parent of the current subgoal (entry 0: the
-        subgoal sits directly at the top of a partial hierarchy; entry j + 1: node j). Unlike
-        :attr:`subtasks`, these add up to one."""
-        parents = self._layout.parent_of_leaf + 1
-        return np.bincount(parents, weights=self.subgoals, minlength=len(self._layout.nodes) + 1)
-
-    @cached_property
-    def next_subgoals(self) -> np.ndarray:
-        """Probability of each subgoal being the next one started."""
-        total = self._arriving.sum()
-        return self._arriving / total if total > 0 else self._arriving
+__all__ = ["FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
 
 
 def fitted_events(
@@ -204,8 +165,9 @@ class HierarchicalHMM(_SubgoalHMM):
         return HierarchicalTransitions(htn, layout)
 
 
-class GoalFilter:
-    """Online filter: ``update(observation) -> Belief`` in constant time per step.
+class GoalFilter(Labels):
+    """Online filter (a :class:`~supportive.inference.filtering.Filter`): ``update(events) -> Belief`` in
+    constant time per step.
 
     One update scores the observation under every action, moves the belief one step (one transition product,
     whose result also gives the next-subgoal prediction) and renormalises. The belief over subtasks is computed
@@ -222,14 +184,11 @@ class GoalFilter:
         missing = sorted({a for a, _ in layout.leaves} - set(observations.actions))
         if missing:
             raise LearningError(f"the observation model has no row for action(s) {', '.join(missing)}")
-        self.layout = layout
+        super().__init__(layout)
         self.transitions = transitions
         self.observations = observations
         self.stay = stay
         self._action_of_leaf = np.array([observations.action_index[a] for a, _ in layout.leaves])
-        self.subgoal_labels = tuple(ActionNode(a, k).label for a, k in layout.leaves)
-        self.subtask_labels = tuple(node.name or node.kind for node in layout.nodes)
-        self.enclosing_labels = ("(top level)", *self.subtask_labels)
         self.reset()
 
     def reset(self) -> None:
@@ -238,11 +197,12 @@ class GoalFilter:
         self._arriving = self.transitions.start.copy()
         self.step = 0
         self.log_likelihood = 0.0
+        self.last = Belief(0, self._belief, self._arriving, self.layout, 0.0)
 
-    def update(self, observation: Iterable[str]) -> Belief:
+    def update(self, events: Iterable[str]) -> Belief:
         """Take one moment's contact events into account."""
         prior = self._belief * self.stay + self._arriving if self.step else self._belief
-        scores = self.observations.log_likelihood(observation)[self._action_of_leaf]
+        scores = self.observations.log_likelihood(events)[self._action_of_leaf]
         peak = scores.max()
         posterior = prior * np.exp(scores - peak)
         total = posterior.sum()
@@ -252,12 +212,8 @@ class GoalFilter:
         self._arriving = self.transitions(self._belief * (1.0 - self.stay))
         self.log_likelihood += float(np.log(total) + peak)
         self.step += 1
-        return Belief(self.step, self._belief, self._arriving, self.layout, self.log_likelihood)
-
-    def top(self, values: np.ndarray, labels: Sequence[str], k: int = 3) -> list[tuple[str, float]]:
-        """The ``k`` most probable entries of a belief vector, with their labels."""
-        order = np.argsort(-values, kind="stable")[:k]
-        return [(labels[i], float(values[i])) for i in order]
+        self.last = Belief(self.step, self._belief, self._arriving, self.layout, self.log_likelihood)
+        return self.last
 
     def summary(self, belief: Belief, k: int = 3) -> dict[str, object]:
         """A belief as plain data: the ``k`` most probable current subgoals, enclosing subtasks and next
