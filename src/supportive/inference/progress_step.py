@@ -81,8 +81,9 @@ class ProgressStep:
         stay: Probability that a subgoal under way goes on for another moment.
         slip: Probability that a step is off-script.
         restart: Finished starts the task again instead of staying finished.
-        limit: At most this many states are visited looking for where an off-script action leads (more than
-            the enumerated states, so the search is never cut short when they are enumerated).
+        limit: At most this many states are visited looking for where an off-script action leads (the
+            tracker gives the larger of ``max_states`` and ``beam``: never cut short when the states are
+            enumerated, nor when a beam could hold them all).
     """
 
     def __init__(self, model: ProgressModel, *, stay: float, slip: float, restart: bool, limit: int) -> None:

@@ -222,7 +222,7 @@ class ProgressFilter(Labels):
             stay=1.0 - 1.0 / hmm.mean_duration_,
             slip=hmm.slip,
             restart=hmm.restart,
-            limit=hmm.max_states,
+            limit=max(hmm.max_states, hmm.beam),
         )
         self._states = StateMasses(self.transition, None if hmm.exact else hmm.beam)
         self._vectors: VectorMasses | None = None  # built when contact events first arrive (exact only)
