@@ -54,11 +54,9 @@ M = TypeVar("M")
 class Masses(Protocol, Generic[M]):
     """The operations :meth:`ProgressStep.moment` needs from a form of the belief (``M``: the form's type)."""
 
-    def staying(self, masses: M) -> M:
-        """Each state's mass times its probability of staying put (:meth:`ProgressStep.staying`)."""
-
-    def slipping(self, masses: M) -> M:
-        """Each state's mass times its probability of an off-script step (:meth:`ProgressStep.slipping`)."""
+    def split(self, masses: M) -> tuple[M, M, M]:
+        """Each state's mass times its probability of staying put, of an on-script step and of an off-script
+        step (:meth:`ProgressStep.chances`)."""
 
     def plus(self, a: M, b: M, weight: float) -> M:
         """``a + weight * b``."""
@@ -136,17 +134,15 @@ class ProgressStep:
             cached = self._skips[state] = tuple((s, w / total) for s, w in ahead.items() if w > 0)
         return cached
 
-    def slipping(self, state: State) -> float:
-        """Probability that a step from ``state`` is off-script: ``slip``, or 0 where no step can be skipped
-        (:meth:`skips` empty)."""
-        return self.slip if self.skips(state) else 0.0
-
-    def staying(self, state: State) -> float:
-        """Probability that ``state`` is the state again after a moment: ``stay`` while a subgoal is under
-        way, 1 when finished is final, 0 otherwise (not started yet; finished with ``restart``)."""
-        if state is None:
-            return 0.0 if self.restart else 1.0
-        return self.stay if state.last >= 0 else 0.0
+    def chances(self, state: State) -> tuple[float, float, float]:
+        """Probability that after a moment in ``state`` it stays put (``stay`` while a subgoal is under way;
+        1 when finished is final; 0 before the start and for finished with ``restart``), that an on-script
+        step follows, and that an off-script one does (``slip`` of the steps, 0 where no step can be skipped:
+        :meth:`skips` empty)."""
+        performing = state is not None and state.last >= 0
+        stays = self.stay if performing else float(state is None and not self.restart)
+        slip = self.slip if self.skips(state) else 0.0
+        return stays, (1.0 - stays) * (1.0 - slip), (1.0 - stays) * slip
 
     def slot(self, state: State) -> int:
         """Which entry of a moment's scores weighs ``state``: its subgoal's leaf while one is under way, else
@@ -163,11 +159,9 @@ class ProgressStep:
             scores: The moment's likelihood under each leaf's action, then the mean over them (see
                 :meth:`slot`).
         """
-        staying = form.staying(belief)
-        leaving = form.plus(belief, staying, -1.0)
-        slipping = form.slipping(leaving)
-        on = form.emit(form.plus(staying, form.advance(form.plus(leaving, slipping, -1.0)), 1.0), scores)
-        off = form.emit(form.skip(slipping), scores)
+        staying, moving, skipping = form.split(belief)
+        on = form.emit(form.plus(staying, form.advance(moving), 1.0), scores)
+        off = form.emit(form.skip(skipping), scores)
         return on, off
 
     def act(self, belief: Mapping[State, float], action: str) -> tuple[dict[State, float], dict[State, float]]:
@@ -222,13 +216,14 @@ class StateMasses:
         self.step = step
         self.beam = beam
 
-    def staying(self, masses: Mapping[State, float]) -> dict[State, float]:
+    def split(self, masses: Mapping[State, float]) -> tuple[dict[State, float], dict[State, float], dict[State, float]]:
         """See :class:`Masses`."""
-        return {s: m * w for s, m in masses.items() if (w := self.step.staying(s)) > 0}
-
-    def slipping(self, masses: Mapping[State, float]) -> dict[State, float]:
-        """See :class:`Masses`."""
-        return {s: m * w for s, m in masses.items() if (w := self.step.slipping(s)) > 0}
+        parts: tuple[dict[State, float], dict[State, float], dict[State, float]] = ({}, {}, {})
+        for state, mass in masses.items():
+            for part, chance in zip(parts, self.step.chances(state), strict=True):
+                if chance > 0:
+                    part[state] = mass * chance
+        return parts
 
     def plus(self, a: Mapping[State, float], b: Mapping[State, float], weight: float) -> dict[State, float]:
         """See :class:`Masses`."""
@@ -319,8 +314,7 @@ class VectorMasses:
         self.finished = self.size - 1
         n_leaves, n_actions = step.n_leaves, len(step.actions)
         action_index = {a: i for i, a in enumerate(step.actions)}
-        self.stays = np.array([step.staying(s) for s in self.states])
-        self.slips = np.array([step.slipping(s) for s in self.states])
+        self.chances = np.array([step.chances(s) for s in self.states]).T.copy()  # rows: stay, on, off
         self.slots = np.array([step.slot(s) for s in self.states], dtype=np.intp)
         moves: list[tuple[int, int, float]] = []
         arrivals: list[tuple[int, int, float]] = []
@@ -353,19 +347,14 @@ class VectorMasses:
         """The map from state to mass of a vector (states of mass 0 left out)."""
         return {self.states[i]: float(vector[i]) for i in np.flatnonzero(vector)}
 
-    def staying(self, masses: np.ndarray) -> np.ndarray:
+    def split(self, masses: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """See :class:`Masses`."""
-        out: np.ndarray = masses * self.stays
-        return out
+        stay, on, off = masses * self.chances
+        return stay, on, off
 
     def plus(self, a: np.ndarray, b: np.ndarray, weight: float) -> np.ndarray:
         """See :class:`Masses`."""
         out: np.ndarray = a + weight * b
-        return out
-
-    def slipping(self, masses: np.ndarray) -> np.ndarray:
-        """See :class:`Masses`."""
-        out: np.ndarray = masses * self.slips
         return out
 
     def advance(self, masses: np.ndarray) -> np.ndarray:
@@ -394,8 +383,7 @@ class VectorMasses:
 
     def current(self, vector: np.ndarray) -> np.ndarray:
         """Probability of each leaf being the subgoal under way."""
-        performing = self.slots < self.step.n_leaves
-        return np.bincount(self.slots[performing], weights=vector[performing], minlength=self.step.n_leaves)
+        return np.bincount(self.slots, weights=vector, minlength=self.step.n_leaves + 1)[:-1]
 
     def expectations(self, vector: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """As :meth:`StateMasses.expectations`."""
