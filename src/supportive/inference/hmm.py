@@ -23,13 +23,13 @@ import numpy as np
 
 from supportive.errors import LearningError
 from supportive.estimator import Estimator
-from supportive.inference.filtering import Belief, Labels
+from supportive.inference.filtering import Belief, Filter, Labels
 from supportive.inference.observations import ObservationModel
 from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions, TaskLayout
 from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.naming import named
 
-__all__ = ["FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
+__all__ = ["FlatHMM", "GoalFilter", "GoalModel", "HierarchicalHMM", "fitted_events"]
 
 
 def fitted_events(
@@ -55,8 +55,10 @@ def fitted_events(
     return model, max(1.0, steps / max(1, sum(runs)))
 
 
-class _SubgoalHMM(Estimator, ABC):
-    """What the flat and the hierarchical HMM share; they differ only in their transitions.
+class GoalModel(Estimator, ABC):
+    """What every goal model shares: a task's hierarchy and its contact events — an observation model and how
+    long subgoals last, given or learned by ``fit`` — and ``filter()``, a fresh online
+    :class:`~supportive.inference.filtering.Filter`.
 
     Args:
         htn: The task's hierarchy; its subgoals are the hidden states.
@@ -66,10 +68,8 @@ class _SubgoalHMM(Estimator, ABC):
     Attributes (after ``fit``):
         htn_: The hierarchy with every subtask named.
         layout_: Its subgoals and subtasks, indexed.
-        transitions_: How mass moves between subgoals.
-        observations_: The observation model in use (None: none given, none learned; :meth:`filter` needs one).
+        observations_: The observation model in use (None: none given, none learned).
         mean_duration_: The mean moments a subgoal lasts.
-        stay_: The probability of going on with the current subgoal, ``1 - 1 / mean_duration_``.
     """
 
     def __init__(
@@ -84,6 +84,31 @@ class _SubgoalHMM(Estimator, ABC):
         self.htn = htn
         self.observations = observations
         self.mean_duration = mean_duration
+
+    def _fit_events(
+        self, sequences: Sequence[Sequence[Iterable[str]]] | None, labels: Sequence[Sequence[str]] | None
+    ) -> None:
+        """Forget the last fit; name the hierarchy's subtasks and lay it out; take the contact events' model
+        (:func:`fitted_events`)."""
+        self._forget()
+        self.observations_, self.mean_duration_ = fitted_events(self.observations, self.mean_duration, sequences, labels)
+        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
+        self.layout_ = TaskLayout.of(self.htn_)
+
+    @abstractmethod
+    def filter(self) -> Filter:
+        """A fresh online filter."""
+
+
+class _SubgoalHMM(GoalModel):
+    """What the flat and the hierarchical HMM share; they differ only in their transitions.
+
+    Args: as :class:`GoalModel`.
+
+    Attributes (after ``fit``), besides :class:`GoalModel`'s:
+        transitions_: How mass moves between subgoals.
+        stay_: The probability of going on with the current subgoal, ``1 - 1 / mean_duration_``.
+    """
 
     @abstractmethod
     def _transitions(self, htn: HTN, layout: TaskLayout) -> FlatTransitions | HierarchicalTransitions:
@@ -105,14 +130,9 @@ class _SubgoalHMM(Estimator, ABC):
         Raises:
             LearningError: for sequences and labels that do not line up.
         """
-        self._forget()
-        observations, mean_duration = fitted_events(self.observations, self.mean_duration, sequences, labels)
-        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
-        self.layout_ = TaskLayout.of(self.htn_)
+        self._fit_events(sequences, labels)
         self.transitions_ = self._transitions(self.htn_, self.layout_)
-        self.observations_ = observations
-        self.mean_duration_ = mean_duration
-        self.stay_ = 1.0 - 1.0 / mean_duration
+        self.stay_ = 1.0 - 1.0 / self.mean_duration_
         return self
 
     def filter(self) -> GoalFilter:

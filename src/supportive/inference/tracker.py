@@ -35,15 +35,13 @@ from typing import Any, Self
 import numpy as np
 
 from supportive.errors import LearningError
-from supportive.estimator import Estimator
 from supportive.inference.filtering import Belief, Labels
-from supportive.inference.hmm import fitted_events
+from supportive.inference.hmm import GoalModel
 from supportive.inference.observations import ObservationModel
 from supportive.inference.progress_step import ProgressStep, State, StateMasses, VectorMasses
 from supportive.inference.transitions import TaskLayout
 from supportive.learning.distribution import ProgressModel
 from supportive.tasks.htn import HTN
-from supportive.tasks.naming import named
 
 __all__ = ["END_LABEL", "ProgressBelief", "ProgressFilter", "ProgressHMM"]
 
@@ -116,7 +114,7 @@ class ProgressBelief(Belief):
         return arriving / total if total > 0 else arriving
 
 
-class ProgressHMM(Estimator):
+class ProgressHMM(GoalModel):
     """The progress-aware model of a task as an estimator: ``fit()`` builds it, ``filter()`` gives online
     trackers.
 
@@ -152,15 +150,11 @@ class ProgressHMM(Estimator):
         max_states: int = 50_000,
         beam: int = 2_000,
     ) -> None:
-        if mean_duration < 1.0:
-            raise LearningError(f"mean_duration is in steps and must be at least 1, got {mean_duration}")
+        super().__init__(htn, observations, mean_duration=mean_duration)
         if not 0.0 < slip < 1.0:
             raise LearningError(f"slip must be a probability in (0, 1), got {slip}")
         if beam < 1 or max_states < 1:
             raise LearningError("beam and max_states must be at least 1")
-        self.htn = htn
-        self.observations = observations
-        self.mean_duration = mean_duration
         self.smoothing = smoothing
         self.slip = slip
         self.restart = restart
@@ -179,13 +173,8 @@ class ProgressHMM(Estimator):
         Raises:
             LearningError: for sequences and labels that do not line up.
         """
-        self._forget()
-        self.observations_, self.mean_duration_ = fitted_events(
-            self.observations, self.mean_duration, sequences, labels
-        )
-        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
+        self._fit_events(sequences, labels)
         self.model_ = ProgressModel(self.htn_, smoothing=self.smoothing)
-        self.layout_ = TaskLayout.of(self.htn_)
         self.states_ = self.model_.states(self.max_states)
         return self
 
