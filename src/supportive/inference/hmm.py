@@ -29,7 +29,7 @@ from supportive.inference.transitions import FlatTransitions, HierarchicalTransi
 from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.naming import named
 
-__all__ = ["FlatHMM", "GoalFilter", "GoalModel", "HierarchicalHMM", "fitted_events"]
+__all__ = ["FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
 
 
 def fitted_events(
@@ -55,7 +55,7 @@ def fitted_events(
     return model, max(1.0, steps / max(1, sum(runs)))
 
 
-class GoalModel(Estimator, ABC):
+class _GoalModel(Estimator, ABC):
     """What every goal model shares: a task's hierarchy and its contact events — an observation model and how
     long subgoals last, given or learned by ``fit`` — and ``filter()``, a fresh online
     :class:`~supportive.inference.filtering.Filter`.
@@ -100,12 +100,12 @@ class GoalModel(Estimator, ABC):
         """A fresh online filter."""
 
 
-class _SubgoalHMM(GoalModel):
+class _SubgoalHMM(_GoalModel):
     """What the flat and the hierarchical HMM share; they differ only in their transitions.
 
-    Args: as :class:`GoalModel`.
+    Args: as :class:`_GoalModel`.
 
-    Attributes (after ``fit``), besides :class:`GoalModel`'s:
+    Attributes (after ``fit``), besides :class:`_GoalModel`'s:
         transitions_: How mass moves between subgoals.
         stay_: The probability of going on with the current subgoal, ``1 - 1 / mean_duration_``.
     """

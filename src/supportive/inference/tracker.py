@@ -36,7 +36,7 @@ import numpy as np
 
 from supportive.errors import LearningError
 from supportive.inference.filtering import Belief, Labels
-from supportive.inference.hmm import GoalModel
+from supportive.inference.hmm import _GoalModel
 from supportive.inference.observations import ObservationModel
 from supportive.inference.progress_step import ProgressStep, State, StateMasses, VectorMasses
 from supportive.inference.transitions import TaskLayout
@@ -114,7 +114,7 @@ class ProgressBelief(Belief):
         return arriving / total if total > 0 else arriving
 
 
-class ProgressHMM(GoalModel):
+class ProgressHMM(_GoalModel):
     """The progress-aware model of a task as an estimator: ``fit()`` builds it, ``filter()`` gives online
     trackers.
 
