@@ -82,10 +82,22 @@ class ProgressStep:
         limit: At most this many states are visited looking for where an off-script action leads (the
             tracker gives the larger of ``max_states`` and ``beam``: never cut short when the states are
             enumerated, nor when a beam could hold them all).
+        states: Every state the model reaches from the start, when they were enumerated (for the vector
+            form, :meth:`vectors`).
     """
 
-    def __init__(self, model: ProgressModel, *, stay: float, slip: float, restart: bool, limit: int) -> None:
+    def __init__(
+        self,
+        model: ProgressModel,
+        *,
+        stay: float,
+        slip: float,
+        restart: bool,
+        limit: int,
+        states: Sequence[Progress] | None = None,
+    ) -> None:
         self.model = model
+        self.states = states
         self.stay = stay
         self.slip = slip
         self.restart = restart
@@ -100,6 +112,7 @@ class ProgressStep:
         self._moves: dict[State, tuple[Move, ...]] = {}
         self._skips: dict[State, tuple[tuple[Progress, float], ...]] = {}
         self._resynced: dict[tuple[State, str], State] = {}
+        self._vectors: VectorMasses | None = None
 
     # ------------------------------------------------------------------ the model, state by state
     def moves(self, state: State) -> tuple[Move, ...]:
@@ -148,6 +161,13 @@ class ProgressStep:
         """Which entry of a moment's scores weighs ``state``: its subgoal's leaf while one is under way, else
         :attr:`n_leaves` (the mean over the actions)."""
         return state.last if state is not None and state.last >= 0 else self.n_leaves
+
+    def vectors(self) -> VectorMasses | None:
+        """The vector form over the enumerated states, built when first asked for and then shared; None
+        without them."""
+        if self._vectors is None and self.states is not None:
+            self._vectors = VectorMasses(self, self.states)
+        return self._vectors
 
     # ------------------------------------------------------------------ evidence
     def moment(self, form: Masses[M], belief: M, scores: np.ndarray) -> tuple[M, M]:

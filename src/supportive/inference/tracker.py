@@ -134,6 +134,7 @@ class ProgressHMM(_GoalModel):
         model_: The progress model over it.
         layout_: Its subgoals and subtasks, indexed.
         states_: The enumerated states, or None beyond ``max_states`` (beam mode).
+        transition_: The one transition every filter of this model applies (its caches shared by them).
         observations_: The observation model in use (None: known actions only).
         mean_duration_: The mean moments a subgoal lasts.
     """
@@ -176,6 +177,14 @@ class ProgressHMM(_GoalModel):
         self._fit_events(sequences, labels)
         self.model_ = ProgressModel(self.htn_, smoothing=self.smoothing)
         self.states_ = self.model_.states(self.max_states)
+        self.transition_ = ProgressStep(
+            self.model_,
+            stay=1.0 - 1.0 / self.mean_duration_,
+            slip=self.slip,
+            restart=self.restart,
+            limit=max(self.max_states, self.beam),
+            states=self.states_,
+        )
         return self
 
     @property
@@ -206,15 +215,9 @@ class ProgressFilter(Labels):
         self.model = hmm.model_
         self.leaves = self.model.leaves
         self.actions = tuple(dict.fromkeys(a for a, _ in self.leaves))
-        self.transition = ProgressStep(
-            self.model,
-            stay=1.0 - 1.0 / hmm.mean_duration_,
-            slip=hmm.slip,
-            restart=hmm.restart,
-            limit=max(hmm.max_states, hmm.beam),
-        )
+        self.transition = hmm.transition_
         self._states = StateMasses(self.transition, None if hmm.exact else hmm.beam)
-        self._vectors: VectorMasses | None = None  # built when contact events first arrive (exact only)
+        self._vectors: VectorMasses | None = None  # the model's, when contact events first arrive (exact only)
         if hmm.observations_ is not None:
             missing = sorted(set(self.actions) - set(hmm.observations_.actions))
             if missing:
@@ -270,10 +273,10 @@ class ProgressFilter(Labels):
 
     def _as_vector(self) -> VectorMasses | None:
         """The belief as a vector over the enumerated states (the exact tracker; None in beam mode)."""
-        if self.hmm.states_ is None:
-            return None
         if self._vectors is None:
-            self._vectors = VectorMasses(self.transition, self.hmm.states_)
+            self._vectors = self.transition.vectors()
+        if self._vectors is None:
+            return None
         if self._vector is None:
             assert self._map is not None
             self._vector, self._map = self._vectors.of(self._map), None
