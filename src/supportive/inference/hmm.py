@@ -15,6 +15,7 @@ its leaves.
 from __future__ import annotations
 
 import itertools
+import math
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Sequence
 from typing import Self
@@ -79,8 +80,8 @@ class _GoalModel(Estimator, ABC):
         *,
         mean_duration: float = 5.0,
     ) -> None:
-        if mean_duration < 1.0:
-            raise LearningError(f"mean_duration is in steps and must be at least 1, got {mean_duration}")
+        if not (math.isfinite(mean_duration) and mean_duration >= 1.0):  # NaN and infinity would pass a comparison
+            raise LearningError(f"mean_duration is in steps and must be a finite number of at least 1, got {mean_duration}")
         self.htn = htn
         self.observations = observations
         self.mean_duration = mean_duration
