@@ -1,21 +1,17 @@
-"""The progress-aware tracker: hand-computed posteriors, a brute-force forward pass over enumerated
-executions, slips, the end of the task, and the next-step predictor's contract."""
+"""The progress-aware tracker: hand-computed posteriors, slips, the end of the task, and the next-step
+predictor's contract (the brute-force oracle over both forms of the belief: test_tracker_oracle.py)."""
 
 from __future__ import annotations
 
-import itertools
 import math
 from typing import Any
 
-import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
 
 from supportive.errors import NotFittedError
 from supportive.inference import END_LABEL, ObservationModel, ProgressHMM, StepPredictor
 from supportive.learning.distribution import END, ProgressModel
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, iter_orderings
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts
 
 Shape = str | tuple[str, list["Shape"]]
 
@@ -67,60 +63,6 @@ def test_hand_computed_chain_with_an_optional_step() -> None:
     assert set(model.outcomes(state)) == {END}
 
 
-shapes = st.recursive(
-    st.sampled_from(["leaf", "optional"]),
-    lambda inner: st.tuples(st.sampled_from(["chain", "clique"]), st.lists(inner, min_size=2, max_size=3)),
-    max_leaves=4,
-)
-
-
-def _build(shape: Shape, names: itertools.count[int]) -> Node:
-    if isinstance(shape, str):
-        return ActionNode(f"x{next(names)}", optional=shape == "optional")
-    kind, parts = shape
-    children = tuple(_build(p, names) for p in parts)
-    return (ChainNode if kind == "chain" else CliqueNode)(children)
-
-
-@given(shapes, st.integers(0, 2**16))
-def test_forward_pass_agrees_with_brute_force_over_executions(shape: Shape, seed: int) -> None:
-    structure = _build(shape, itertools.count())
-    htn = HTN("t", (structure,))
-    model = ProgressModel(htn, smoothing=1.0)
-    # brute force: the probability of every whole execution, step by step from the model's choices
-    def probability(sequence: tuple[tuple[str, int], ...]) -> float:
-        (state,) = model.executions.initial()
-        p = 1.0
-        for leaf in sequence:
-            outcome = model.outcomes(state).get(model.executions.index[leaf])
-            if outcome is None:
-                return 0.0
-            p *= outcome[0]
-            state = outcome[1]  # type: ignore[assignment]
-        return p * model.outcomes(state).get(END, (0.0, None))[0]
-
-    executions = list(iter_orderings(structure))
-    masses = {s: probability(s) for s in executions}
-    assert sum(masses.values()) == pytest.approx(1.0)  # the model is a distribution over executions
-    rng = np.random.default_rng(seed)
-    truth = executions[int(rng.integers(len(executions)))]
-    slip = 1e-9
-    tracker = ProgressHMM(htn, slip=slip).fit().filter()
-    for k in range(len(truth) + 1):
-        prefix = truth[:k]
-        consistent = {s: m for s, m in masses.items() if s[:k] == prefix}
-        mass = sum(consistent.values())
-        expected: dict[str, float] = {}
-        for s, m in consistent.items():
-            nxt = s[k][0] if len(s) > k else END_LABEL
-            expected[nxt] = expected.get(nxt, 0.0) + m / mass
-        predicted = tracker.last.next_actions
-        for action, p in expected.items():
-            assert predicted[action] == pytest.approx(p, abs=1e-6)
-        if k < len(truth):
-            tracker.observe(truth[k][0])
-
-
 def test_a_slip_does_not_zero_the_belief_and_is_flagged() -> None:
     htn = HTN("t", (ChainNode((A, B, C)),))
     tracker = ProgressHMM(htn, slip=0.01).fit().filter()
@@ -144,16 +86,6 @@ def test_contact_events_drive_the_same_tracker() -> None:
     assert belief.next_actions[END_LABEL] > 0.9
     mixed = tracker.observe("b")  # known actions and events, one tracker
     assert mixed.next_actions[END_LABEL] > 0.9
-
-
-def test_beam_agrees_with_exact_when_wide_enough() -> None:
-    structure = CliqueNode(tuple(ActionNode(x) for x in "abcdef"))
-    exact = ProgressHMM(HTN("t", (structure,))).fit().filter()
-    beam = ProgressHMM(HTN("t", (structure,)), max_states=5, beam=10_000).fit().filter()
-    assert beam.hmm.states_ is None and exact.hmm.states_ is not None
-    for action in "cabz":
-        a, b = exact.observe(action), beam.observe(action)
-        assert a.next_actions == pytest.approx(b.next_actions)
 
 
 def test_predictor_contract() -> None:

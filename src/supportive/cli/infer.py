@@ -71,6 +71,7 @@ def infer(
     from supportive.examples import task_path
     from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM
     from supportive.inference.bags import belief_record, infer_bag
+    from supportive.inference.filtering import Filter
     from supportive.inference.mistakes import MistakeDetector
     from supportive.io.action_file import parse_action_file
     from supportive.io.htn_json import htn_to_dict
@@ -91,12 +92,13 @@ def infer(
     steps = parse_action_file(actions) if actions is not None else []
     stream = parse_observation_file(observations) if observations is not None else []
     detector: MistakeDetector | None = None
+    running: Filter
     with about(file):
         learner = learn_htn(spec)
         if model is InferenceModel.progress:
             events = ObservationModel.from_spec(spec) if actions is None else None
             detector = MistakeDetector(ProgressHMM(learner.htn_, events, mean_duration=mean_duration).fit())
-            running: Any = detector.tracker if actions is not None else detector.events
+            running = detector.tracker if actions is not None else detector.events
         else:
             kind = HierarchicalHMM if model is InferenceModel.hierarchical else FlatHMM
             model_events = ObservationModel.from_spec(spec)

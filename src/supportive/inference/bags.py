@@ -12,13 +12,13 @@ from contextlib import AbstractContextManager, nullcontext
 from pathlib import Path
 from typing import Any
 
-from supportive.inference.hmm import Belief, GoalFilter
+from supportive.inference.filtering import Belief, Filter
 
 __all__ = ["belief_record", "infer_bag"]
 
 
-def belief_record(running: GoalFilter, belief: Belief, top: int, time: float | None) -> dict[str, Any]:
-    """A belief as plain data: the filter's summary (the ``top`` most probable current subgoals, enclosing
+def belief_record(running: Filter, belief: Belief, top: int, time: float | None) -> dict[str, Any]:
+    """A belief of any :class:`~supportive.inference.filtering.Filter` as plain data: the filter's summary (the ``top`` most probable current subgoals, enclosing
     subtasks and next subgoals, the step and the log-likelihood), the frame's ``time`` in seconds when known,
     and ``surprise`` when the belief has such an attribute (a filter that measures how unexpected each
     observation was; without one the key is left out).

@@ -18,69 +18,19 @@ import itertools
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Sequence
-from functools import cached_property
 from typing import Self
 
 import numpy as np
 
 from supportive.errors import LearningError
 from supportive.estimator import Estimator
+from supportive.inference.filtering import Belief, Filter, Labels
 from supportive.inference.observations import ObservationModel
 from supportive.inference.transitions import FlatTransitions, HierarchicalTransitions, TaskLayout
-from supportive.tasks.htn import HTN, ActionNode, Leaf
+from supportive.tasks.htn import HTN, Leaf
 from supportive.tasks.naming import named
 
-__all__ = ["Belief", "FlatHMM", "GoalFilter", "HierarchicalHMM", "check_mean_duration", "fitted_events"]
-
-
-class Belief:
-    """What the filter believes after one observation.
-
-    Attributes:
-        step: How many observations have been seen.
-        subgoals: Probability of each subgoal (in :attr:`GoalFilter.subgoal_labels` order) being the current one.
-        log_likelihood: log P(all observations so far).
-    """
-
-    def __init__(
-        self, step: int, subgoals: np.ndarray, arriving: np.ndarray, layout: TaskLayout, ll: float
-    ) -> None:
-        self.step = step
-        self.subgoals = subgoals
-        self.log_likelihood = ll
-        self._arriving = arriving
-        self._layout = layout
-
-    @cached_property
-    def subtasks(self) -> np.ndarray:
-        """Probability of each internal node of the HTN (in :attr:`GoalFilter.subtask_labels` order) being
-        under way: the mass of its leaves."""
-        return np.asarray(self._layout.membership @ self.subgoals)
-
-    @cached_property
-    def enclosing(self) -> np.ndarray:
-        """Probability of each internal node being the *immediate* parent of the current subgoal (entry 0: the
-        subgoal sits directly at the top of a partial hierarchy; entry j + 1: node j). Unlike
-        :attr:`subtasks`, these add up to one."""
-        parents = self._layout.parent_of_leaf + 1
-        return np.bincount(parents, weights=self.subgoals, minlength=len(self._layout.nodes) + 1)
-
-    @cached_property
-    def next_subgoals(self) -> np.ndarray:
-        """Probability of each subgoal being the next one started."""
-        total = self._arriving.sum()
-        return self._arriving / total if total > 0 else self._arriving
-
-
-def check_mean_duration(mean_duration: float) -> None:
-    """Refuse a ``mean_duration`` no goal model can use: it is in steps, a finite number of at least 1 (NaN
-    and infinity included: they would pass a comparison and break the filter later).
-
-    Raises:
-        LearningError: naming the value.
-    """
-    if not (math.isfinite(mean_duration) and mean_duration >= 1.0):
-        raise LearningError(f"mean_duration is in steps and must be a finite number of at least 1, got {mean_duration}")
+__all__ = ["FlatHMM", "GoalFilter", "HierarchicalHMM", "fitted_events"]
 
 
 def fitted_events(
@@ -106,8 +56,10 @@ def fitted_events(
     return model, max(1.0, steps / max(1, sum(runs)))
 
 
-class _SubgoalHMM(Estimator, ABC):
-    """What the flat and the hierarchical HMM share; they differ only in their transitions.
+class _GoalModel(Estimator, ABC):
+    """What every goal model shares: a task's hierarchy and its contact events — an observation model and how
+    long subgoals last, given or learned by ``fit`` — and ``filter()``, a fresh online
+    :class:`~supportive.inference.filtering.Filter`.
 
     Args:
         htn: The task's hierarchy; its subgoals are the hidden states.
@@ -117,10 +69,8 @@ class _SubgoalHMM(Estimator, ABC):
     Attributes (after ``fit``):
         htn_: The hierarchy with every subtask named.
         layout_: Its subgoals and subtasks, indexed.
-        transitions_: How mass moves between subgoals.
-        observations_: The observation model in use (None: none given, none learned; :meth:`filter` needs one).
+        observations_: The observation model in use (None: none given, none learned).
         mean_duration_: The mean moments a subgoal lasts.
-        stay_: The probability of going on with the current subgoal, ``1 - 1 / mean_duration_``.
     """
 
     def __init__(
@@ -130,10 +80,36 @@ class _SubgoalHMM(Estimator, ABC):
         *,
         mean_duration: float = 5.0,
     ) -> None:
-        check_mean_duration(mean_duration)
+        if not (math.isfinite(mean_duration) and mean_duration >= 1.0):  # NaN and infinity would pass a comparison
+            raise LearningError(f"mean_duration is in steps and must be a finite number of at least 1, got {mean_duration}")
         self.htn = htn
         self.observations = observations
         self.mean_duration = mean_duration
+
+    def _fit_events(
+        self, sequences: Sequence[Sequence[Iterable[str]]] | None, labels: Sequence[Sequence[str]] | None
+    ) -> None:
+        """Forget the last fit; name the hierarchy's subtasks and lay it out; take the contact events' model
+        (:func:`fitted_events`)."""
+        self._forget()
+        self.observations_, self.mean_duration_ = fitted_events(self.observations, self.mean_duration, sequences, labels)
+        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
+        self.layout_ = TaskLayout.of(self.htn_)
+
+    @abstractmethod
+    def filter(self) -> Filter:
+        """A fresh online filter."""
+
+
+class _SubgoalHMM(_GoalModel):
+    """What the flat and the hierarchical HMM share; they differ only in their transitions.
+
+    Args: as :class:`_GoalModel`.
+
+    Attributes (after ``fit``), besides :class:`_GoalModel`'s:
+        transitions_: How mass moves between subgoals.
+        stay_: The probability of going on with the current subgoal, ``1 - 1 / mean_duration_``.
+    """
 
     @abstractmethod
     def _transitions(self, htn: HTN, layout: TaskLayout) -> FlatTransitions | HierarchicalTransitions:
@@ -155,14 +131,9 @@ class _SubgoalHMM(Estimator, ABC):
         Raises:
             LearningError: for sequences and labels that do not line up.
         """
-        self._forget()
-        observations, mean_duration = fitted_events(self.observations, self.mean_duration, sequences, labels)
-        self.htn_ = HTN(self.htn.task, tuple(named(r) for r in self.htn.roots), self.htn.top_level, self.htn.alternatives)
-        self.layout_ = TaskLayout.of(self.htn_)
+        self._fit_events(sequences, labels)
         self.transitions_ = self._transitions(self.htn_, self.layout_)
-        self.observations_ = observations
-        self.mean_duration_ = mean_duration
-        self.stay_ = 1.0 - 1.0 / mean_duration
+        self.stay_ = 1.0 - 1.0 / self.mean_duration_
         return self
 
     def filter(self) -> GoalFilter:
@@ -215,8 +186,9 @@ class HierarchicalHMM(_SubgoalHMM):
         return HierarchicalTransitions(htn, layout)
 
 
-class GoalFilter:
-    """Online filter: ``update(observation) -> Belief`` in constant time per step.
+class GoalFilter(Labels):
+    """Online filter (a :class:`~supportive.inference.filtering.Filter`): ``update(events) -> Belief`` in
+    constant time per step.
 
     One update scores the observation under every action, moves the belief one step (one transition product,
     whose result also gives the next-subgoal prediction) and renormalises. The belief over subtasks is computed
@@ -233,14 +205,11 @@ class GoalFilter:
         missing = sorted({a for a, _ in layout.leaves} - set(observations.actions))
         if missing:
             raise LearningError(f"the observation model has no row for action(s) {', '.join(missing)}")
-        self.layout = layout
+        super().__init__(layout)
         self.transitions = transitions
         self.observations = observations
         self.stay = stay
         self._action_of_leaf = np.array([observations.action_index[a] for a, _ in layout.leaves])
-        self.subgoal_labels = tuple(ActionNode(a, k).label for a, k in layout.leaves)
-        self.subtask_labels = tuple(node.name or node.kind for node in layout.nodes)
-        self.enclosing_labels = ("(top level)", *self.subtask_labels)
         self.reset()
 
     def reset(self) -> None:
@@ -249,11 +218,12 @@ class GoalFilter:
         self._arriving = self.transitions.start.copy()
         self.step = 0
         self.log_likelihood = 0.0
+        self.last = Belief(0, self._belief, self._arriving, self.layout, 0.0)
 
-    def update(self, observation: Iterable[str]) -> Belief:
+    def update(self, events: Iterable[str]) -> Belief:
         """Take one moment's contact events into account."""
         prior = self._belief * self.stay + self._arriving if self.step else self._belief
-        scores = self.observations.log_likelihood(observation)[self._action_of_leaf]
+        scores = self.observations.log_likelihood(events)[self._action_of_leaf]
         peak = scores.max()
         posterior = prior * np.exp(scores - peak)
         total = posterior.sum()
@@ -263,12 +233,8 @@ class GoalFilter:
         self._arriving = self.transitions(self._belief * (1.0 - self.stay))
         self.log_likelihood += float(np.log(total) + peak)
         self.step += 1
-        return Belief(self.step, self._belief, self._arriving, self.layout, self.log_likelihood)
-
-    def top(self, values: np.ndarray, labels: Sequence[str], k: int = 3) -> list[tuple[str, float]]:
-        """The ``k`` most probable entries of a belief vector, with their labels."""
-        order = np.argsort(-values, kind="stable")[:k]
-        return [(labels[i], float(values[i])) for i in order]
+        self.last = Belief(self.step, self._belief, self._arriving, self.layout, self.log_likelihood)
+        return self.last
 
     def summary(self, belief: Belief, k: int = 3) -> dict[str, object]:
         """A belief as plain data: the ``k`` most probable current subgoals, enclosing subtasks and next

@@ -14,7 +14,8 @@ from numbers import Real
 from typing import Any
 
 from supportive.errors import ServiceError
-from supportive.inference import END_LABEL, ObservationModel, ProgressHMM
+from supportive.inference import END_LABEL, Filter, ObservationModel, ProgressHMM
+from supportive.inference.bags import belief_record
 from supportive.inference.mistakes import DEFAULT_THRESHOLD, MistakeDetector, StepVerdict
 from supportive.language.help import mistake_record
 from supportive.language.states import TaskStates
@@ -81,12 +82,8 @@ class Insight:
                 "this board's task has no goal inference (no observations or no demonstrations)"
             )
         verdict = detector.update(set(events))
-        belief = detector.events.last
-        summary = detector.events.summary(belief)
-        surprise = getattr(belief, "surprise", None)  # reported by filters that model off-script steps
-        if "surprise" not in summary and surprise is not None:
-            summary["surprise"] = surprise
-        self.latest = summary
+        running: Filter = detector.events
+        self.latest = belief_record(running, running.last, 3, None)  # with surprise, when the filter has it
         goal = self.goal()
         if goal is not None and goal["current"]:
             top = goal["current"][0]
