@@ -101,9 +101,11 @@ def announce(started: Started) -> None:
         say(f"  {started.retired_file} held tokens in plain text (an earlier version's); removing it.")
         for name, token in started.retired.items():
             say(f"  token for {name} ({kinds.get(name, '?')}), shown this last time: {token}", whole=True)
+    for change in setup.changes:
+        say(f"  changed at this start: {change}", whole=True)
     known = ", ".join(f"{a.id} ({kinds[a.id]})" for a in setup.agents if a.id not in setup.shown)
     if known:
-        say(f"  agents as before: {known}; their {setup.working - len(setup.shown)} working tokens are unchanged", whole=True)
+        say(f"  agents as before: {known}; {setup.working - len(setup.shown)} working tokens made before", whole=True)
     say(
         "  tokens are shown only when made and kept as hashes: note them. "
         f"More, or revoke one: supportive tokens add|list|revoke --db {started.database}",

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from typing import Any
@@ -34,6 +35,8 @@ from supportive.service.statuses import board_status
 from supportive.service.store import BoardStore
 
 __all__ = ["create_app"]
+
+_log = logging.getLogger("supportive.service")
 
 
 class _LimitBody:
@@ -113,6 +116,8 @@ def create_app(settings: ServiceSettings) -> FastAPI:
     except BaseException:
         store.close()
         raise
+    for change in setup.changes:  # the command line and the database differed: say what this start changed
+        _log.warning("board %s: %s", store.shown_url, change)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
