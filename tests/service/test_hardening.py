@@ -62,12 +62,93 @@ def test_hands_beyond_the_limits_are_refused_and_social_keeps_answering(sqlite_c
     assert sqlite_client.get("/api/social", headers=auth("robot")).json() == before
 
 
-def test_hands_at_the_limits_keep_the_force_finite(sqlite_client: TestClient) -> None:
-    for t, (x, y) in enumerate([(1e6, 1e6), (-1e6, -1e6), (1e6, -1e6)], start=1):
-        body = {"x": x, "y": y, "t": MAX_SECONDS - 10 + t}
-        assert sqlite_client.post("/api/hands", headers=auth("alice"), json=body).status_code == 200
-    social = sqlite_client.get("/api/social", headers=auth("robot"))
-    assert social.status_code == 200 and all(0 <= v <= 1 for v in social.json()["field"]["values"])
+def test_hands_at_the_limits_keep_the_force_finite(tmp_path: Path) -> None:
+    """On a workspace as large as coordinates go (hands within it and the reach around it)."""
+    from dataclasses import replace
+
+    from supportive.io.values import MAX_COORDINATE
+    from supportive.service.app import create_app
+    from supportive.service.routes.social import REACH
+
+    from .conftest import chair_settings
+
+    size = MAX_COORDINATE - REACH
+    settings = replace(chair_settings(f"sqlite:///{tmp_path / 'board.db'}"), workspace=(size, size))
+    with TestClient(create_app(settings)) as client:
+        for t, (x, y) in enumerate([(1e6, 1e6), (-REACH, -REACH), (1e6, -REACH)], start=1):
+            body = {"x": x, "y": y, "t": MAX_SECONDS - 10 + t}
+            assert client.post("/api/hands", headers=auth("alice"), json=body).status_code == 200
+        social = client.get("/api/social", headers=auth("robot"))
+        assert social.status_code == 200 and all(0 <= v <= 1 for v in social.json()["field"]["values"])
+
+
+def test_hands_outside_the_workspace_and_its_reach_are_a_422_naming_the_bound(sqlite_client: TestClient) -> None:
+    """Issue 26: (99, −5) was accepted on the 1.83 m × 0.762 m workbench."""
+    response = sqlite_client.post("/api/hands", headers=auth("alice"), json={"x": 99, "y": -5, "t": 1.0})
+    assert response.status_code == 422
+    assert [(d["loc"], d["msg"]) for d in response.json()["detail"]] == [
+        (["body", "x"], "x: 99 m is outside the workspace; x must be within -1 .. 2.83 m (the 1.83 m × 0.762 m workbench and 1 m around it)"),
+        (["body", "y"], "y: -5 m is outside the workspace; y must be within -1 .. 1.762 m (the 1.83 m × 0.762 m workbench and 1 m around it)"),
+    ]
+    for x, y in [(-1.0, -1.0), (2.83, 1.762), (0.9, -0.3)]:  # the edges of the reach, a hand in front of the table
+        assert sqlite_client.post("/api/hands", headers=auth("robot"), json={"x": x, "y": y}).status_code == 200
+    assert sqlite_client.get("/api/social", headers=auth("screen")).status_code == 200
+
+
+@pytest.mark.parametrize(
+    ("endpoint", "body", "field"),
+    [
+        ("/api/nodes/n4/progress", {"progress": True}, "progress"),
+        ("/api/nodes/n4/progress", {"progress": "0.5"}, "progress"),
+        ("/api/hands", {"x": 0.4, "y": 0.2, "t": False}, "t"),
+        ("/api/hands", {"x": True, "y": 0.2}, "x"),
+        ("/api/hands", {"x": "0.4", "y": 0.2}, "x"),
+        ("/api/observations", {"events": [1]}, "events.0"),
+    ],
+)
+def test_booleans_and_strings_are_not_numbers_in_the_api(
+    sqlite_client: TestClient, endpoint: str, body: dict[str, object], field: str
+) -> None:
+    """Issue 28: ``{"progress": true}`` was a 200. No coercion: a 422 naming the field, nothing changed."""
+    assert sqlite_client.post("/api/nodes/n4/claim", headers=auth("alice")).status_code == 200
+    before = sqlite_client.get("/api/board", headers=auth("screen")).json()
+    response = sqlite_client.post(endpoint, headers=auth("alice"), json=body)
+    assert response.status_code == 422, response.text
+    assert response.json()["detail"][0]["msg"].startswith(f"{field}: ")
+    assert sqlite_client.get("/api/board", headers=auth("screen")).json() == before
+    assert sqlite_client.post("/api/nodes/n4/progress", headers=auth("alice"), json={"progress": 1}).status_code == 200
+
+
+def test_a_node_id_error_says_in_words_what_an_id_looks_like(sqlite_client: TestClient) -> None:
+    response = sqlite_client.post("/api/nodes/seat/claim", headers=auth("alice"))
+    assert response.status_code == 422
+    message = response.json()["detail"][0]["msg"]
+    assert message.startswith("node: a subtask's id is n and a number of at most six digits, like n3")
+    assert "^" not in message and "[0-9]" not in message
+
+
+def test_releasing_a_finished_action_is_a_409_and_changes_nothing(sqlite_client: TestClient) -> None:
+    """Issue 26: it was a 200 that did nothing."""
+    assert sqlite_client.post("/api/nodes/n4/claim", headers=auth("alice")).status_code == 200
+    assert sqlite_client.post("/api/nodes/n4/complete", headers=auth("alice")).status_code == 200
+    before = sqlite_client.get("/api/board", headers=auth("screen")).json()
+    response = sqlite_client.post("/api/nodes/n4/release", headers=auth("alice"))
+    assert response.status_code == 409 and "already done: there is nothing to give back" in response.json()["detail"]
+    assert sqlite_client.get("/api/board", headers=auth("screen")).json() == before
+
+
+def test_the_openapi_document_declares_the_bearer_token_so_docs_can_authorise(sqlite_client: TestClient) -> None:
+    schema = sqlite_client.get("/openapi.json").json()
+    assert schema["components"]["securitySchemes"]["token"] == {
+        "type": "http",
+        "scheme": "bearer",
+        "description": "An agent's token: `serve` prints it once when it is made; `supportive tokens add` makes more.",
+    }
+    claim = schema["paths"]["/api/nodes/{node}/claim"]["post"]
+    assert claim["security"] == [{"token": []}]
+    assert "security" not in schema["paths"].get("/", {}).get("get", {})
+    assert sqlite_client.get("/api/me", headers={"Authorization": "Basic eA=="}).status_code == 401
+    assert sqlite_client.get("/api/me", headers={"Authorization": "bearer tok-alice"}).json()["id"] == "alice"
 
 
 def test_422_details_follow_the_openapi_schema(sqlite_client: TestClient) -> None:

@@ -181,6 +181,8 @@ def _validation_details(exc: RequestValidationError) -> list[dict[str, Any]]:
         kind = str(error.get("type", "value_error"))
         if kind == "extra_forbidden":
             message = f"unknown field {where!r}"
+        elif kind == "string_pattern_mismatch" and tuple(error.get("loc", ())) == ("path", "node"):
+            message = "node: a subtask's id is n and a number of at most six digits, like n3 (GET /api/board lists them)"
         elif kind == "missing":
             message = f"missing field {where!r}"
         else:
