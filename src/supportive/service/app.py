@@ -165,6 +165,10 @@ def create_app(settings: ServiceSettings) -> FastAPI:
     async def _index() -> FileResponse:
         return FileResponse(settings.static / "index.html")
 
+    @app.get("/favicon.ico", include_in_schema=False)
+    async def _icon() -> FileResponse:
+        return FileResponse(settings.static / "favicon.ico", media_type="image/vnd.microsoft.icon")
+
     return app
 
 
