@@ -4,7 +4,8 @@ at a time.
 * :func:`atomic_write` writes the new text to a temporary file beside the target, flushes it to disk and
   renames it over the target: a reader, a crash or a full disk sees the old file or the new one, never half
   of one. A symlink is followed (the file it names is replaced, the link stays a link); the file's mode (and,
-  where allowed, its owner) is kept; a new file gets the mode ``open()`` would give it.
+  where allowed, its owner) is kept; a new file gets the mode ``open()`` would give it. A file its user may
+  not write (read-only) is refused, as ``open()`` would refuse it, though a rename could replace it.
 * :func:`create_new` makes a file that must not exist yet, whole or not at all (never a truncated one).
 * :func:`atomic_target` gives a writer that wants a file name (matplotlib, Pillow) a temporary one beside
   the target, renamed over it once the writer is done; :func:`check_target` checks such a target's name
@@ -89,6 +90,8 @@ def atomic_write(
         raise error(f"cannot write: {exc.strerror}", path=path) from None
     if current is not None and not stat.S_ISREG(current.st_mode):
         raise error("cannot write: not a regular file", path=path)
+    if current is not None and not os.access(target, os.W_OK):  # a rename would replace it all the same
+        raise error("cannot write: the file is read-only (make it writable to replace it)", path=path)
     if mode is None:
         mode = stat.S_IMODE(current.st_mode) if current is not None else 0o666 & ~_umask()
     try:

@@ -30,6 +30,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 from supportive.errors import BoardError
+from supportive.io.values import is_digits
 from supportive.tasks.htn import ActionNode, ChainNode, Node
 
 __all__ = ["ROLES", "BoardNode", "Role", "TaskBoard"]
@@ -395,7 +396,7 @@ class TaskBoard:
 
 
 def _index(ident: str) -> int | None:
-    if len(ident) < 2 or ident[0] != "n" or not ident[1:].isdigit():
+    if len(ident) < 2 or ident[0] != "n" or not is_digits(ident[1:]):
         return None
     return int(ident[1:])
 
