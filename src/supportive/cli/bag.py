@@ -110,21 +110,16 @@ def import_bags(
 
 
 def _check_output(output: Path, inputs: list[Path], *, force: bool) -> None:
-    """Refuse an output that is one of the inputs or inside one (a rosbag2 folder, a --types folder), and one
-    that exists without ``--force``.
+    """Refuse an output that is one of the inputs or inside one (a rosbag2 folder, a --types folder), a
+    folder, and a file that exists without ``--force``.
 
     Raises:
-        TaskFileError: naming the output and the input it would overwrite.
+        FileFormatError: naming the output and the problem.
     """
-    from supportive.io.atomic import real_path
+    from supportive.io.atomic import check_apart, real_path
 
-    target = real_path(output)
-    for given in inputs:
-        source = real_path(given)
-        if target == source or source in target.parents:
-            where = "is" if target == source else "is inside"
-            raise TaskFileError(f"-o {where} the input {given}; write the result elsewhere", path=output)
-    if target.is_dir():
+    check_apart(output, inputs, "-o")
+    if real_path(output).is_dir():
         raise TaskFileError("-o is a folder; name a .yaml, .json or .csv file", path=output)
     if os.path.lexists(output) and not force:
         raise TaskFileError("exists already; give --force to replace it, or another -o", path=output)

@@ -59,9 +59,14 @@ def infer_bag(
     Raises:
         BagError: for a missing, empty or wrongly typed topic, a damaged bag, or an output that exists;
             a bag being written is removed when anything fails.
+        FileFormatError: for an output that is the bag or inside it (or a ``definitions`` folder).
     """
+    from supportive.io.atomic import check_apart
     from supportive.io.rosbag import BeliefBag, read_contact_frames
     from supportive.io.rosbag.bags import seconds
+
+    if write_bag is not None:
+        check_apart(write_bag, [bag, *definitions], "--write-bag")
 
     for _ in read_contact_frames(bag, topic, definitions):  # a damaged bag fails here, before any output
         pass

@@ -36,7 +36,7 @@ import signal
 import stat
 import tempfile
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from types import FrameType
 
@@ -45,6 +45,7 @@ from supportive.errors import FileFormatError
 __all__ = [
     "atomic_target",
     "atomic_write",
+    "check_apart",
     "check_target",
     "create_new",
     "exclusive",
@@ -56,6 +57,21 @@ __all__ = [
 def real_path(path: str | Path) -> Path:
     """The file ``path`` names, through any symlinks (the path itself when it does not exist yet)."""
     return Path(os.path.realpath(path))
+
+
+def check_apart(output: str | Path, inputs: Iterable[str | Path], option: str) -> None:
+    """Refuse an output that is one of the inputs, or inside one (a folder such as a rosbag2 bag), through
+    any symlinks: writing it would change what was read.
+
+    Raises:
+        FileFormatError: naming the output, the option and the input.
+    """
+    target = real_path(output)
+    for given in inputs:
+        source = real_path(given)
+        if target == source or source in target.parents:
+            where = "is" if target == source else "is inside"
+            raise FileFormatError(f"{option} {where} the input {given}; write the result elsewhere", path=output)
 
 
 def _umask() -> int:
