@@ -192,7 +192,7 @@ def test_json_booleans_and_strings_in_numeric_api_fields_are_a_422_and_change_no
 ) -> None:
     from tests.service.conftest import auth
 
-    body = dict(NUMBER_FIELDS[endpoint])
+    body: dict[str, object] = dict(NUMBER_FIELDS[endpoint])
     field = data.draw(st.sampled_from(sorted(body)))
     body[field] = value
     before = api.get("/api/board", headers=auth("screen")).json(), api.get("/api/social", headers=auth("screen")).json()

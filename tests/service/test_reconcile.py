@@ -114,7 +114,7 @@ def test_restart_by_restart_the_service_follows_its_command_line_and_the_model(d
         command = []
         for name in agents:
             role = rng.choice(ROLES)
-            token = working.get(name) if name in working and rng.random() < 0.5 else f"{name}-{start}-token"
+            token = working[name] if name in working and rng.random() < 0.5 else f"{name}-{start}-token"
             command.append(f"{name}:{'robot' if name == 'robot' else 'human'}:{role}:{token}")
             roles[name] = role
             given[token] = name

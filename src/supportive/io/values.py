@@ -34,7 +34,6 @@ from supportive.errors import InvalidValueError
 from supportive.io.limits import MAX_ID_LENGTH, MAX_SECONDS
 
 __all__ = [
-    "is_digits",
     "MAX_COORDINATE",
     "ActionId",
     "Coordinate",
@@ -44,6 +43,7 @@ __all__ = [
     "check_id",
     "check_number",
     "check_text",
+    "is_digits",
 ]
 
 MAX_COORDINATE = 1e6

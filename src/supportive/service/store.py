@@ -137,27 +137,33 @@ class BoardStore:
                     select(boards.c.task, boards.c.initial, boards.c.state, boards.c.version).where(boards.c.id == 1)
                 ).first()
                 created = row is None
-                if created:
+                if row is None:
                     text = json.dumps(board.as_dict())
                     connection.execute(
                         insert(boards).values(id=1, task=board.task, version=0, initial=text, state=text)
                     )
-                elif row.task != board.task:
-                    raise StoreError(f"the database holds the board of {row.task!r}, not {board.task!r}")
                 else:
-                    changed = structure_change(TaskBoard.from_dict(json.loads(row.initial)), board)
-                    if changed is not None:
-                        raise StoreError(
-                            f"{self.shown_url} holds a board of {board.task!r} made from another version of the "
-                            f"task file ({changed}): start a new board with another --db, or start this one "
-                            "with the task file it was made from (its history is kept either way)"
-                        )
+                    self._check_same_task(row.task, row.initial, board)
                 registry.upgrade(connection)
                 setup = registry.set_up_agents(connection, agents, defaults)
-                if not created:
-                    said = self._reconcile(connection, board, int(row.version), TaskBoard.from_dict(json.loads(row.state)))
+                if row is not None:
+                    current = TaskBoard.from_dict(json.loads(row.state))
+                    said = self._reconcile(connection, board, int(row.version), current)
                     setup = replace(setup, changes=(*setup.changes, *said))
         return created, setup
+
+    def _check_same_task(self, task: str, initial: str, board: TaskBoard) -> None:
+        """Refuse a database whose board is another task's, or this task's made from another version of its
+        file (:func:`~supportive.service.reconcile.structure_change`)."""
+        if task != board.task:
+            raise StoreError(f"the database holds the board of {task!r}, not {board.task!r}")
+        changed = structure_change(TaskBoard.from_dict(json.loads(initial)), board)
+        if changed is not None:
+            raise StoreError(
+                f"{self.shown_url} holds a board of {board.task!r} made from another version of the task file "
+                f"({changed}): start a new board with another --db, or start this one with the task file it was "
+                "made from (its history is kept either way)"
+            )
 
     def _reconcile(self, connection: Connection, wanted: TaskBoard, version: int, current: TaskBoard) -> list[str]:
         """Bring the stored board to ``wanted``'s lead-only marks and take back the claims their owners may no
