@@ -94,6 +94,9 @@ def test_hands_outside_the_workspace_and_its_reach_are_a_422_naming_the_bound(sq
         (["body", "x"], "x: 99 m is outside the workspace; x must be within -1 .. 2.83 m (the 1.83 m × 0.762 m workbench and 1 m around it)"),
         (["body", "y"], "y: -5 m is outside the workspace; y must be within -1 .. 1.762 m (the 1.83 m × 0.762 m workbench and 1 m around it)"),
     ]
+    hand = sqlite_client.get("/openapi.json").json()["components"]["schemas"]["HandIn"]["properties"]
+    assert [(hand[a]["minimum"], hand[a]["maximum"]) for a in "xy"] == [(-1.0, 2.83), (-1.0, 1.762)]  # the schema says so
+    assert sqlite_client.get("/docs").status_code == 200
     for x, y in [(-1.0, -1.0), (2.83, 1.762), (0.9, -0.3)]:  # the edges of the reach, a hand in front of the table
         assert sqlite_client.post("/api/hands", headers=auth("robot"), json={"x": x, "y": y}).status_code == 200
     assert sqlite_client.get("/api/social", headers=auth("screen")).status_code == 200

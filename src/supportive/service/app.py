@@ -28,6 +28,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from supportive.errors import BoardError
 from supportive.service.hub import Hub
 from supportive.service.routes import board, insight, live, social
+from supportive.service.routes.social import hand_bounds
 from supportive.service.schemas import ErrorOut
 from supportive.service.settings import ServiceSettings, default_agents
 from supportive.service.state import ServiceState
@@ -160,6 +161,7 @@ def create_app(settings: ServiceSettings) -> FastAPI:
     app.include_router(insight.router)
     app.include_router(social.router)
     app.mount("/static", StaticFiles(directory=settings.static), name="static")
+    app.openapi = lambda: _with_workspace(app, settings.workspace)  # type: ignore[method-assign]
 
     @app.get("/", include_in_schema=False)
     async def _index() -> FileResponse:
@@ -170,6 +172,18 @@ def create_app(settings: ServiceSettings) -> FastAPI:
         return FileResponse(settings.static / "favicon.ico", media_type="image/vnd.microsoft.icon")
 
     return app
+
+
+def _with_workspace(app: FastAPI, workspace: tuple[float, float]) -> dict[str, Any]:
+    """The OpenAPI document, with the bounds this board puts on a hand's ``x`` and ``y`` (its workspace and
+    the reach around it, :func:`~supportive.service.routes.social.hand_bounds`), made once."""
+    if app.openapi_schema is None:
+        schema = FastAPI.openapi(app)
+        hand = schema["components"]["schemas"]["HandIn"]["properties"]
+        for axis, (low, high) in zip(("x", "y"), hand_bounds(workspace), strict=True):
+            hand[axis].update(minimum=low, maximum=high)
+        app.openapi_schema = schema
+    return app.openapi_schema
 
 
 def _validation_status(exc: RequestValidationError) -> int:

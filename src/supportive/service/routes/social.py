@@ -44,17 +44,23 @@ REACH = 1.0
 this far beyond the table's edge; a position farther out is a tracker's or a client's mistake (422)."""
 
 
+def hand_bounds(workspace: tuple[float, float]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The least and most ``x`` and ``y`` a hand may have on a workspace of this width and depth: the
+    workspace and :data:`REACH` around it (the OpenAPI document says so too)."""
+    width, depth = workspace
+    return (-REACH, width + REACH), (-REACH, depth + REACH)
+
+
 def _within(workspace: tuple[float, float], hand: HandIn) -> None:
-    """Refuse (422, in the shape of FastAPI's validation errors) a hand farther than :data:`REACH` outside
-    the workspace."""
+    """Refuse (422, in the shape of FastAPI's validation errors) a hand outside :func:`hand_bounds`."""
     problems = []
-    for axis, value, size in (("x", hand.x, workspace[0]), ("y", hand.y, workspace[1])):
-        if not -REACH <= value <= size + REACH:
+    for axis, value, (low, high) in zip(("x", "y"), (hand.x, hand.y), hand_bounds(workspace), strict=True):
+        if not low <= value <= high:
             problems.append(
                 {
                     "loc": ["body", axis],
-                    "msg": f"{axis}: {value:g} m is outside the workspace; {axis} must be within {-REACH:g} .. "
-                    f"{size + REACH:g} m (the {workspace[0]:g} m × {workspace[1]:g} m workbench and {REACH:g} m around it)",
+                    "msg": f"{axis}: {value:g} m is outside the workspace; {axis} must be within {low:g} .. "
+                    f"{high:g} m (the {workspace[0]:g} m × {workspace[1]:g} m workbench and {REACH:g} m around it)",
                     "type": "outside_workspace",
                 }
             )
