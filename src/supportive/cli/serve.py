@@ -38,12 +38,17 @@ def serve(
         list[str] | None,
         typer.Option(
             "--agent",
-            help="name:kind:role[:token], repeatable (default: alice lead, robot assistant, screen observer).",
+            help="name:kind:role[:token], repeatable (default: alice lead, robot assistant, screen observer). "
+            "At a restart the list wins: roles follow it, tokens it no longer gives are revoked.",
         ),
     ] = None,
     lead_only: Annotated[
         list[str] | None,
-        typer.Option("--lead-only", help="A subtask (name or action id) only leads may do; repeatable."),
+        typer.Option(
+            "--lead-only",
+            help="A subtask (name or action id) only leads may do; repeatable. At a restart the board's "
+            "lead-only subtasks become exactly these.",
+        ),
     ] = None,
     client_timeout: Annotated[
         float,
@@ -58,8 +63,10 @@ def serve(
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
     subtasks through. The database is checked before the URL and tokens are printed; a token is printed once,
-    when it is made (later starts make none: `supportive tokens` lists, adds and revokes them); SIGTERM stops
-    it gracefully (exit status 0)."""
+    when it is made (later starts make none: `supportive tokens` lists, adds and revokes them). At every start
+    the command line wins over the database (roles, lead-only subtasks, tokens no longer given are revoked;
+    each change is printed), and a task file edited since the board was made is refused. SIGTERM stops it
+    gracefully (exit status 0)."""
     from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
