@@ -145,6 +145,12 @@ def test_restart_by_restart_the_service_follows_its_command_line_and_the_model(d
                 assert response.status_code == model.step(op, node, name, roles[name]), (start, op, node, name)
             after = client.get("/api/board", headers={"Authorization": f"Bearer {working[agents[0]]}"}).json()
             assert model.matches(after["nodes"]) == []
+            store = client.app.state.service.store  # type: ignore[attr-defined]
+            replayed = store.initial()  # the log, the starts' own changes with it, gives the board
+            for event in store.events(limit=100_000):
+                replayed = replayed.apply(event.op, event.node, event.agent, "lead", event.progress)
+            assert {"version": after["version"], **replayed.as_dict()} == after
+    assert {e.op for e in store.events(limit=100_000)} >= {"claim", "reserve", "free"}  # each kind was met
 
 
 def test_a_task_file_edited_under_the_same_name_is_refused_and_the_board_kept(
