@@ -154,9 +154,8 @@ def test_restart_by_restart_the_service_follows_its_command_line_and_the_model(d
 
 
 def test_a_task_file_edited_under_the_same_name_is_refused_and_the_board_kept(
-    tmp_path: Path, cli: Any
+    database: str, tmp_path: Path, cli: Any
 ) -> None:
-    database = f"sqlite:///{tmp_path / 'board.db'}"
     with TestClient(create_app(settings(database, ["alice:human:lead:tok-a"], ()))) as client:
         assert client.post("/api/nodes/n4/claim", headers={"Authorization": "Bearer tok-a"}).status_code == 200
     data = yaml.safe_load(example_path("ikea-chair").read_text(encoding="utf-8"))
