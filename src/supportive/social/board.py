@@ -30,7 +30,6 @@ from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 from supportive.errors import BoardError
-from supportive.io.values import is_digits
 from supportive.tasks.htn import ActionNode, ChainNode, Node
 
 __all__ = ["ROLES", "BoardNode", "Role", "TaskBoard"]
@@ -396,7 +395,8 @@ class TaskBoard:
 
 
 def _index(ident: str) -> int | None:
-    if len(ident) < 2 or ident[0] != "n" or not is_digits(ident[1:]):
+    number = ident[1:]
+    if ident[:1] != "n" or not (number.isascii() and number.isdigit()):  # "n²" is no id
         return None
     return int(ident[1:])
 
