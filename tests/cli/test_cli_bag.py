@@ -5,6 +5,8 @@ equal ``infer --observations`` on the same contact events."""
 from __future__ import annotations
 
 import json
+import os
+import shutil
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
@@ -110,7 +112,32 @@ def _failures(tmp_path: Path) -> list[tuple[list[str], str]]:
     broken = tmp_path / "broken.bag"
     broken.write_bytes(b"#ROSBAG V2.0\n" + b"\x00" * 40)
     chair = str(examples.path("ikea-chair"))
+    odd = {}
+    for name, action in (("bell", "get\x07seat"), ("huge", "a" * 5_000_000)):  # ids learn would refuse
+        odd[name] = tmp_path / name
+        with BagWriter(odd[name], "mcap") as writer:
+            topic = writer.topic("/task/action", "std_msgs/msg/String")
+            writer.write(topic, T0, writer.message("std_msgs/msg/String", data=action))
+    piped = tmp_path / "piped"  # a FIFO where the bag's data would be: reading it would wait for ever
+    shutil.copytree(good, piped)
+    data = next(piped.glob("*.mcap"))
+    data.unlink()
+    os.mkfifo(data)
+    loop = tmp_path / "loop"
+    loop.symlink_to(loop)
     return [
+        (
+            ["bag", "import", str(odd["bell"])],
+            f"{odd['bell']}: topic /task/action: the action id of the message at 0.000 s may not contain",
+        ),
+        (
+            ["bag", "import", str(odd["huge"])],
+            f"{odd['huge']}: topic /task/action: the action id of the message at 0.000 s is at most",
+        ),
+        (["bag", "import", str(piped)], f"{piped}: {data.name} is a FIFO, not a file: a bag holds files only"),
+        (["infer", chair, "--bag", str(piped)], f"{piped}: {data.name} is a FIFO, not a file"),
+        (["bag", "import", str(loop)], f"{loop}: cannot read loop: Too many levels of symbolic links"),
+        (["infer", chair, "--bag", str(loop)], f"{loop}: cannot read loop: Too many levels of symbolic links"),
         (
             ["bag", "import", str(good), "--task", chair],
             f"{good}: topic /task/action: action 'fly_away' at 1.000 s is not one of the task's actions",
@@ -326,5 +353,43 @@ def test_damage_found_mid_stream_stops_infer_and_leaves_no_belief_bag(tmp_path: 
         ["infer", str(examples.path("ikea-chair")), "--bag", str(bag), "--write-bag", str(out)]
     )
     assert code == 2 and err.startswith(f"supportive: error: {bag}: topic /contacts: cannot read the bag: ")
-    assert 0 < len(printed.splitlines()) < len(frames)  # the frames before the damage were reported
+    assert printed == ""  # the bag is read through before anything is printed (issue 28)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["contacts.bag"]
+
+
+def test_bag_import_never_writes_over_its_inputs_and_replaces_a_file_only_with_force(
+    tmp_path: Path, cli: CliRunner
+) -> None:
+    """Issue 28: ``-o rec/metadata.yaml`` overwrote the bag's own metadata. An output inside a bag, equal to
+    an input (also through a symlink), or inside a --types folder is refused; an existing file only with
+    --force."""
+    rec = tmp_path / "rec"
+    assert cli(["bag", "export", str(examples.path("ikea-chair")), "-o", str(rec)])[0] == 0
+    types = tmp_path / "types"
+    types.mkdir()
+    (types / "Note.msg").write_text("string data\n", encoding="utf-8")
+    task = tmp_path / "task.yaml"
+    task.write_text(examples.path("ikea-chair").read_text(encoding="utf-8"), encoding="utf-8")
+    link = tmp_path / "link.yaml"
+    link.symlink_to(rec / "metadata.yaml")
+    files = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    segments = ["--segment-topic", "/task/demonstration"]
+    for output, problem in [
+        (rec / "metadata.yaml", "-o is inside the input"),
+        (rec / "new.yaml", "-o is inside the input"),
+        (link, "-o is inside the input"),
+        (task, "-o is the input"),
+        (types / "out.yaml", "-o is inside the input"),
+        (rec, "-o is the input"),
+    ]:
+        code, out, err = cli(["bag", "import", str(rec), *segments, "--task", str(task), "--types", str(types),
+                              "-o", str(output), "--force"])
+        assert code == 2 and out == "" and err.count("\n") == 1 and problem in err, err
+    assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == files
+    target = tmp_path / "out.yaml"
+    target.write_text("mine\n", encoding="utf-8")
+    code, _, err = cli(["bag", "import", str(rec), *segments, "-o", str(target)])
+    assert code == 2 and "exists already; give --force to replace it" in err and target.read_text() == "mine\n"
+    assert cli(["bag", "import", str(rec), *segments, "-o", str(target), "--force"])[0] == 0
+    assert len(parse_task_file(target).demonstrations) == len(examples.load("ikea-chair").demonstrations)
+    assert cli(["bag", "import", str(rec), *segments])[0] == 0  # the bag still opens

@@ -158,3 +158,49 @@ def test_hddl_to_an_existing_file_is_refused_and_writes_nothing(tmp_path: Path, 
     assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
     assert f"{target}: is a file, not a directory" in err and "Traceback" not in err
     assert target.read_text() == "mine\n" and sorted(p.name for p in tmp_path.iterdir()) == ["chair.hddl"]
+
+
+def test_a_read_only_file_is_refused_not_replaced(tmp_path: Path) -> None:
+    """Issue 28: as a user other than root, ``learn -o ro.yaml`` replaced a read-only file (a rename may replace
+    a file its owner cannot write). Root may write any file, so as root the check runs as ``nobody``, in a
+    child process."""
+    import tempfile
+
+    from supportive.errors import FileFormatError
+
+    if os.geteuid() == 0:  # a folder nobody can reach (pytest's are root's only)
+        tmp_path = Path(tempfile.mkdtemp(prefix="supportive-ro-"))
+    target = tmp_path / "ro.yaml"
+    target.write_text("mine\n", encoding="utf-8")
+    target.chmod(0o444)
+
+    def attempt() -> str:
+        try:
+            atomic_write(target, "new\n")
+        except FileFormatError as exc:
+            return str(exc)
+        return "written"
+
+    if os.geteuid() != 0:
+        outcome = attempt()
+    else:
+        shutil.chown(tmp_path, "nobody")
+        shutil.chown(target, "nobody")
+        reader, writer = os.pipe()
+        child = os.fork()
+        if child == 0:  # pragma: no cover - the child reports through the pipe
+            os.close(reader)
+            try:
+                os.setgid(65534)
+                os.setuid(65534)
+                os.write(writer, attempt().encode())
+            finally:
+                os._exit(0)
+        os.close(writer)
+        with os.fdopen(reader) as pipe:
+            outcome = pipe.read()
+        os.waitpid(child, 0)
+    assert outcome == f"{target}: cannot write: the file is read-only (make it writable to replace it)"
+    assert target.read_text(encoding="utf-8") == "mine\n" and sorted(p.name for p in tmp_path.iterdir()) == ["ro.yaml"]
+    if os.geteuid() == 0:
+        shutil.rmtree(tmp_path)

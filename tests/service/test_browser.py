@@ -93,6 +93,8 @@ def test_a_wrong_token_asks_to_sign_in(browser: Browser, board_server: Any) -> N
     page = browser.new_page()
     page.goto(f"{board_server.url}/#token=wrong")
     expect(page.locator("#signin-error")).to_have_text("unknown token")
+    expect(page.get_by_test_id("live")).to_have_text("signed out")  # the service is up: not "offline"
+    expect(page.get_by_test_id("goal")).to_have_text("Sign in with an agent's token to see the board.")
     page.get_by_test_id("token").fill("tok-robot")
     page.get_by_role("button", name="Sign in").click()
     expect(page.get_by_test_id("me")).to_have_text("robot (robot, assistant)")
@@ -105,3 +107,21 @@ def test_the_token_leaves_the_address_after_sign_in(open_page: Callable[..., Pag
     page.reload()  # kept for this tab only, so a reload stays signed in
     expect(page.get_by_test_id("me")).to_have_text("alice (human, lead)")
     assert "tok-alice" not in page.url
+
+
+def test_the_signed_out_page_is_neither_offline_nor_loading_and_has_an_icon(browser: Browser, board_server: Any) -> None:
+    """Issue 26: the signed-out page showed a red "offline" badge and "Loading…" while the server was up, and
+    /favicon.ico was a 404."""
+    page = browser.new_page()
+    missing: list[str] = []
+    page.on("response", lambda response: missing.append(response.url) if response.status >= 400 else None)
+    page.goto(f"{board_server.url}/")
+    expect(page.get_by_test_id("token")).to_be_visible()
+    expect(page.get_by_test_id("live")).to_have_text("signed out")
+    assert "off" not in (page.get_by_test_id("live").get_attribute("class") or "").split()
+    expect(page.get_by_test_id("goal")).not_to_contain_text("Loading")
+    icon = httpx.get(f"{board_server.url}/favicon.ico", timeout=10)
+    assert icon.status_code == 200 and icon.headers["content-type"] == "image/vnd.microsoft.icon"
+    assert icon.content[:4] == b"\x00\x00\x01\x00"  # an ICO file's header
+    assert missing == []
+    page.close()

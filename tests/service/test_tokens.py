@@ -152,7 +152,7 @@ def test_a_given_token_is_kept_and_a_revoked_one_cannot_be_given_again(database:
     cases = [
         ("robot:robot:assistant:tok-robot", "the token given was revoked"),
         ("bob:human:lead:tok-alice", "the token given is another agent's"),
-        ("alice:robot:lead:tok-alice", "'alice' is a human lead on this board, not a robot lead"),
+        ("alice:robot:lead:tok-alice", "'alice' is a human on this board, not a robot: an agent keeps its kind"),
     ]
     for text, problem in cases:
         changed = type(settings)(database, settings.board, (parse_agent(text),), settings.spec)
@@ -244,6 +244,7 @@ def test_revoking_every_token_of_an_agent_keeps_the_agent(tmp_path: Path, cli: C
         (["add", "alice", "--kind", "robot", "--role", "lead"], "'alice' is a human lead on this board"),
         (["add", "x" * 65, "--kind", "robot", "--role", "lead"], "an agent's name is at most 64 characters"),
         (["add", "alice", "--label", "l" * 201], "a token's label is at most 200 characters"),
+        (["add", "alice", "--label", "given to serve"], "the label 'given to serve' is serve's own"),
     ]:
         code, out, err = cli(["tokens", *args, "--db", database])
         assert code == 2 and out == "" and len(err.splitlines()) == 1 and problem in err, err

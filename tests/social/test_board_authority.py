@@ -66,7 +66,7 @@ def test_an_assistant_may_do_what_is_outside_lead_only_nodes() -> None:
     board = chair().claim("n1", "robot", "assistant").report("n1", "robot", "assistant", 0.5)
     board = board.complete("n1", "robot", "assistant")
     assert board.node("n1").done and board.node("n1").owner == "robot"
-    assert board.release("n1", "robot", "assistant") == board  # a done node has nothing to give back
+    refused(409, "already done: there is nothing to give back", board.release, "n1", "robot", "assistant")
     assert board.claim("n5", "robot", "assistant").node("n5").owner == "robot"
 
 

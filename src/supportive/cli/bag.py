@@ -6,6 +6,7 @@ Parses arguments and calls :mod:`supportive.io.rosbag`; no logic of its own. Err
 
 from __future__ import annotations
 
+import os
 import sys
 from dataclasses import replace
 from enum import StrEnum
@@ -72,6 +73,9 @@ def import_bags(
             "--output", "-o", help="Task file to write: .yaml, .json or .csv (default: YAML on stdout)."
         ),
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace the -o file when it exists (never one of the inputs).")
+    ] = False,
 ) -> None:
     """Read each bag (or each segment of a bag) as a demonstration and write them as a task file."""
     from supportive.io.rosbag import bag_name, import_demonstrations
@@ -80,8 +84,8 @@ def import_bags(
 
     if segment_topic == actions_topic:
         raise OptionError(f"--segment-topic and --actions-topic are both {actions_topic}: give two topics")
-    if task is not None and output is not None and output.resolve() == task.resolve():
-        raise TaskFileError("-o names the --task file itself; write the result to another file", path=output)
+    if output is not None:
+        _check_output(output, [*bags, *([task] if task is not None else []), *(types or [])], force=force)
     fmt = format_of(output) if output is not None else "yaml"
     template = parse_task_file(task) if task is not None else None
     vocabulary = {a.id for a in template.actions} if template is not None and template.actions else None
@@ -103,6 +107,22 @@ def import_bags(
     with writing(output):
         write_task_file(spec, output, fmt)
     typer.echo(f"wrote {output}: {len(demonstrations)} demonstrations", err=True)
+
+
+def _check_output(output: Path, inputs: list[Path], *, force: bool) -> None:
+    """Refuse an output that is one of the inputs or inside one (a rosbag2 folder, a --types folder), a
+    folder, and a file that exists without ``--force``.
+
+    Raises:
+        FileFormatError: naming the output and the problem.
+    """
+    from supportive.io.atomic import check_apart, real_path
+
+    check_apart(output, inputs, "-o")
+    if real_path(output).is_dir():
+        raise TaskFileError("-o is a folder; name a .yaml, .json or .csv file", path=output)
+    if os.path.lexists(output) and not force:
+        raise TaskFileError("exists already; give --force to replace it, or another -o", path=output)
 
 
 @bag_app.command("export")

@@ -15,6 +15,7 @@ import typer
 from supportive.cli.output import about, finite, out, say, write_text
 from supportive.errors import OptionError, TaskFileError
 from supportive.extras import require_extra
+from supportive.io.values import is_digits
 from supportive.render.terminal import printable
 
 __all__ = ["captaincook", "evaluate", "generate", "learn"]
@@ -204,7 +205,7 @@ def evaluate(
     from supportive.io.taskfile import parse_task_file
     from supportive.render.tables import fitted_table
 
-    if folds != "loo" and not (folds.isdigit() and int(folds) >= 2):
+    if folds != "loo" and not (is_digits(folds) and int(folds) >= 2):
         raise OptionError(f"expected loo or a number of folds of at least 2, got {folds!r}", "--folds")
     if plot is not None:
         require_extra("drawing the reliability diagram (--plot)", "matplotlib", "plot")

@@ -38,12 +38,17 @@ def serve(
         list[str] | None,
         typer.Option(
             "--agent",
-            help="name:kind:role[:token], repeatable (default: alice lead, robot assistant, screen observer).",
+            help="name:kind:role[:token], repeatable (default: alice lead, robot assistant, screen observer). "
+            "At a restart the list wins: roles follow it, tokens it no longer gives are revoked.",
         ),
     ] = None,
     lead_only: Annotated[
         list[str] | None,
-        typer.Option("--lead-only", help="A subtask (name or action id) only leads may do; repeatable."),
+        typer.Option(
+            "--lead-only",
+            help="A subtask (name or action id) only leads may do; repeatable. At a restart the board's "
+            "lead-only subtasks become exactly these.",
+        ),
     ] = None,
     client_timeout: Annotated[
         float,
@@ -58,8 +63,10 @@ def serve(
 ) -> None:
     """Serve the shared task board (§3.4.3): a web page and a JSON/WebSocket API that people and robots claim
     subtasks through. The database is checked before the URL and tokens are printed; a token is printed once,
-    when it is made (later starts make none: `supportive tokens` lists, adds and revokes them); SIGTERM stops
-    it gracefully (exit status 0)."""
+    when it is made (later starts make none: `supportive tokens` lists, adds and revokes them). At every start
+    the command line wins over the database (roles, lead-only subtasks, tokens no longer given are revoked;
+    each change is printed), and a task file edited since the board was made is refused. SIGTERM stops it
+    gracefully (exit status 0)."""
     from supportive.examples import task_path
     from supportive.service.launch import prepare
     from supportive.service.launch import serve as run_service
@@ -101,9 +108,11 @@ def announce(started: Started) -> None:
         say(f"  {started.retired_file} held tokens in plain text (an earlier version's); removing it.")
         for name, token in started.retired.items():
             say(f"  token for {name} ({kinds.get(name, '?')}), shown this last time: {token}", whole=True)
+    for change in setup.changes:
+        say(f"  changed at this start: {change}", whole=True)
     known = ", ".join(f"{a.id} ({kinds[a.id]})" for a in setup.agents if a.id not in setup.shown)
     if known:
-        say(f"  agents as before: {known}; their {setup.working - len(setup.shown)} working tokens are unchanged", whole=True)
+        say(f"  agents as before: {known}; {setup.working - len(setup.shown)} working tokens made before", whole=True)
     say(
         "  tokens are shown only when made and kept as hashes: note them. "
         f"More, or revoke one: supportive tokens add|list|revoke --db {started.database}",

@@ -53,15 +53,23 @@ def infer_bag(
     """Run a bag's contact frames (streamed, never all in memory) through ``record`` — one frame's events and
     time in seconds to its record, e.g. a filter's :func:`belief_record` and the mistake judged there — then
     ``emit`` each record and, with ``write_bag``, write them to a new MCAP bag at the frames' times (the
-    hierarchy as a latched topic). How many frames there were.
+    hierarchy as a latched topic). The topic is read through once first, so a damaged bag fails before
+    anything is emitted or written (twice the reading, still in constant memory). How many frames there were.
 
     Raises:
         BagError: for a missing, empty or wrongly typed topic, a damaged bag, or an output that exists;
             a bag being written is removed when anything fails.
+        FileFormatError: for an output that is the bag or inside it (or a ``definitions`` folder).
     """
+    from supportive.io.atomic import check_apart
     from supportive.io.rosbag import BeliefBag, read_contact_frames
     from supportive.io.rosbag.bags import seconds
 
+    if write_bag is not None:
+        check_apart(write_bag, [bag, *definitions], "--write-bag")
+
+    for _ in read_contact_frames(bag, topic, definitions):  # a damaged bag fails here, before any output
+        pass
     frames = read_contact_frames(bag, topic, definitions)
     sink: AbstractContextManager[BeliefBag | None] = (
         nullcontext() if write_bag is None else BeliefBag(write_bag, hierarchy or {})

@@ -4,7 +4,8 @@ at a time.
 * :func:`atomic_write` writes the new text to a temporary file beside the target, flushes it to disk and
   renames it over the target: a reader, a crash or a full disk sees the old file or the new one, never half
   of one. A symlink is followed (the file it names is replaced, the link stays a link); the file's mode (and,
-  where allowed, its owner) is kept; a new file gets the mode ``open()`` would give it.
+  where allowed, its owner) is kept; a new file gets the mode ``open()`` would give it. A file its user may
+  not write (read-only) is refused, as ``open()`` would refuse it, though a rename could replace it.
 * :func:`create_new` makes a file that must not exist yet, whole or not at all (never a truncated one).
 * :func:`atomic_target` gives a writer that wants a file name (matplotlib, Pillow) a temporary one beside
   the target, renamed over it once the writer is done; :func:`check_target` checks such a target's name
@@ -35,7 +36,7 @@ import signal
 import stat
 import tempfile
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from types import FrameType
 
@@ -44,6 +45,7 @@ from supportive.errors import FileFormatError
 __all__ = [
     "atomic_target",
     "atomic_write",
+    "check_apart",
     "check_target",
     "create_new",
     "exclusive",
@@ -55,6 +57,21 @@ __all__ = [
 def real_path(path: str | Path) -> Path:
     """The file ``path`` names, through any symlinks (the path itself when it does not exist yet)."""
     return Path(os.path.realpath(path))
+
+
+def check_apart(output: str | Path, inputs: Iterable[str | Path], option: str) -> None:
+    """Refuse an output that is one of the inputs, or inside one (a folder such as a rosbag2 bag), through
+    any symlinks: writing it would change what was read.
+
+    Raises:
+        FileFormatError: naming the output, the option and the input.
+    """
+    target = real_path(output)
+    for given in inputs:
+        source = real_path(given)
+        if target == source or source in target.parents:
+            where = "is" if target == source else "is inside"
+            raise FileFormatError(f"{option} {where} the input {given}; write the result elsewhere", path=output)
 
 
 def _umask() -> int:
@@ -89,6 +106,8 @@ def atomic_write(
         raise error(f"cannot write: {exc.strerror}", path=path) from None
     if current is not None and not stat.S_ISREG(current.st_mode):
         raise error("cannot write: not a regular file", path=path)
+    if current is not None and not os.access(target, os.W_OK):  # a rename would replace it all the same
+        raise error("cannot write: the file is read-only (make it writable to replace it)", path=path)
     if mode is None:
         mode = stat.S_IMODE(current.st_mode) if current is not None else 0o666 & ~_umask()
     try:

@@ -23,7 +23,7 @@ from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
 from supportive.io.safe_load import read_csv, read_text
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
-from supportive.io.values import check_id, check_number
+from supportive.io.values import check_id, check_number, is_digits
 from supportive.tasks.behaviors import (
     DERIVED_PREDICATES,
     BehaviorCategory,
@@ -308,7 +308,7 @@ def _parse_csv(text: str, path: str | Path | None, name: str) -> TaskSpec:
         except ValueError as exc:
             raise TaskFileError(str(exc), path=path, line=line) from None
         step = values.get("step", "")
-        if not (step.isdigit() and len(step) <= 9):
+        if not (is_digits(step) and len(step) <= 9):
             raise TaskFileError(f"step must be an integer of at most 9 digits, got {step[:20]!r}", path=path, line=line)
         start, end = (_seconds(values.get(k, ""), k, path, line) for k in ("start", "end"))
         if start is not None and end is not None and start > end:

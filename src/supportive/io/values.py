@@ -43,10 +43,21 @@ __all__ = [
     "check_id",
     "check_number",
     "check_text",
+    "is_digits",
 ]
 
 MAX_COORDINATE = 1e6
 """The largest coordinate (keyframes, hand positions, table positions), in the task's units (metres or cm)."""
+
+
+def is_digits(text: str) -> bool:
+    """Whether ``text`` is one or more ASCII digits (``str.isdigit`` also says yes to ``²`` or ``٣``, which
+    ``int`` refuses or reads as another number than a person typed).
+
+    >>> is_digits("12"), is_digits("²"), is_digits("٣"), is_digits("")
+    (True, False, False, False)
+    """
+    return text.isascii() and text.isdigit()
 
 
 def check_number(value: float, what: str, *, low: float, high: float) -> float:

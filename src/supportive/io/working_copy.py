@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from supportive.errors import TaskFileError
-from supportive.io.atomic import create_new
+from supportive.io.atomic import create_new, real_path
 from supportive.io.taskfile import dump_task, format_of, parse_task_file
 
 __all__ = ["EDITED", "WorkingCopy", "package_folder", "working_copy"]
@@ -130,4 +130,4 @@ def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingC
 
 
 def _inside_package(path: Path) -> bool:
-    return path.resolve().is_relative_to(package_folder())
+    return real_path(path).is_relative_to(package_folder())  # never raises, even on a symlink loop

@@ -3,8 +3,9 @@
 A token is shown once, when it is made, and stored only as its SHA-256 hash (a drawn token has 144 random
 bits, so the hash cannot be turned back). An agent may hold several tokens (one per robot, screen or person
 using it); each has a number, a label and the time it was made, and works until it is revoked. Nothing here
-ever makes a token the caller did not ask for: starting the service again adds no token to an agent it knows,
-and keeps every token that works.
+ever makes a token the caller did not ask for: starting the service again adds no token to an agent it knows
+(but one whose only token was given before and is given no more), and keeps every token that works but those
+of ``serve`` the command line no longer gives (:func:`set_up_agents`).
 
 These functions work inside a transaction the caller opens (:class:`~supportive.service.store.BoardStore`
 opens them); each raises :class:`~supportive.errors.TokenError` for an agent or token it cannot use, before
@@ -30,6 +31,7 @@ from supportive.social.board import ROLES, Role
 
 __all__ = [
     "KINDS",
+    "SERVE_LABELS",
     "Agent",
     "AgentKind",
     "AgentSetup",
@@ -46,6 +48,7 @@ __all__ = [
     "set_up_agents",
     "token_hash",
     "upgrade",
+    "with_article",
 ]
 
 AgentKind = Literal["human", "robot"]
@@ -120,11 +123,15 @@ class AgentSetup:
             time they can be shown.
         agents: Every agent of the board.
         working: How many tokens work (made now or before).
+        changes: What this start changed because the command line and the database differed (roles taken
+            from the command line, tokens revoked, and — added by the store — lead-only marks and claims given
+            back), one sentence each: logged and shown in the banner.
     """
 
     shown: dict[str, str]
     agents: tuple[Agent, ...]
     working: int
+    changes: tuple[str, ...] = ()
 
 
 def check_agent_name(name: str) -> str:
@@ -170,31 +177,48 @@ def upgrade(connection: Connection) -> int:
     return len(rows)
 
 
+SERVE_LABELS = ("given to serve", "made by serve")
+"""The labels of the tokens ``serve`` makes or is given: its own, which a later start reconciles with its
+command line (a token of ``supportive tokens add``, or one kept from an earlier version, stays until revoked)."""
+_RESERVED_LABELS = (*SERVE_LABELS, "kept from an earlier version")
+
+
 def set_up_agents(
     connection: Connection, specs: Sequence[AgentSpec], defaults: Sequence[AgentSpec] = ()
 ) -> AgentSetup:
-    """Add the agents asked for that the board does not have yet, each with a token (the one given, else a new
-    one); for an agent it has, check the kind and role, and add a given token it does not know.
+    """Bring the board's agents to the ones asked for (the command line wins):
 
-    ``defaults`` are the agents of a board that has none yet (used when ``specs`` is empty). Nothing else is
-    made: an agent the board knows gets no new token unless one is given.
+    * an agent the board does not have is added, with the token given, else a new one (shown once);
+    * a known agent asked for with another role takes that role (the change is reported);
+    * a known agent asked for with a token keeps that token; its other tokens from ``serve`` are revoked (a
+      token no longer given stops working); one asked for without a token keeps the tokens ``serve`` drew
+      for it, loses one that was given before (and gets a new one, shown once, when that was its last);
+    * a known agent not asked for loses every token from ``serve`` (it stays on the board, for the log).
+
+    Tokens made by ``supportive tokens add`` (or kept from an earlier version) are kept. ``defaults`` are the agents of a board that has none
+    yet (used when ``specs`` is empty); with no ``specs``, a board that has agents keeps them as they are.
 
     Raises:
-        TokenError: for an agent asked for with another kind or role than the board's, a role that is not
-            one, or a given token that another agent holds or that was revoked.
+        TokenError: for an agent asked for with another kind than the board's, a role that is not one, or a
+            given token that another agent holds or that was revoked.
     """
     known = {a.id: a for a in all_agents(connection)}
     wanted = list(specs) or (list(defaults) if not known else [])
     shown: dict[str, str] = {}
+    changes: list[str] = []
     for spec in wanted:
         if spec.role not in ROLES:
             raise TokenError(f"agent {spec.id}: unknown role {spec.role!r}; choose {', '.join(ROLES)}")
         agent = known.get(spec.id)
-        if agent is not None and (agent.kind, agent.role) != (spec.kind, spec.role):
+        if agent is not None and agent.kind != spec.kind:
             raise TokenError(
-                f"agent {spec.id!r} is a {agent.kind} {agent.role} on this board, not a {spec.kind} {spec.role}: "
-                "an agent keeps its kind and role (give another name for another agent)"
+                f"agent {spec.id!r} is a {agent.kind} on this board, not a {spec.kind}: an agent keeps its "
+                "kind (give another name for another agent)"
             )
+        if agent is not None and agent.role != spec.role:
+            connection.execute(update(agents_table).where(agents_table.c.id == spec.id).values(role=spec.role))
+            known[spec.id] = Agent(spec.id, spec.kind, spec.role)
+            changes.append(f"{spec.id} is now {with_article(spec.role)} (was {with_article(agent.role)}): the command line says so")
         if spec.token is not None:
             held = _holder(connection, spec.token)
             if held is not None:
@@ -205,7 +229,15 @@ def set_up_agents(
                     raise TokenError(
                         f"agent {spec.id}: the token given was revoked (supportive tokens list); give another"
                     )
+            if agent is not None:
+                _retire(connection, spec.id, SERVE_LABELS, keep=token_hash(spec.token), changes=changes)
+            if held is not None:
                 continue  # the agent's, and it works: nothing to add
+        elif agent is not None:
+            before = _working(connection, spec.id)
+            _retire(connection, spec.id, ("given to serve",), changes=changes)
+            if not before or _working(connection, spec.id):
+                continue  # it keeps a token that works (or had none working: tokens revoke said so)
         token = spec.token or new_token()
         if agent is None:
             connection.execute(
@@ -217,10 +249,52 @@ def set_up_agents(
         label = "given to serve" if spec.token else "made by serve"
         _insert(connection, spec.id, token, label)
         shown[spec.id] = token
+    if specs:
+        for name in sorted(set(known) - {spec.id for spec in specs}):
+            _retire(connection, name, SERVE_LABELS, changes=changes, why="is not on the command line")
     working = connection.execute(
         select(func.count()).select_from(tokens_table).where(tokens_table.c.revoked.is_(None))
     ).scalar_one()
-    return AgentSetup(shown, tuple(known[name] for name in sorted(known)), int(working))
+    return AgentSetup(shown, tuple(known[name] for name in sorted(known)), int(working), tuple(changes))
+
+
+def with_article(word: str) -> str:
+    """``word`` after "a" or "an" ("an assistant", "a lead")."""
+    return f"an {word}" if word[:1] in ("a", "e", "i", "o", "u") else f"a {word}"
+
+
+def _working(connection: Connection, agent: str) -> int:
+    query = select(func.count()).select_from(tokens_table).where(
+        tokens_table.c.agent == agent, tokens_table.c.revoked.is_(None)
+    )
+    return int(connection.execute(query).scalar_one())
+
+
+def _retire(
+    connection: Connection,
+    agent: str,
+    labels: Sequence[str],
+    *,
+    changes: list[str],
+    keep: str | None = None,
+    why: str = "",
+) -> None:
+    """Revoke ``agent``'s working tokens labelled one of ``labels`` (but the one whose hash is ``keep``),
+    saying so in ``changes``."""
+    query = select(tokens_table.c.id).where(
+        tokens_table.c.agent == agent, tokens_table.c.revoked.is_(None), tokens_table.c.label.in_(labels)
+    )
+    if keep is not None:
+        query = query.where(tokens_table.c.hash != keep)
+    numbers = [int(n) for n in connection.execute(query).scalars()]
+    if not numbers:
+        return
+    connection.execute(update(tokens_table).where(tokens_table.c.id.in_(numbers)).values(revoked=time.time()))
+    listed = f"token{'s' if len(numbers) > 1 else ''} {', '.join(map(str, numbers))}"
+    if why:
+        changes.append(f"{agent} {why}: revoked its {listed} from serve")
+    else:
+        changes.append(f"{agent}'s {listed} from serve {'are' if len(numbers) > 1 else 'is'} given no more: revoked")
 
 
 def lookup_query() -> Select[Any]:
@@ -274,6 +348,8 @@ def add_token(
     """
     if len(label) > LABEL_LENGTH:
         raise TokenError(f"a token's label is at most {LABEL_LENGTH} characters, got {len(label)}")
+    if label in _RESERVED_LABELS:
+        raise TokenError(f"the label {label!r} is serve's own; give another")
     known = {a.id: a for a in all_agents(connection)}
     if agent not in known:
         check_agent_name(agent)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from typing import Any
@@ -27,6 +28,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from supportive.errors import BoardError
 from supportive.service.hub import Hub
 from supportive.service.routes import board, insight, live, social
+from supportive.service.routes.social import hand_bounds
 from supportive.service.schemas import ErrorOut
 from supportive.service.settings import ServiceSettings, default_agents
 from supportive.service.state import ServiceState
@@ -34,6 +36,8 @@ from supportive.service.statuses import board_status
 from supportive.service.store import BoardStore
 
 __all__ = ["create_app"]
+
+_log = logging.getLogger("supportive.service")
 
 
 class _LimitBody:
@@ -113,6 +117,8 @@ def create_app(settings: ServiceSettings) -> FastAPI:
     except BaseException:
         store.close()
         raise
+    for change in setup.changes:  # the command line and the database differed: say what this start changed
+        _log.warning("board %s: %s", store.shown_url, change)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -155,12 +161,29 @@ def create_app(settings: ServiceSettings) -> FastAPI:
     app.include_router(insight.router)
     app.include_router(social.router)
     app.mount("/static", StaticFiles(directory=settings.static), name="static")
+    app.openapi = lambda: _with_workspace(app, settings.workspace)  # type: ignore[method-assign]
 
     @app.get("/", include_in_schema=False)
     async def _index() -> FileResponse:
         return FileResponse(settings.static / "index.html")
 
+    @app.get("/favicon.ico", include_in_schema=False)
+    async def _icon() -> FileResponse:
+        return FileResponse(settings.static / "favicon.ico", media_type="image/vnd.microsoft.icon")
+
     return app
+
+
+def _with_workspace(app: FastAPI, workspace: tuple[float, float]) -> dict[str, Any]:
+    """The OpenAPI document, with the bounds this board puts on a hand's ``x`` and ``y`` (its workspace and
+    the reach around it, :func:`~supportive.service.routes.social.hand_bounds`), made once."""
+    if app.openapi_schema is None:
+        schema = FastAPI.openapi(app)
+        hand = schema["components"]["schemas"]["HandIn"]["properties"]
+        for axis, (low, high) in zip(("x", "y"), hand_bounds(workspace), strict=True):
+            hand[axis].update(minimum=low, maximum=high)
+        app.openapi_schema = schema
+    return app.openapi_schema
 
 
 def _validation_status(exc: RequestValidationError) -> int:
@@ -176,6 +199,8 @@ def _validation_details(exc: RequestValidationError) -> list[dict[str, Any]]:
         kind = str(error.get("type", "value_error"))
         if kind == "extra_forbidden":
             message = f"unknown field {where!r}"
+        elif kind == "string_pattern_mismatch" and tuple(error.get("loc", ())) == ("path", "node"):
+            message = "node: a subtask's id is n and a number of at most six digits, like n3 (GET /api/board lists them)"
         elif kind == "missing":
             message = f"missing field {where!r}"
         else:

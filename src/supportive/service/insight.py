@@ -17,6 +17,7 @@ from supportive.errors import ServiceError
 from supportive.inference import END_LABEL, Filter, ObservationModel, ProgressHMM
 from supportive.inference.bags import belief_record
 from supportive.inference.mistakes import DEFAULT_THRESHOLD, MistakeDetector, StepVerdict
+from supportive.io.values import is_digits
 from supportive.language.help import mistake_record
 from supportive.language.states import TaskStates
 from supportive.learning.learner import learn
@@ -150,7 +151,7 @@ class Insight:
             out = []
             for label, p in pairs:
                 action, _, occurrence = str(label).rpartition("#")
-                if not (action and occurrence.isdigit()):
+                if not (action and is_digits(occurrence)):
                     action, occurrence = str(label), ""
                 text = "finish the task" if label == END_LABEL else texts.get(action, action)
                 text += f" (#{occurrence})" if occurrence else ""

@@ -9,6 +9,7 @@ shows the tokens of that file that still work, this last time, and removes it.
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import socket
 from collections.abc import Callable, Sequence
@@ -18,13 +19,13 @@ from pathlib import Path
 from sqlalchemy.engine import make_url
 from sqlalchemy.exc import ArgumentError
 
-from supportive.errors import InvalidValueError, StoreError, SupportiveError, naming
+from supportive.errors import InvalidValueError, ServiceError, StoreError, SupportiveError, naming
 from supportive.io.taskfile import parse_task_file
 from supportive.service.agents import AgentSetup
 from supportive.service.settings import ServiceSettings, board_of, parse_agent
 from supportive.service.store import BoardStore
 
-__all__ = ["Launch", "Started", "free_port", "legacy_tokens_file", "prepare", "serve"]
+__all__ = ["Launch", "Started", "free_port", "legacy_tokens_file", "listen", "prepare", "serve"]
 
 
 @dataclass(frozen=True)
@@ -114,7 +115,12 @@ def serve(launch: Launch, announce: Callable[[Started], None] = lambda started: 
     from supportive.service.app import create_app
     from supportive.service.serving import run
 
-    app = create_app(launch.settings)
+    listener = listen(launch.host, launch.port)  # a busy port fails here, before a token is printed
+    try:
+        app = create_app(launch.settings)
+    except BaseException:
+        listener.close()
+        raise
     state = app.state.service
     old = legacy_tokens_file(launch.settings.database)
     retired = _working_tokens(old, state.store) if old is not None and old.is_file() else {}
@@ -124,7 +130,30 @@ def serve(launch: Launch, announce: Callable[[Started], None] = lambda started: 
             old.unlink()
     gc.collect()
     gc.freeze()  # start-up objects never need collecting: full collections stay short under load
-    run(app, launch.host, launch.port, timeout=launch.settings.client_timeout)
+    run(app, listener, timeout=launch.settings.client_timeout)
+
+
+def listen(host: str, port: int) -> socket.socket:
+    """A TCP socket bound to ``host:port`` (the service's, handed to the server).
+
+    Raises:
+        ServiceError: when the address is in use or cannot be used.
+    """
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except OSError as exc:
+        raise ServiceError(f"cannot listen on {host}: {exc.strerror or exc}") from None
+    family, kind, proto, _, address = infos[0]
+    listener = socket.socket(family, kind, proto)
+    listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        listener.bind(address)
+    except OSError as exc:
+        listener.close()
+        if exc.errno == errno.EADDRINUSE:
+            raise ServiceError(f"port {port} on {host} is in use (another board?): give another --port") from None
+        raise ServiceError(f"cannot listen on {host}:{port}: {exc.strerror or exc}") from None
+    return listener
 
 
 def free_port() -> int:

@@ -12,7 +12,10 @@ __all__ = ["ErrorOut", "HandIn", "ObservationIn", "ProgressIn"]
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    """Unknown keys refused, and no coercion: ``true`` or ``"0.5"`` where a number belongs is a 422, as is
+    ``1`` where text belongs (an integer where a float belongs is a number, and accepted)."""
+
+    model_config = ConfigDict(extra="forbid", strict=True)
 
 
 class ProgressIn(_Strict):

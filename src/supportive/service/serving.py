@@ -6,7 +6,9 @@
   (or of the previous response), the body within ``timeout`` seconds of the head (:mod:`supportive.service.app`
   answers 408 otherwise), and a client that stops reading its response for ``3 × timeout`` seconds is cut off.
   WebSockets are pinged every 20 s and closed when a ping is not answered in 20 s (uvicorn's own).
-* **SIGTERM** stops the service gracefully: no new connections, requests in flight finish (3 s at most),
+* **SIGTERM** stops the service gracefully: no new connections, requests in flight finish (3 s at most; a
+  request that reaches an idle kept-alive connection within :data:`DRAIN` seconds of the stop is answered too,
+  with ``Connection: close``, rather than cut off),
   WebSockets are closed with 1012 (service restart), the store's writer commits what it was given, and the
   process exits with status 0 — a stop that was asked for is not a failure. Ctrl-C (SIGINT) does the same and
   ends with the usual 130.
@@ -16,13 +18,18 @@ from __future__ import annotations
 
 import asyncio
 import signal
+import socket
 from types import FrameType
 from typing import Any
 
 import uvicorn
 from uvicorn.protocols.http.httptools_impl import HttpToolsProtocol
 
-__all__ = ["run"]
+__all__ = ["DRAIN", "run"]
+
+DRAIN = 0.5
+"""Seconds an idle kept-alive connection stays open once a stop begins, to answer a request already on its
+way (well within the 3 s grace period)."""
 
 
 class _TimedHttp(HttpToolsProtocol):
@@ -34,6 +41,8 @@ class _TimedHttp(HttpToolsProtocol):
         super().__init__(*args, **kwargs)
         self._head_timer: asyncio.TimerHandle | None = None
         self._write_timer: asyncio.TimerHandle | None = None
+        self._drain_timer: asyncio.TimerHandle | None = None
+        self._draining = False
 
     def _arm(self) -> None:
         self._disarm()
@@ -56,6 +65,8 @@ class _TimedHttp(HttpToolsProtocol):
     def on_headers_complete(self) -> None:
         self._disarm()
         super().on_headers_complete()
+        if self._draining and self.cycle is not None:
+            self.cycle.keep_alive = False  # the service is stopping: this is the connection's last request
 
     def on_response_complete(self) -> None:
         super().on_response_complete()
@@ -73,7 +84,26 @@ class _TimedHttp(HttpToolsProtocol):
             self._write_timer.cancel()
             self._write_timer = None
 
+    def shutdown(self) -> None:
+        """A graceful stop: a connection in the middle of a request finishes it (then closes); an idle
+        kept-alive one gets :data:`DRAIN` seconds more, so a request its client sent as the stop began is
+        answered (with ``Connection: close``) instead of cut off unanswered."""
+        if self.cycle is not None and not self.cycle.response_complete:
+            super().shutdown()
+            return
+        if self._drain_timer is None:
+            self._draining = True
+            self._drain_timer = self.loop.call_later(DRAIN, self._close_idle)
+
+    def _close_idle(self) -> None:
+        if self.cycle is None or self.cycle.response_complete:
+            self.transport.close()
+        else:
+            self.cycle.keep_alive = False  # closes once its response is sent
+
     def connection_lost(self, exc: Exception | None) -> None:
+        if self._drain_timer is not None:
+            self._drain_timer.cancel()
         self._disarm()
         if self._write_timer is not None:
             self._write_timer.cancel()
@@ -90,9 +120,11 @@ class _Server(uvicorn.Server):
             self._captured_signals.remove(sig)
 
 
-def run(app: Any, host: str, port: int, *, timeout: float = 10.0) -> None:
-    """Serve ``app`` on ``host:port`` until SIGTERM or Ctrl-C, with client deadlines of ``timeout`` seconds."""
+def run(app: Any, listener: socket.socket, *, timeout: float = 10.0) -> None:
+    """Serve ``app`` on the bound socket ``listener`` until SIGTERM or Ctrl-C, with client deadlines of
+    ``timeout`` seconds."""
     protocol = type("TimedHttp", (_TimedHttp,), {"head_timeout": timeout})
+    host, port = listener.getsockname()[:2]
     config = uvicorn.Config(
         app,
         host=host,
@@ -102,4 +134,4 @@ def run(app: Any, host: str, port: int, *, timeout: float = 10.0) -> None:
         timeout_graceful_shutdown=3,
         timeout_keep_alive=5,
     )
-    _Server(config).run()
+    _Server(config).run(sockets=[listener])

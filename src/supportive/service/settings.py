@@ -29,10 +29,13 @@ class ServiceSettings:
 
     Attributes:
         database: SQLAlchemy URL (``sqlite:///board.db``, ``postgresql+psycopg://user@127.0.0.1/db``).
-        board: The board to create on first use.
-        agents: The agents asked for: those the board does not have are added, each with a token (the one
-            given, else a new one, shown once); those it has keep their tokens (and must keep their kind and
-            role). Empty: a board without agents gets :data:`DEFAULT_AGENTS`, a board with agents keeps them.
+        board: The board to create on first use; at a later start, its lead-only marks are the board's
+            (the task's structure must be the same: :mod:`supportive.service.reconcile`).
+        agents: The agents asked for, which the board is brought to at every start
+            (:func:`~supportive.service.agents.set_up_agents`): those it does not have are added, each with a
+            token (the one given, else a new one, shown once); those it has take the role given (and must keep
+            their kind); tokens from ``serve`` no longer given are revoked. Empty: a board without agents gets
+            :data:`DEFAULT_AGENTS`, a board with agents keeps them.
         spec: The task file, when the board came from one (behaviors, observations, keyframes).
         max_body: The largest request body accepted, bytes.
         workspace: The workbench's width and depth (metres) that hand positions and the force field live in

@@ -8,7 +8,8 @@ import time
 from dataclasses import dataclass, field
 from typing import Annotated
 
-from fastapi import Depends, Header, HTTPException, Query, Request, WebSocket
+from fastapi import Depends, HTTPException, Query, Request, Security, WebSocket
+from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
 from supportive.service.agents import Agent, AgentSetup
 from supportive.service.hub import Hub
@@ -17,7 +18,7 @@ from supportive.service.settings import ServiceSettings
 from supportive.service.store import BoardStore
 from supportive.social.field import ForceField
 
-__all__ = ["ServiceState", "current_agent", "service", "socket_agent"]
+__all__ = ["BEARER", "ServiceState", "current_agent", "service", "socket_agent"]
 
 
 @dataclass
@@ -54,19 +55,29 @@ def service(request: Request) -> ServiceState:
     return state
 
 
-async def current_agent(request: Request, authorization: Annotated[str | None, Header()] = None) -> Agent:
+BEARER = HTTPBearer(
+    auto_error=False,
+    scheme_name="token",
+    description="An agent's token: `serve` prints it once when it is made; `supportive tokens add` makes more.",
+)
+"""The API's security scheme (the OpenAPI document declares it, so /docs can authorise with a token)."""
+
+
+async def current_agent(
+    request: Request, credentials: Annotated[HTTPAuthorizationCredentials | None, Security(BEARER)] = None
+) -> Agent:
     """The agent whose ``Authorization: Bearer <token>`` this is.
 
     Raises:
         HTTPException: 401 without a token or with an unknown one.
     """
-    if authorization is None or not authorization.startswith("Bearer "):
+    if credentials is None:
         raise HTTPException(
             401,
             "missing token: send Authorization: Bearer <your agent's token>",
             headers={"WWW-Authenticate": "Bearer"},
         )
-    agent = service(request).agent(authorization.removeprefix("Bearer ").strip())
+    agent = service(request).agent(credentials.credentials.strip())
     if agent is None:
         raise HTTPException(401, "unknown token", headers={"WWW-Authenticate": "Bearer"})
     return agent

@@ -19,7 +19,7 @@ import time
 from collections.abc import Iterator, Sequence
 from concurrent.futures import Future
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 from urllib.parse import quote
 
@@ -30,6 +30,7 @@ from sqlalchemy.exc import ArgumentError, DatabaseError, OperationalError
 from supportive.errors import BoardError, StoreError, TokenError
 from supportive.service import agents as registry
 from supportive.service.agents import Agent, AgentSetup, AgentSpec, TokenInfo
+from supportive.service.reconcile import reconcile_board, structure_change
 from supportive.service.tables import boards, events_table, metadata
 from supportive.social.board import Role, TaskBoard
 
@@ -117,29 +118,73 @@ class BoardStore:
     def initialize(
         self, board: TaskBoard, agents: Sequence[AgentSpec], defaults: Sequence[AgentSpec] = ()
     ) -> tuple[bool, AgentSetup]:
-        """Create the tables and the board on first use, and set up the agents
-        (:func:`~supportive.service.agents.set_up_agents`: new ones are added with a token, known ones keep
-        theirs); whether the board was created now, and what was done to the agents.
+        """Create the tables and the board on first use; on every start, bring the database to what it is
+        started with, in one transaction: the agents (:func:`~supportive.service.agents.set_up_agents`: new
+        ones are added with a token, roles follow ``agents``, tokens no longer given are revoked), then the
+        board's lead-only marks and the claims their owners may no longer hold
+        (:func:`~supportive.service.reconcile.reconcile_board`, logged as events). Whether the board was
+        created now, and what was done (``setup.changes`` says what changed).
 
         Raises:
-            StoreError: when the database cannot be reached, or holds another task's board.
+            StoreError: when the database cannot be reached, holds another task's board, or a board of this
+                task with another structure (the task file was edited): nothing is written.
             TokenError: for an agent or token the board refuses (see ``set_up_agents``); nothing is written.
         """
         with self._guarded():
             metadata.create_all(self.engine)
             with self._write() as connection:
-                existing = connection.execute(select(boards.c.task).where(boards.c.id == 1)).scalar()
-                created = existing is None
-                if created:
+                row = connection.execute(
+                    select(boards.c.task, boards.c.initial, boards.c.state, boards.c.version).where(boards.c.id == 1)
+                ).first()
+                created = row is None
+                if row is None:
                     text = json.dumps(board.as_dict())
                     connection.execute(
                         insert(boards).values(id=1, task=board.task, version=0, initial=text, state=text)
                     )
-                elif existing != board.task:
-                    raise StoreError(f"the database holds the board of {existing!r}, not {board.task!r}")
+                else:
+                    self._check_same_task(row.task, row.initial, board)
                 registry.upgrade(connection)
                 setup = registry.set_up_agents(connection, agents, defaults)
+                if row is not None:
+                    current = TaskBoard.from_dict(json.loads(row.state))
+                    said = self._reconcile(connection, board, int(row.version), current)
+                    setup = replace(setup, changes=(*setup.changes, *said))
         return created, setup
+
+    def _check_same_task(self, task: str, initial: str, board: TaskBoard) -> None:
+        """Refuse a database whose board is another task's, or this task's made from another version of its
+        file (:func:`~supportive.service.reconcile.structure_change`)."""
+        if task != board.task:
+            raise StoreError(f"the database holds the board of {task!r}, not {board.task!r}")
+        changed = structure_change(TaskBoard.from_dict(json.loads(initial)), board)
+        if changed is not None:
+            raise StoreError(
+                f"{self.shown_url} holds a board of {board.task!r} made from another version of the task file "
+                f"({changed}): start a new board with another --db, or start this one with the task file it was "
+                "made from (its history is kept either way)"
+            )
+
+    def _reconcile(self, connection: Connection, wanted: TaskBoard, version: int, current: TaskBoard) -> list[str]:
+        """Bring the stored board to ``wanted``'s lead-only marks and take back the claims their owners may no
+        longer hold (:func:`~supportive.service.reconcile.reconcile_board`), each change an event of the log;
+        the sentences saying what changed."""
+        agents = registry.all_agents(connection)
+        working = {t.agent for t in registry.list_tokens(connection, revoked=False)}
+        after, changes, said = reconcile_board(current, wanted, {a.id: a.role for a in agents}, working)
+        if changes:
+            now = round(time.time(), 6)
+            events = [
+                {"board": 1, **BoardEvent(version + i, now, agent, op, node).as_dict()}
+                for i, (op, node, agent) in enumerate(changes, start=1)
+            ]
+            connection.execute(
+                update(boards)
+                .where(boards.c.id == 1)
+                .values(state=json.dumps(after.as_dict()), version=version + len(changes))
+            )
+            connection.execute(insert(events_table), events)
+        return said
 
     def open_existing(self) -> str:
         """Check that the database holds a board (made by ``supportive serve``) without creating anything but

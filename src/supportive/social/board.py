@@ -195,18 +195,19 @@ class TaskBoard:
         for other in (*self.ancestors(ident), *self.subtree(ident)):
             if other.owner is not None and other.owner != agent and not other.done:
                 raise BoardError("conflict", f"{other.name!r} is claimed by {other.owner}")
-        if node.owner == agent:
-            return self
         return self._set({n.id: replace(n, owner=agent) for n in self.subtree(ident) if not n.done})
 
     def release(self, ident: str, agent: str, role: Role) -> TaskBoard:
         """``agent`` gives up ``ident``: its unfinished subtasks go back to the pool.
 
         Raises:
-            BoardError: forbidden for an observer; missing for an unknown node; conflict when ``agent`` does not own it.
+            BoardError: forbidden for an observer; missing for an unknown node; conflict when it is done or
+                ``agent`` does not own it.
         """
         node = self.node(ident)
         self._may_act(node, role, "release", reserved=False)
+        if node.done:
+            raise BoardError("conflict", f"{node.name!r} is already done: there is nothing to give back")
         if node.owner != agent:
             raise BoardError("conflict", f"{node.name!r} is not claimed by {agent}")
         return self._set(
@@ -244,12 +245,49 @@ class TaskBoard:
                 board = board._set({ancestor.id: replace(board.node(ancestor.id), done=True)})
         return board
 
+    def mark(self, ident: str, lead_only: bool) -> TaskBoard:
+        """The board with ``ident`` reserved for leads (or no longer): how a start brings the board to the
+        ``--lead-only`` subtasks it was given (no agent's operation; it does not touch claims).
+
+        Raises:
+            BoardError: (missing) for an unknown id.
+        """
+        return self._set({ident: replace(self.node(ident), lead_only=lead_only)})
+
+    def free(self, ident: str) -> TaskBoard:
+        """The board with ``ident``'s claim returned to the pool (only that node; a done one keeps its owner):
+        how a start takes back what an agent may no longer hold (a role lowered, a subtask reserved, an agent
+        without a working token).
+
+        Raises:
+            BoardError: (missing) for an unknown id.
+        """
+        node = self.node(ident)
+        return self if node.done else self._set({ident: replace(node, owner=None)})
+
+    def may_hold(self, ident: str, role: Role) -> bool:
+        """Whether an agent of ``role`` may own ``ident``: an observer nothing, an assistant nothing of, in or
+        containing a lead-only subtask, a lead anything."""
+        if role == "observer":
+            return False
+        try:
+            self._may_act(self.node(ident), role, "hold")
+        except BoardError:
+            return False
+        return True
+
     def apply(self, op: str, ident: str, agent: str, role: Role, progress: float | None = None) -> TaskBoard:
-        """The operation named ``op`` (``claim``, ``release``, ``progress``, ``complete``), for replaying a log.
+        """The operation named ``op`` (``claim``, ``release``, ``progress``, ``complete``), for replaying a log;
+        and a start's own changes: ``reserve`` and ``unreserve`` (:meth:`mark`), ``free`` (:meth:`free`),
+        which no role limits.
 
         Raises:
             BoardError: as the operation does, and invalid for an unknown operation.
         """
+        if op in ("reserve", "unreserve"):
+            return self.mark(ident, op == "reserve")
+        if op == "free":
+            return self.free(ident)
         if op == "claim":
             return self.claim(ident, agent, role)
         if op == "release":
@@ -349,7 +387,8 @@ class TaskBoard:
 
 
 def _index(ident: str) -> int | None:
-    if len(ident) < 2 or ident[0] != "n" or not ident[1:].isdigit():
+    number = ident[1:]
+    if ident[:1] != "n" or not (number.isascii() and number.isdigit()):  # "n²" is no id
         return None
     return int(ident[1:])
 

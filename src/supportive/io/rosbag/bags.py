@@ -8,6 +8,7 @@ any length is read in constant memory.
 
 from __future__ import annotations
 
+import stat
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -35,20 +36,47 @@ def seconds(nanoseconds: int) -> float:
 def resolve_bag(path: Path) -> tuple[Path, RosVersion]:
     """The bag a path names, and its ROS version.
 
+    A rosbag2 directory's entries must be regular files or folders: a FIFO, socket or device in it (which
+    would block the reader, or feed it without end) or a symbolic link that loops is refused before anything
+    is opened.
+
     Raises:
-        BagError: when the path is missing or is not a bag.
+        BagError: when the path is missing, is not a bag, or holds something that is not a file.
     """
+    _check_entry(path, path)
     if path.is_file() and path.suffix in (".mcap", ".db3") and (path.parent / "metadata.yaml").is_file():
+        _check_folder(path.parent)
         return path.parent, 2
     if path.is_file() and path.suffix == ".bag":
         return path, 1
     if path.is_dir() and (path / "metadata.yaml").is_file():
+        _check_folder(path)
         return path, 2
     if not path.exists():
         raise BagError("no such bag", path=path)
     raise BagError(
         "not a ROS bag: expected a ROS 1 .bag file or a rosbag2 directory (with metadata.yaml)", path=path
     )
+
+
+def _check_folder(folder: Path) -> None:
+    for entry in sorted(folder.iterdir()):
+        _check_entry(entry, folder)
+
+
+def _check_entry(entry: Path, bag: Path) -> None:
+    """Refuse a path that is a symbolic link that loops, or neither a regular file nor a folder."""
+    try:
+        mode = entry.stat().st_mode
+    except FileNotFoundError:
+        if entry.is_symlink():
+            raise BagError(f"{entry.name} is a symbolic link to nothing", path=bag) from None
+        return  # missing: the caller says so
+    except OSError as exc:  # ELOOP and the like
+        raise BagError(f"cannot read {entry.name}: {exc.strerror}", path=bag) from None
+    if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
+        kind = "a FIFO" if stat.S_ISFIFO(mode) else "a socket or device"
+        raise BagError(f"{entry.name} is {kind}, not a file: a bag holds files only", path=bag)
 
 
 def bag_name(path: Path) -> str:

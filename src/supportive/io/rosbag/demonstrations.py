@@ -30,6 +30,7 @@ from supportive.errors import BagError
 from supportive.io.rosbag.bags import Bag, open_bag, seconds
 from supportive.io.rosbag.types import ACTION_SPAN, DEMONSTRATION
 from supportive.io.rosbag.writing import BagWriter
+from supportive.io.values import check_id
 from supportive.tasks.spec import Demonstration, Step
 
 __all__ = [
@@ -160,6 +161,10 @@ def _checked(bag: Bag, topic: str, action: _Action, vocabulary: Collection[str] 
     when = f"at {seconds(action.time - bag.start_time):.3f} s"
     if not action.action:
         raise fail(f"an empty action id {when}")
+    try:
+        check_id(action.action, action=True, what=f"the action id of the message {when}")
+    except ValueError as exc:
+        raise fail(str(exc)) from None
     if vocabulary is not None and action.action not in vocabulary:
         raise fail(f"action {action.action!r} {when} is not one of the task's actions")
     if action.end is not None and action.end < action.start:
@@ -190,6 +195,12 @@ def _segments(
     demonstrations = []
     for number, (marker, group) in enumerate(zip(markers, groups, strict=True), start=1):
         name = marker.id or f"{bag.name}-{number}"
+        for value, what in ((marker.id, "id"), (marker.agent, "agent")):
+            if value is not None:
+                try:
+                    check_id(value, what=f"the demonstration {what} of the marker at {seconds(marker.time - bag.start_time):.3f} s")
+                except ValueError as exc:
+                    raise BagError(str(exc), path=bag.path, place=f"topic {segment_topic}") from None
         if not group:
             raise BagError(
                 f"demonstration {name!r} (marker at {seconds(marker.time - bag.start_time):.3f} s) has no actions",

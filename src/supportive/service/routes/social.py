@@ -30,12 +30,42 @@ async def post_hand(request: Request, me: Me, body: Annotated[HandIn, Body()]) -
     if me.role == "observer":
         raise HTTPException(403, "observers may not report hand positions")
     state = service(request)
+    _within(state.settings.workspace, body)
     t = body.t if body.t is not None else time.monotonic() - state.started
     try:
         state.forces.update(me.id, t, (body.x, body.y))
     except SocialError as exc:
         raise HTTPException(409, str(exc)) from None
     return {"agent": me.id, "t": t}
+
+
+REACH = 1.0
+"""How far outside the workspace (metres, on every side) a hand may be reported: a person's arm reaches about
+this far beyond the table's edge; a position farther out is a tracker's or a client's mistake (422)."""
+
+
+def hand_bounds(workspace: tuple[float, float]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The least and most ``x`` and ``y`` a hand may have on a workspace of this width and depth: the
+    workspace and :data:`REACH` around it (the OpenAPI document says so too)."""
+    width, depth = workspace
+    return (-REACH, width + REACH), (-REACH, depth + REACH)
+
+
+def _within(workspace: tuple[float, float], hand: HandIn) -> None:
+    """Refuse (422, in the shape of FastAPI's validation errors) a hand outside :func:`hand_bounds`."""
+    problems = []
+    for axis, value, (low, high) in zip(("x", "y"), (hand.x, hand.y), hand_bounds(workspace), strict=True):
+        if not low <= value <= high:
+            problems.append(
+                {
+                    "loc": ["body", axis],
+                    "msg": f"{axis}: {value:g} m is outside the workspace; {axis} must be within {low:g} .. "
+                    f"{high:g} m (the {workspace[0]:g} m × {workspace[1]:g} m workbench and {REACH:g} m around it)",
+                    "type": "outside_workspace",
+                }
+            )
+    if problems:
+        raise HTTPException(422, problems)
 
 
 @router.get(

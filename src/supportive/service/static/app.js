@@ -55,6 +55,9 @@ async function api(path, options = {}) {
 
 function signIn(problem) {
   sessionStorage.removeItem(TOKEN_KEY);
+  $("live").textContent = "signed out";  // not "offline": the service answered, it wants a token
+  $("live").className = "badge idle";
+  $("goal").replaceChildren(el("p", "muted", "Sign in with an agent's token to see the board."));
   $("signin").hidden = false;
   $("signin-error").textContent = problem || "";
   $("token").focus();
@@ -62,6 +65,7 @@ function signIn(problem) {
 
 async function start(token) {
   state.token = token;
+  $("live").textContent = "connecting";
   try {
     state.me = await api("/api/me");
     state.agents = await api("/api/agents");
