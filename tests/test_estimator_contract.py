@@ -324,7 +324,7 @@ def test_set_params_checks_values_as_init_does() -> None:
 def test_settings_are_named_parameters() -> None:
     with pytest.raises(TypeError, match="named parameters"):
 
-        class Loose(Estimator):
+        class _Loose(Estimator):  # private: the contract test lists public estimators only
             def __init__(self, **settings: Any) -> None:
                 self.settings = settings
 

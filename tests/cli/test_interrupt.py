@@ -294,7 +294,7 @@ def test_a_chat_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path,
 def test_a_bag_import_cut_in_the_middle_leaves_the_old_file(tmp_path: Path, sig: int) -> None:
     target = tmp_path / "chair.yaml"
     target.write_text("name: an earlier import\n")
-    args = ["bag", "import", str(BAG), "--segment-topic", "/task/demonstration", "-o", str(target)]
+    args = ["bag", "import", str(BAG), "--segment-topic", "/task/demonstration", "-o", str(target), "--force"]
     code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
     assert assert_stopped(code, lines, sig) == f"{target} not written (it is as it was)"
     assert target.read_text() == "name: an earlier import\n" and leftovers(tmp_path) == []
