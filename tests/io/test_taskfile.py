@@ -171,7 +171,13 @@ def test_csv_sorts_steps_and_groups_demonstrations(tmp_path: Path) -> None:
 
 
 def test_unknown_suffix_and_missing_file(tmp_path: Path) -> None:
-    with pytest.raises(TaskFileError, match="unsupported file type"):
+    (tmp_path / "task.txt").write_text("name: t\n")
+    with pytest.raises(TaskFileError, match=r"unsupported file type '\.txt'; expected a task file \(\.yaml, \.yml, \.json or \.csv\)"):
         parse_task_file(tmp_path / "task.txt")
     with pytest.raises(TaskFileError, match="no such file"):
         parse_task_file(tmp_path / "missing.yaml")
+    # issue 26: a missing file or a folder without a suffix said "unsupported file type '(none)'"
+    with pytest.raises(TaskFileError, match=r"nope: no such file; expected a task file \(\.yaml"):
+        parse_task_file(tmp_path / "nope")
+    with pytest.raises(TaskFileError, match=r": is a folder; expected a task file \(\.yaml"):
+        parse_task_file(tmp_path)

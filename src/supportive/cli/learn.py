@@ -121,6 +121,9 @@ def learn(
 SLIPS_SHOWN = 5
 """Slips named in ``learn``'s notice; ``--format json`` lists every one."""
 
+NAMED = 10
+"""Held-out demonstrations ``evaluate`` names as not admitted; ``--json`` lists every one."""
+
 
 def _slips_notice(slips: list[dict[str, object]]) -> str:
     """One line: how many steps were set aside as slips, the first few, where to find the rest."""
@@ -244,6 +247,10 @@ def evaluate(
     learning = [
         f"{data['admitted']} of {data['held_out']} held-out demonstrations admitted ({data['admission']:.1%})",
     ]
+    if result.not_admitted:
+        shown = ", ".join(result.not_admitted[:NAMED])
+        more = f", … and {len(result.not_admitted) - NAMED} more" if len(result.not_admitted) > NAMED else ""
+        learning.append(f"not admitted when held out: {shown}{more}")
     if data["recall"] is not None:
         learning.append(f"orderings of the structure: recall {data['recall']:.3f}, precision {data['precision']:.3f}")
     say(f"{spec.name}: {'leave one out' if k is None else f'{k} folds'}, {result.folds} folds")

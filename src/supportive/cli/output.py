@@ -14,7 +14,7 @@ import typer
 from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError, naming
 from supportive.render.terminal import printable, terminal_console
 
-__all__ = ["about", "err", "finite", "local_workers", "out", "say", "write_text"]
+__all__ = ["about", "err", "finite", "line_editing", "local_workers", "out", "say", "write_text"]
 
 out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
 err = terminal_console(stderr=True)  # an error is one line, whatever its length
@@ -77,3 +77,15 @@ def write_text(text: str, output: Path | None) -> None:
 
     with writing(output):
         atomic_write(output, text, error=TaskFileError)
+
+
+def line_editing() -> bool:
+    """Give ``input()`` line editing and history (arrow keys, Ctrl-A/E, …) where Python has readline and the
+    input is a terminal; whether it did. Importing :mod:`readline` is all it takes."""
+    if not sys.stdin.isatty():
+        return False
+    try:
+        import readline  # noqa: F401 - importing it turns line editing on for input()
+    except ImportError:  # a Python built without it (Windows): plain input
+        return False
+    return True

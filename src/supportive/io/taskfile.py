@@ -20,7 +20,7 @@ from pydantic import ValidationError
 from supportive.errors import FormulaError, TaskFileError, TaskModelError
 from supportive.io.atomic import atomic_write
 from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
-from supportive.io.safe_load import read_csv, read_text
+from supportive.io.safe_load import check_kind, read_csv, read_text
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.values import check_id, check_number
@@ -60,9 +60,12 @@ def format_of(path: str | Path) -> Format:
         TaskFileError: for an unknown suffix.
     """
     suffix = Path(path).suffix.lower()
+    if Path(path).is_dir():
+        raise TaskFileError("is a folder; expected a task file (.yaml, .yml, .json or .csv)", path=path)
     if suffix not in _SUFFIXES:
         raise TaskFileError(
-            f"unsupported file type {suffix or '(none)'!r}; use .yaml, .yml, .json or .csv", path=path
+            f"unsupported file type {suffix or '(none)'!r}; expected a task file (.yaml, .yml, .json or .csv)",
+            path=path,
         )
     return _SUFFIXES[suffix]
 
@@ -74,7 +77,7 @@ def parse_task_file(path: str | Path, format: Format | None = None) -> TaskSpec:
         TaskFileError: when the file is missing, unreadable or invalid.
     """
     path = Path(path)
-    fmt = format or format_of(path)
+    fmt = format or _SUFFIXES[check_kind(path, tuple(_SUFFIXES), "a task file", TaskFileError)]
     return parse_task_string(read_text(path, TaskFileError), fmt, path=path)
 
 
