@@ -11,6 +11,7 @@ import pytest
 
 from supportive import examples
 from supportive.io.htn_json import htn_from_dict
+from supportive.io.taskfile import parse_task_file
 
 CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
@@ -234,3 +235,20 @@ def test_infer_leaves_out_entries_at_probability_zero(tmp_path: Path, cli: CliRu
     for record in records:
         for key in ("subgoals", "subtasks", "next"):
             assert record[key] and all(p > 0 for _, p in record[key][1:]), record[key]
+
+
+def test_a_csv_says_what_it_leaves_out(tmp_path: Path, cli: CliRunner) -> None:
+    """Issue 26: CSV output dropped the structure without saying so."""
+    code, _, err = cli(["generate", "--actions", "5", "-o", str(tmp_path / "g.csv")])
+    assert code == 0
+    assert err.strip() == (
+        f"supportive: note: {tmp_path / 'g.csv'} holds the demonstrations only: the structure and the actions and "
+        "their texts are not written (.yaml or .json keeps them)"
+    )
+    code, _, err = cli(["generate", "--actions", "5", "-o", str(tmp_path / "g.yaml")])
+    assert code == 0 and err == ""
+    flat = tmp_path / "flat.yaml"
+    flat.write_text("name: t\ndemonstrations:\n  - steps: [a, b]\n")
+    from supportive.io.taskfile import csv_leaves_out
+
+    assert csv_leaves_out(parse_task_file(flat)) == []  # nothing to leave out, nothing said

@@ -18,7 +18,7 @@ __all__ = ["caregiver"]
 
 def caregiver(
     map_name: Annotated[
-        str, typer.Option("--map", help="A shipped map (house, playroom, apartment) or a map file.")
+        str, typer.Option("--map", metavar="house|playroom|apartment|FILE", help="A shipped map (house, playroom, apartment) or a map file.")
     ] = "house",
     novice: Annotated[
         float, typer.Option("--novice", help="The novice's share of random moves ε, in [0, 1].")

@@ -30,7 +30,7 @@ def chat(
     matcher: Annotated[
         str,
         typer.Option(
-            "--matcher", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra)."
+            "--matcher", metavar="bow|embeddings", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra)."
         ),
     ] = "bow",
 ) -> None:

@@ -12,7 +12,7 @@ from typing import Annotated, Any
 
 import typer
 
-from supportive.cli.output import about, finite, out, say, write_text
+from supportive.cli.output import about, csv_note, finite, out, say, write_text
 from supportive.errors import OptionError, TaskFileError
 from supportive.extras import require_extra
 from supportive.render.terminal import printable
@@ -176,12 +176,13 @@ def generate(
             path=output or "<stdout>",
         )
     write_text(text, output)
+    csv_note(spec, fmt, output)
 
 
 def evaluate(
     file: Annotated[Path, typer.Argument(help="Task file with at least two demonstrations.")],
     folds: Annotated[
-        str, typer.Option("--folds", help="loo (leave one out) or a number of folds K.")
+        str, typer.Option("--folds", metavar="loo|K", help="loo (leave one out) or a number of folds K.")
     ] = "loo",
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the folds (K folds only).")] = 0,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,

@@ -13,8 +13,9 @@ import typer
 
 from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError, naming
 from supportive.render.terminal import printable, terminal_console
+from supportive.tasks.spec import TaskSpec
 
-__all__ = ["about", "err", "finite", "line_editing", "local_workers", "out", "say", "write_text"]
+__all__ = ["about", "csv_note", "err", "finite", "line_editing", "local_workers", "out", "say", "write_text"]
 
 out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
 err = terminal_console(stderr=True)  # an error is one line, whatever its length
@@ -89,3 +90,21 @@ def line_editing() -> bool:
     except ImportError:  # a Python built without it (Windows): plain input
         return False
     return True
+
+
+def csv_note(spec: TaskSpec, fmt: str, output: Path | None) -> None:
+    """Say on stderr, in one line, what a task written as CSV leaves out (the structure, the action texts, …):
+    nothing when the format is not CSV or nothing is lost."""
+    from supportive.io.taskfile import csv_leaves_out
+
+    if fmt != "csv":
+        return
+    lost = csv_leaves_out(spec)
+    if lost:
+        where = output if output is not None else "the CSV"
+        said = ", ".join(lost[:-1]) + (" and " if len(lost) > 1 else "") + lost[-1]
+        say(
+            f"supportive: note: {where} holds the demonstrations only: {said} {'are' if len(lost) > 1 else 'is'} "
+            "not written (.yaml or .json keeps them)",
+            to_stderr=True,
+        )

@@ -27,7 +27,7 @@ def teach(
         ),
     ] = None,
     strategy: Annotated[
-        str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
+        str, typer.Option("--strategy", metavar="distance|connectivity|random", help="Query strategy: distance, connectivity or random.")
     ] = "distance",
     after: Annotated[
         str,

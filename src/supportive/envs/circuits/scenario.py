@@ -327,7 +327,7 @@ def parse_scenario_string(
     try:
         model = ScenarioIn.model_validate(data)
     except ValidationError as exc:
-        raise schema_error(exc, text, path, ScenarioFileError) from None
+        raise schema_error(exc, text, path, ScenarioFileError, ScenarioIn) from None
 
     def fail(problem: str, loc: Sequence[str | int]) -> ScenarioFileError:
         return ScenarioFileError(problem, path=path, place=place_of(loc), line=line_of(text, loc))
