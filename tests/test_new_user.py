@@ -229,3 +229,25 @@ def test_every_readme_command_works_after_the_demo_setup(tmp_path: Path) -> None
         CHECKS[args[0]](result, tmp_path)
     assert failures == []
     assert digest(EXAMPLES) == before  # the package's own data is never written
+
+
+WRITES = ("-o", "--output", "--save", "--plot", "--render", "--write-bag", "--db")
+"""The options through which a README command names a file or folder it writes."""
+
+
+def test_what_the_readme_commands_write_is_ignored_by_git() -> None:
+    """Issue 26: chair.dot, task.yaml, … landed in the repository root, not in `.gitignore`."""
+    import shutil
+
+    if shutil.which("git") is None or not (REPO / ".git").exists():
+        pytest.skip("not a git checkout")
+    written = []
+    for args in COMMANDS:
+        for i, word in enumerate(args[:-1]):
+            if word in WRITES:
+                written.append(args[i + 1].removeprefix("sqlite:///"))
+    written = [w for w in written if "://" not in w]  # a PostgreSQL URL names no file
+    assert {"chair.dot", "task.yaml", "my-tower.yaml", "table.png", "beliefs"} <= {w.rstrip("/") for w in written}
+    for name in written:
+        ignored = subprocess.run(["git", "check-ignore", "-q", "--no-index", name], cwd=REPO, check=False)
+        assert ignored.returncode == 0, f"{name} (written by a README command) is not in .gitignore"
