@@ -266,7 +266,7 @@ def test_without_root_the_browser_and_postgresql_tests_are_skipped_saying_why(mo
 
     monkeypatch.setattr(os, "geteuid", lambda: 1000)
     shared.need_system("chromium", True)  # installed: runs, root or not
-    with pytest.raises(pytest.skip.Exception, match="chromium is not installed, and installing it .* needs root"):
+    with pytest.raises(pytest.skip.Exception, match=r"chromium is not installed, and installing it .* needs root"):
         shared.need_system("chromium", False)
     monkeypatch.setattr(shared, "system_missing", lambda: ["chromium", "PostgreSQL"])
     assert any("not root and chromium and PostgreSQL not installed" in line for line in shared.pytest_report_header())

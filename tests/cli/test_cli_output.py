@@ -103,8 +103,8 @@ def test_help_reads_as_text_and_answers_to_h() -> None:
         "caregiver": "house|playroom|apartment|FILE",
         "evaluate": "loo|K",
     }
-    for name, listed in choices.items():
-        assert listed in supportive(name, "-h", columns=160), name
+    for shown_for, listed in choices.items():
+        assert listed in supportive(shown_for, "-h", columns=160), shown_for
     wide = supportive("infer", "-h", columns=400)  # a sentence is not broken where its docstring wrapped
     assert "after each observation or known action (one JSON line each" in wide
 

@@ -206,7 +206,7 @@ def _goal(problem: str) -> set[str]:
 
 def test_the_goal_is_every_leaf_no_execution_skips() -> None:
     """Issue 26: `--format hddl` wrote an empty `(:goal (and ))`. The goal is what every plan achieves."""
-    domain, problem = hddl_strings(CLIQUE)
+    problem = hddl_strings(CLIQUE)[1]
     assert _goal(problem) == {"done_a", "done_b", "done_c", "done_d"}
     optional = HTN("opt", (chain("a", ChainNode((ActionNode("b"),), optional=True), "c"),))
     assert _goal(hddl_strings(optional)[1]) == {"done_a", "done_c"}

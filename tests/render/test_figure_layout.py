@@ -10,10 +10,10 @@ import pytest
 
 pytest.importorskip("matplotlib")
 
-from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
-from supportive.render.layout import legends_outside, spread_labels  # noqa: E402
+from supportive.render.layout import legends_outside, spread_labels
 
 
 def test_a_legend_is_moved_off_the_data_and_stays_on_the_page(tmp_path: Path) -> None:
@@ -26,16 +26,17 @@ def test_a_legend_is_moved_off_the_data_and_stays_on_the_page(tmp_path: Path) ->
         axes.legend(loc="center", fontsize=7, title="kinds")
     legends_outside(figure)
     figure.savefig(tmp_path / "f.png")
-    renderer = figure.canvas.get_renderer()
+    renderer = figure.canvas.get_renderer()  # type: ignore[attr-defined]
     page = figure.bbox
     for axes in figure.axes:
         legend = axes.get_legend()
+        assert legend is not None
         box = legend.get_window_extent(renderer)
         assert not box.overlaps(axes.get_window_extent(renderer))
         assert page.x0 <= box.x0 and box.x1 <= page.x1 + 1 and page.y0 <= box.y0 and box.y1 <= page.y1 + 1
         assert [t.get_text() for t in legend.get_texts()] == ["everywhere", "a line with a long name"]
         assert legend.get_title().get_text() == "kinds"
-    first, second = (axes.get_legend().get_window_extent(renderer) for axes in figure.axes)
+    first, second = (axes.get_legend().get_window_extent(renderer) for axes in figure.axes)  # type: ignore[union-attr]
     assert not first.overlaps(second)
 
 
@@ -49,7 +50,7 @@ def test_labels_of_items_close_together_are_spread_apart() -> None:
     labels = [(axes.text((b[0] + b[2]) / 2, (b[1] + b[3]) / 2, f"item-{i}", fontsize=6), b) for i, b in enumerate(boxes)]
     figure.draw_without_rendering()
     moved = spread_labels(axes, labels)
-    renderer = figure.canvas.get_renderer()
+    renderer = figure.canvas.get_renderer()  # type: ignore[attr-defined]
     extents = [text.get_window_extent(renderer) for text, _ in labels]
     assert moved >= 2
     assert not any(a.overlaps(b) for a, b in itertools.combinations(extents, 2))
@@ -62,7 +63,7 @@ def test_the_circuit_picture_has_no_overlapping_labels(tmp_path: Path, monkeypat
     from supportive.render import circuits
 
     seen: list[list[object]] = []
-    spread = circuits.spread_labels
+    spread = circuits.spread_labels  # type: ignore[attr-defined]
 
     def watched(axes: object, labels: list[tuple[object, tuple[float, float, float, float]]]) -> int:
         moved = spread(axes, labels)

@@ -8,7 +8,6 @@ download); screenshots go to test-artifacts/. Missing binaries fail the tests ra
 
 from __future__ import annotations
 
-import glob
 import io
 import os
 import shutil
@@ -26,7 +25,6 @@ import pytest
 from fastapi.testclient import TestClient
 from PIL import Image
 from playwright.sync_api import Browser, Page, ViewportSize, expect, sync_playwright
-
 from tests.conftest import CHROMIUM, need_system, postgres_binaries
 
 from supportive.examples import path as example_path

@@ -190,7 +190,7 @@ def _required(htn: HTN, skippable: set[Leaf]) -> list[Leaf]:
             """The roots on every path from ``state`` to a terminal state (None: no path)."""
             if state not in memo:
                 memo[state] = None  # a cycle (none in a task graph) is no path
-                ways = [frozenset() if state in terminal else None]
+                ways: list[frozenset[int] | None] = [frozenset() if state in terminal else None]
                 ways += [None if (rest := always(dst)) is None else rest | {root} for root, dst in successors.get(state, {}).items()]
                 found = [way for way in ways if way is not None]
                 memo[state] = frozenset.intersection(*found) if found else None

@@ -75,7 +75,7 @@ def line_of(text: str, loc: Sequence[str | int]) -> int | None:
             if pair is None:
                 node = None
                 continue
-            line = pair[0].start_mark.line + 1
+            line = int(pair[0].start_mark.line) + 1
             node = pair[1]
             if part == loc[-1] and node is not None and not isinstance(node, yaml.ScalarNode):
                 return line  # the key names the place; its block value begins below it

@@ -25,7 +25,7 @@ from ruamel.yaml.util import load_yaml_guess_indent
 from supportive.errors import TaskFileError
 from supportive.io.atomic import atomic_write, exclusive
 from supportive.io.safe_load import read_text
-from supportive.io.taskfile import dump_task, format_of, parse_task_string, task_to_dict
+from supportive.io.taskfile import Format, dump_task, format_of, parse_task_string, task_to_dict
 from supportive.tasks.spec import TaskSpec
 
 __all__ = ["edited_text", "update_task_file"]
@@ -65,7 +65,7 @@ def update_task_file(path: str | Path, change: Callable[[TaskSpec], TaskSpec]) -
     return new
 
 
-def edited_text(text: str, fmt: str, old: TaskSpec, new: TaskSpec, *, path: str | Path | None = None) -> str:
+def edited_text(text: str, fmt: Format, old: TaskSpec, new: TaskSpec, *, path: str | Path | None = None) -> str:
     """The text of a task file (``text``, in format ``fmt``, holding ``old``) changed to hold ``new``,
     keeping what did not change (comments and layout of YAML, key order of JSON).
 

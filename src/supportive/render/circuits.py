@@ -13,8 +13,8 @@ from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.state import Status, TabletopState
 from supportive.envs.tabletop.world import Move
 from supportive.errors import ExportError, MissingExtraError
-from supportive.render.layout import legends_outside, spread_labels
 from supportive.render.files import picture_file, picture_path
+from supportive.render.layout import legends_outside, spread_labels
 
 __all__ = ["ELEMENT_COLOURS", "draw_state", "write_before_after"]
 

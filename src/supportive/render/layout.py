@@ -36,7 +36,7 @@ def legends_outside(figure: Figure) -> Figure:
         legend = axes.get_legend()
         if legend is None:
             continue
-        handles = list(legend.legend_handles)
+        handles = [handle for handle in legend.legend_handles if handle is not None]
         labels = [text.get_text() for text in legend.get_texts()]
         title = legend.get_title().get_text() or None
         size = legend.get_texts()[0].get_fontsize() if labels else None

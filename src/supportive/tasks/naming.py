@@ -112,6 +112,6 @@ def full_name(node: Node) -> str | None:
 def _spelled(node: Node) -> str:
     """A child as its parent's full name spells it: its own full name, or its parts when it has no name."""
     name = full_name(node)
-    if name is not None:
-        return name
+    if name is not None or isinstance(node, ActionNode):
+        return name or ""
     return full_name(with_children(node, node.children, name=_describe(node.kind, node.children))) or ""
