@@ -109,8 +109,8 @@ def _plain_placeholders(command: Any) -> None:
 def _flowing(text: str) -> str:
     """A docstring's text with its source line breaks joined (paragraphs, blank-line separated, kept).
 
-    >>> _flowing("One sentence\nwrapped.\n\nA paragraph.")
-    'One sentence wrapped.\n\nA paragraph.'
+    >>> _flowing("One sentence" + chr(10) + "wrapped." + chr(10) * 2 + "A paragraph.").split(chr(10))
+    ['One sentence wrapped.', '', 'A paragraph.']
     """
     paragraphs = [" ".join(line.strip() for line in block.splitlines()) for block in text.strip().split("\n\n")]
     return "\n\n".join(paragraphs)

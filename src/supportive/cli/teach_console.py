@@ -314,7 +314,7 @@ def _next_id(spec: TaskSpec) -> str:
     """The id the next demonstration saved to the task gets: ``d`` and the first free number from the count.
 
     >>> _next_id(TaskSpec("t", demonstrations=(Demonstration.of(["a"], id="d1"), Demonstration.of(["a"], id="d3"))))
-    'd3'
+    'd4'
     """
     taken = {d.id for d in spec.demonstrations}
     number = len(spec.demonstrations) + 1
