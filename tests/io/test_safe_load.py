@@ -151,7 +151,7 @@ def test_devices_fifos_directories_and_huge_files_are_refused_before_reading(tmp
     for path, problem in (
         (zero, "not a regular file (a device or socket)"),
         (fifo, "not a regular file (a FIFO)"),  # used to wait forever for a writer
-        (folder, "not a regular file (a directory)"),
+        (folder, "is a folder; expected a task file (.yaml, .yml, .json or .csv)"),
         (big, "file is larger than 16,777,216 bytes"),
     ):
         with pytest.raises(TaskFileError) as caught:
