@@ -6,6 +6,8 @@ import sys
 from collections.abc import Iterator
 from pathlib import Path
 
+import pytest
+
 from supportive import examples
 from supportive.cli.teach_console import TeachingConsole
 from supportive.io.taskfile import parse_task_file
@@ -269,3 +271,20 @@ def test_a_session_that_records_nothing_makes_no_copy(tmp_path: Path) -> None:
         assert result.returncode == 0, result.stderr
         assert "made at the first change" in result.stdout
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_consoles_get_line_editing_on_a_terminal(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 26: no line editing (readline) in teach or chat."""
+    import importlib.util
+    import io
+
+    from supportive.cli.output import line_editing
+
+    monkeypatch.setattr(sys, "stdin", io.StringIO("red\n"))
+    assert line_editing() is False  # a pipe: nothing to edit
+    fake = io.StringIO()
+    monkeypatch.setattr(fake, "isatty", lambda: True)
+    monkeypatch.setattr(sys, "stdin", fake)
+    assert line_editing() is (importlib.util.find_spec("readline") is not None)
+    if line_editing():
+        assert "readline" in sys.modules
