@@ -114,6 +114,10 @@ def test_a_usage_error_is_in_plain_words() -> None:
     result = subprocess.run([str(SCRIPT), "generate", "--profile", "cubist"], capture_output=True, text=True, check=False)
     assert result.returncode == 2 and "Value error" not in result.stderr
     assert "'cubist' is not one of 'ikea', 'uniform'" in result.stderr
+    for value, said in (("-1", "expected at least 0"), ("x", "expected a whole number")):
+        result = subprocess.run([str(SCRIPT), "generate", "--seed", value], capture_output=True, text=True, check=False)
+        assert result.returncode == 2 and f"Invalid value for '--seed': {said}" in result.stderr, result.stderr
+        assert "Input should" not in result.stderr
 
 
 def test_version_and_license() -> None:

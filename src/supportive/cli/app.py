@@ -164,7 +164,7 @@ def _run() -> int:
             raise
         context = getattr(exc, "ctx", None)
         where = context.command_path if context is not None else "supportive"
-        said = message().replace("Value error, ", "")  # pydantic's prefix, which typer passes on
+        said = _plain_value_error(message())
         say(f"{where}: error: {printable(said, newlines=False)}", to_stderr=True)
         sys.exit(int(getattr(exc, "exit_code", 2)))
     except SupportiveError as exc:
@@ -177,6 +177,21 @@ def _run() -> int:
         say(f"supportive: error: {problem}", to_stderr=True)
         sys.exit(2)
     return code if isinstance(code, int) else 0
+
+
+def _plain_value_error(message: str) -> str:
+    """A usage error in plain words: typer passes pydantic's on ("Invalid value for '--seed': Input should be
+    greater than or equal to 0" becomes "… : expected at least 0").
+
+    >>> _plain_value_error("Invalid value for '--top': Input should be greater than or equal to 1")
+    "Invalid value for '--top': expected at least 1"
+    """
+    from supportive.io.structured import plain_words
+
+    head, colon, problem = message.partition(": ")
+    if not colon:
+        return plain_words(message.removeprefix("Value error, "))
+    return f"{head}: {plain_words(problem.removeprefix('Value error, '))}"
 
 
 def _interrupted(exc: BaseException) -> bool:

@@ -23,7 +23,7 @@ from pydantic import BaseModel, ValidationError
 from supportive.errors import FileFormatError
 from supportive.io.safe_load import compose_yaml, load_json, load_yaml
 
-__all__ = ["kind_of", "line_of", "load_structured", "place_of", "schema_error", "schema_keys"]
+__all__ = ["kind_of", "line_of", "load_structured", "place_of", "plain_words", "schema_error", "schema_keys"]
 
 
 def load_structured(
@@ -130,7 +130,7 @@ def schema_error(
         place_loc = line_loc = loc
     template = _MESSAGES.get(kind)
     if template is None:
-        message = _plain(first["msg"].removeprefix("Value error, "), first.get("input"))
+        message = plain_words(first["msg"].removeprefix("Value error, "), first.get("input"))
     else:
         message = template.format(key=key, got=kind_of(first.get("input")))
     if kind == "extra_forbidden" and model is not None:
@@ -141,6 +141,12 @@ def schema_error(
 
 
 _PYDANTIC = (
+    (re.compile(r"^Input should be greater than or equal to (.+)$"), "expected at least {0}"),
+    (re.compile(r"^Input should be less than or equal to (.+)$"), "expected at most {0}"),
+    (re.compile(r"^Input should be (greater|less) than (.+)$"), "expected {0} than {1}"),
+    (re.compile(r"^Input should be a valid integer.*$"), "expected a whole number"),
+    (re.compile(r"^Input should be a valid (?:number|float).*$"), "expected a number"),
+    (re.compile(r"^Input should be a valid boolean.*$"), "expected true or false"),
     (re.compile(r"^Input should be (?:a valid |an? )?(.*?)(?:, unable to parse .*)?$"), "expected {0}"),
     (re.compile(r"^(?:List|Tuple|Dictionary|Set) should have at (most|least) (\d+) items? after validation, not (\d+)$"), "expected at {0} {1} items, got {2}"),
     (re.compile(r"^String should have at (most|least) (\d+) characters?$"), "expected at {0} {1} characters"),
@@ -148,20 +154,22 @@ _PYDANTIC = (
 )
 
 
-def _plain(message: str, value: object) -> str:
+def plain_words(message: str, value: object = None) -> str:
     """pydantic's wording of a problem ("Input should be 'chain' or 'clique'") in the words the rest of the
     errors use ("expected 'chain' or 'clique', got 'chian'").
 
-    >>> _plain("Input should be greater than or equal to 0", -1)
-    'expected greater than or equal to 0, got -1'
-    >>> _plain("List should have at most 3 items after validation, not 5", [])
+    >>> plain_words("Input should be greater than or equal to 0", -1)
+    'expected at least 0, got -1'
+    >>> plain_words("List should have at most 3 items after validation, not 5", [])
     'expected at most 3 items, got 5'
+    >>> plain_words("Input should be a valid integer, unable to parse string as an integer")
+    'expected a whole number'
     """
     for pattern, words in _PYDANTIC:
         found = pattern.match(message)
         if found is not None:
             said = words.format(*found.groups())
-            if words.startswith("expected {0}") and isinstance(value, str | int | float) and not isinstance(value, bool):
+            if words.startswith("expected") and "got" not in words and isinstance(value, str | int | float) and not isinstance(value, bool):
                 said += f", got {value!r}" if len(repr(value)) <= 60 else ", got a value that is not"
             return said
     return message
