@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import glob
 import os
 import random
 import sys
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,8 +21,40 @@ settings.register_profile(
 settings.load_profile("supportive")
 
 
-def pytest_report_header() -> str:
-    return f"supportive test seed: {SEED} (set SUPPORTIVE_TEST_SEED to change)"
+CHROMIUM = "/usr/bin/chromium"
+"""Debian's chromium, which the browser tests drive (``make system`` installs it, as root)."""
+
+
+def postgres_binaries() -> list[str]:
+    """Debian's PostgreSQL ``initdb`` programs, newest last (``make system`` installs them, as root)."""
+    return sorted(glob.glob("/usr/lib/postgresql/*/bin/initdb"))
+
+
+def system_missing() -> list[str]:
+    """The system programs some tests need that are not installed: chromium, PostgreSQL."""
+    return [name for name, there in (("chromium", Path(CHROMIUM).exists()), ("PostgreSQL", bool(postgres_binaries()))) if not there]
+
+
+def need_system(name: str, present: bool) -> None:
+    """Go on when the system program ``name`` is installed. Without it, a root user (CI, and `make test`,
+    which installs it with apt-get) gets an error — those tests must run there — and anyone else a skip that
+    says why (apt-get needs root)."""
+    if present:
+        return
+    if os.geteuid() == 0:
+        raise RuntimeError(f"{name} is not installed: run `make test` (as root it installs it with apt-get)")
+    pytest.skip(f"{name} is not installed, and installing it (make system: apt-get) needs root")
+
+
+def pytest_report_header() -> list[str]:
+    lines = [f"supportive test seed: {SEED} (set SUPPORTIVE_TEST_SEED to change)"]
+    missing = system_missing()
+    if missing and os.geteuid() != 0:
+        lines.append(
+            f"not root and {' and '.join(missing)} not installed: the browser and PostgreSQL tests that need "
+            "them are skipped (as root, `make test` installs them)"
+        )
+    return lines
 
 
 @pytest.fixture(autouse=True)

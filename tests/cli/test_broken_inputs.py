@@ -37,7 +37,8 @@ BROKEN: dict[str, list[tuple[list[str], str]]] = {
         (["learn", "{dir}/garbage.yaml"], "garbage.yaml:1: invalid YAML"),
         (["learn", "{dir}/empty.yaml"], "empty.yaml: file is empty"),
         (["learn", "{dir}/no-demos.yaml"], "no-demos.yaml: demonstrations: no demonstrations to learn from"),
-        (["learn", "{dir}"], "unsupported file type"),
+        (["learn", "{dir}"], "is a folder; expected a task file (.yaml, .yml, .json or .csv)"),
+        (["learn", "nope"], "nope: no such file, nor a bundled example of that name; expected a task file"),
         (["learn", "{dir}/one-demo.yaml", "--format", "hddl"], "--format hddl needs --output DIR"),
         (["learn", "{dir}/one-demo.yaml", "-o", "{dir}"], "cannot write: not a regular file"),
     ],
@@ -52,7 +53,7 @@ BROKEN: dict[str, list[tuple[list[str], str]]] = {
         (["infer", "{dir}/one-demo.yaml", "-A", "{dir}/actions.txt", "--model", "flat"], "--actions needs --model progress"),
     ],
     "generate": [
-        (["generate", "-o", "{dir}"], "unsupported file type"),
+        (["generate", "-o", "{dir}"], "is a folder; expected a task file"),
         (["generate", "-o", "{dir}/task.txt"], "unsupported file type"),
     ],
     "evaluate": [
@@ -83,6 +84,7 @@ BROKEN: dict[str, list[tuple[list[str], str]]] = {
     ],
     "support": [
         (["support", "{dir}/missing.yaml"], "missing.yaml: no such file"),
+        (["support", "ikea-chair"], "(that is a bundled task, for learn, teach, chat, …); expected a scenario file"),
         (["support", "{dir}/garbage.yaml"], "garbage.yaml:1: invalid YAML"),
         (["support", "{dir}/both.yaml"], "give the pieces either as 'pieces'"),
         (["support", "two-cells-led", "--scheme", "reckless"], "reckless"),
@@ -104,6 +106,7 @@ BROKEN: dict[str, list[tuple[list[str], str]]] = {
     "tokens list": [
         (["tokens", "list", "--db", "sqlite:///{dir}/missing.db"], "no board in sqlite:///"),
         (["tokens", "list", "--db", "nonsense"], "cannot use database 'nonsense': expected a URL like"),
+        (["tokens", "list", "--db", "mysql://me:secret@127.0.0.1/board"], "cannot use database 'mysql://me:***@127.0.0.1/board': a board is kept in SQLite (sqlite:///board.db) or PostgreSQL"),
         (["tokens", "list", "--db", "sqlite:///{dir}/garbage.yaml"], "garbage.yaml: file is not a database"),
     ],
     "tokens add": [

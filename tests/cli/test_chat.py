@@ -239,3 +239,17 @@ def test_a_sentence_over_the_limit_is_answered_in_one_line_at_once(tmp_path: Pat
     assert parsed and max(parsed) <= MAX_SENTENCE_CHARS  # the long one never reached the parser (it took 97 s)
     assert said[1] == f"That is {len(long.strip()):,} characters; I read sentences of at most {MAX_SENTENCE_CHARS}: say it in shorter sentences, one at a time."
     assert len(said) > 2 and "seat" in said[2].lower()
+
+
+def test_a_stop_condition_in_the_past_tense_is_the_subtask_finished(tmp_path: Path) -> None:
+    """Issue 26: "… until the seat is screwed" was read as "you are screwing seat", and the robot answered
+    "While you are screwing seat, I will hold the seat … until you are screwing seat"."""
+    path = _chair(tmp_path)
+    shown: list[str] = []
+    _console(
+        path, ["When I am screwing the seat, I want you to hold the seat until the seat is screwed"], shown
+    ).run()
+    answer = next(line for line in shown if line.startswith("OK."))
+    assert "until you have finished screwing seat" in answer and "until you are screwing seat" not in answer
+    hold = next(b for b in parse_task_file(path).behaviors if b.name == "hold-seat")
+    assert "active(Screw seat)" not in hold.termination  # it no longer stops as soon as screwing begins

@@ -11,6 +11,7 @@ import pytest
 
 from supportive import examples
 from supportive.io.htn_json import htn_from_dict
+from supportive.io.taskfile import parse_task_file
 
 CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
@@ -199,3 +200,55 @@ def test_infer_bad_inputs_exit_2(tmp_path: Path, cli: CliRunner) -> None:
     good.write_text("[]\n")
     code, _, err = cli(["infer", str(examples.path("blocks-v")), "-O", str(good)])
     assert code == 2 and "without 'observations'" in err and len(err.strip().splitlines()) == 1
+
+
+def test_infer_warns_once_per_unknown_name_and_strict_refuses(tmp_path: Path, cli: CliRunner) -> None:
+    """Issue 26: unknown events and actions were accepted without a word."""
+    steps = tmp_path / "steps.txt"
+    steps.write_text("get_left_frame\nfoo\nfoo\nbar\nplace_left_frame\n")
+    code, out, err = cli(["infer", "ikea-chair", "--actions", str(steps)])
+    assert code == 0 and len(out.splitlines()) == 5
+    assert err.count("unknown action 'foo'") == 1 and err.count("unknown action 'bar'") == 1
+    assert f"supportive: warning: {steps}: step 2: unknown action 'foo'" in err
+    code, out, err = cli(["infer", "ikea-chair", "--actions", str(steps), "--strict"])
+    assert code == 2 and out == ""
+    assert err.strip() == f"supportive: error: {steps}: step 2: unknown action 'foo': the task has no such action (--strict refuses it)"
+    stream = tmp_path / "stream.jsonl"
+    stream.write_text('["hand-left_frame", "zzz"]\n["zzz"]\n["hand-left_frame"]\n')
+    code, out, err = cli(["infer", "ikea-chair", "-O", str(stream)])
+    assert code == 0 and len(out.splitlines()) == 3 and err.count("unknown event 'zzz'") == 1
+    code, out, err = cli(["infer", "ikea-chair", "-O", str(stream), "--strict"])
+    assert code == 2 and out == "" and "moment 1: unknown event 'zzz'" in err
+    known = tmp_path / "known.txt"
+    known.write_text("get_left_frame\n")
+    code, _, err = cli(["infer", "ikea-chair", "--actions", str(known), "--strict"])
+    assert code == 0 and err == ""
+
+
+def test_infer_leaves_out_entries_at_probability_zero(tmp_path: Path, cli: CliRunner) -> None:
+    """Issue 26: `infer --actions` printed "(top level) 0.0, Assemble chair 0.0" after the subtask it knew."""
+    steps = tmp_path / "steps.txt"
+    steps.write_text("get_left_frame\nplace_left_frame\n")
+    code, out, _ = cli(["infer", "ikea-chair", "--actions", str(steps)])
+    records = [json.loads(line) for line in out.splitlines()]
+    assert code == 0 and records[0]["subtasks"] == [["Prepare left frame", 1.0]]
+    for record in records:
+        for key in ("subgoals", "subtasks", "next"):
+            assert record[key] and all(p > 0 for _, p in record[key][1:]), record[key]
+
+
+def test_a_csv_says_what_it_leaves_out(tmp_path: Path, cli: CliRunner) -> None:
+    """Issue 26: CSV output dropped the structure without saying so."""
+    code, _, err = cli(["generate", "--actions", "5", "-o", str(tmp_path / "g.csv")])
+    assert code == 0
+    assert err.strip() == (
+        f"supportive: note: {tmp_path / 'g.csv'} holds the demonstrations only: the structure and the actions and "
+        "their texts are not written (.yaml or .json keeps them)"
+    )
+    code, _, err = cli(["generate", "--actions", "5", "-o", str(tmp_path / "g.yaml")])
+    assert code == 0 and err == ""
+    flat = tmp_path / "flat.yaml"
+    flat.write_text("name: t\ndemonstrations:\n  - steps: [a, b]\n")
+    from supportive.io.taskfile import csv_leaves_out
+
+    assert csv_leaves_out(parse_task_file(flat)) == []  # nothing to leave out, nothing said

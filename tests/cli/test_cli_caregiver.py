@@ -38,7 +38,8 @@ def test_runs_on_a_shipped_map_and_prints_the_summary(cli: CliRunner) -> None:
     assert "block the stairwell at (6, 10)" in out
     summary = out.strip().splitlines()[-1]
     assert summary.startswith("with the caregiver: damage ")
-    assert "steps until damage 15:" in summary and "cells explored:" in summary
+    assert "damage 15 not reached in 5 steps" in summary and "cells explored:" in summary
+    assert "toy bins reached:" in summary and "(never reached)" not in summary
 
 
 def test_without_the_caregiver_the_output_differs(cli: CliRunner) -> None:
@@ -133,3 +134,31 @@ def test_demo_shows_the_caregiver(cli: CliRunner) -> None:
     assert "╭─ playroom" in section and "P(safe|τ)" in section
     assert "with the caregiver" in section and "without" in section
     assert "damage over 40 steps:" in section
+
+
+def test_reaching_a_toy_bin_is_no_collision() -> None:
+    """Issue 26: a novice reaching its goal, a toy bin, was counted as a collision. Oracle: the frames."""
+    result = run_episode(load_map("playroom"), 0.3, caregiver=False, seed=2, steps=60, record=True)
+    reached = sum(f.collision is not None and f.collision.kind == "bin" for f in result.frames)
+    assert reached > 0 and result.bins_reached == reached and "bin" not in result.collisions
+    assert sum(result.collisions.values()) == sum(
+        f.collision is not None and f.collision.kind != "bin" for f in result.frames
+    )
+
+
+def test_a_terminal_gets_a_delay_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 26: on a terminal 200 steps scrolled past in 2 s: the default delay was 0."""
+    import time
+
+    from supportive.cli import caregiver as command
+    from supportive.cli.output import out
+
+    waits: list[float] = []
+    monkeypatch.setattr(time, "sleep", waits.append)
+    monkeypatch.setattr(type(out), "is_terminal", property(lambda self: True))
+    command.caregiver(map_name="playroom", novice=0.5, seed=1, steps=4, no_caregiver=False, gif=None, every=1, delay=None)
+    assert waits == [command.TERMINAL_DELAY] * 3
+    waits.clear()
+    monkeypatch.setattr(type(out), "is_terminal", property(lambda self: False))
+    command.caregiver(map_name="playroom", novice=0.5, seed=1, steps=4, no_caregiver=False, gif=None, every=1, delay=None)
+    assert waits == []

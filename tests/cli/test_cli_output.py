@@ -82,6 +82,44 @@ def test_help_shows_no_type_placeholders() -> None:
         assert not re.search(r"<(bool|str|int|float|path|int range|float range)>", shown), (name, shown)
 
 
+def test_help_reads_as_text_and_answers_to_h() -> None:
+    """Issue 26: `{FILE}`, `list[str]` as a type, TEXT where the choices could be listed, line breaks where the
+    docstring wrapped, and no -h."""
+    import typer
+
+    command = typer.main.get_command(app)
+    names = [[name] for name in getattr(command, "commands", {}) if name not in ("bag", "tokens")]
+    names += [["bag", "import"], ["bag", "export"], ["tokens", "add"], ["tokens", "list"], ["tokens", "revoke"], []]
+    for name in names:
+        shown = supportive(*name, "-h", columns=120)
+        assert shown == supportive(*name, "--help", columns=120), name
+        assert "Usage: supportive" in shown and "-h" in shown, name
+        assert not re.search(r"\{[A-Z]+\}|list\[", shown), (name, shown)
+    choices = {
+        "teach": "distance|connectivity|random",
+        "chat": "bow|embeddings",
+        "support": "conservative|greedy|aggressive",
+        "workbench-sim": "student|peer|instructor",
+        "caregiver": "house|playroom|apartment|FILE",
+        "evaluate": "loo|K",
+    }
+    for shown_for, listed in choices.items():
+        assert listed in supportive(shown_for, "-h", columns=160), shown_for
+    wide = supportive("infer", "-h", columns=400)  # a sentence is not broken where its docstring wrapped
+    assert "after each observation or known action (one JSON line each" in wide
+
+
+def test_a_usage_error_is_in_plain_words() -> None:
+    """Issue 26: pydantic's wording ("Value error, …") leaked into error lines."""
+    result = subprocess.run([str(SCRIPT), "generate", "--profile", "cubist"], capture_output=True, text=True, check=False)
+    assert result.returncode == 2 and "Value error" not in result.stderr
+    assert "'cubist' is not one of 'ikea', 'uniform'" in result.stderr
+    for value, said in (("-1", "expected at least 0"), ("x", "expected a whole number")):
+        result = subprocess.run([str(SCRIPT), "generate", "--seed", value], capture_output=True, text=True, check=False)
+        assert result.returncode == 2 and f"Invalid value for '--seed': {said}" in result.stderr, result.stderr
+        assert "Input should" not in result.stderr
+
+
 def test_version_and_license() -> None:
     """Issue 16.8: no --version; no LICENSE although pyproject says MIT."""
     assert supportive("--version", columns=80).strip() == f"supportive {version('supportive')}"
@@ -113,3 +151,14 @@ def test_bundled_names_work_in_learn_and_infer() -> None:
 def test_the_readme_says_captaincook_needs_the_sibling_data_folder() -> None:
     readme = (REPO / "README.md").read_text()
     assert "`captaincook`" in readme and "data/captaincook4d" in readme and "../shared" in readme
+
+
+@pytest.mark.parametrize("args", [["learn", "tea-mistakes"], ["learn", "ikea-chair", "-f", "json"], ["demo"], ["learn", "nope"]])
+def test_a_terminal_that_cannot_encode_unicode_gets_no_traceback(args: list[str]) -> None:
+    """Issue 26: `PYTHONIOENCODING=ascii supportive …` ended in a UnicodeEncodeError traceback."""
+    env = {**os.environ, "PYTHONIOENCODING": "ascii", "COLUMNS": "100"}
+    result = subprocess.run([str(SCRIPT), *args], capture_output=True, text=True, env=env, check=False)
+    assert "Traceback" not in result.stderr and result.returncode == (2 if "nope" in args else 0), result.stderr
+    assert result.stdout.isascii() and result.stderr.isascii()
+    if "json" in args:
+        assert json.loads(result.stdout)["task"] == "ikea-chair"

@@ -215,12 +215,13 @@ def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:
 def test_ctrl_c_in_teach_keeps_the_copy_and_says_the_demonstration_was_dropped(tmp_path: Path) -> None:
     source = tmp_path / "tower.yaml"
     shutil.copy(examples.path("blocks-tower"), source)
-    copy = tmp_path / "tower.edited.yaml"
-    code, out, lines = interrupt(["teach", str(source)], tmp_path, stdin="red\nyellow\n", until=copy.exists, after=1.0)
+    copy = tmp_path / "tower.edited.yaml"  # made when the first demonstration is saved
+    typed = "red\nyellow\ngreen\nwhite\norange\npurple\nblack\nblue\nred\nyellow\n"
+    code, out, lines = interrupt(["teach", str(source)], tmp_path, stdin=typed, until=copy.exists, after=1.0)
     assert assert_stopped(code, lines) == (
-        f"kept {copy}: 4 demonstrations, 4 when this session began; dropped the unfinished demonstration (2 steps)"
+        f"kept {copy}: 5 demonstrations, 4 when this session began; dropped the unfinished demonstration (2 steps)"
     )
-    assert copy.read_text() == source.read_text() and "Demonstration 1:" in out
+    assert len(parse_task_file(copy).demonstrations) == 5 and "Demonstration d6:" in out
 
 
 def test_ctrl_c_in_chat_keeps_every_change_acknowledged(tmp_path: Path) -> None:
@@ -272,9 +273,12 @@ def test_a_teach_save_cut_in_the_middle_leaves_the_file_as_it_was(tmp_path: Path
 
 @pytest.mark.parametrize("sig", [signal.SIGTERM], ids=["sigterm"])
 def test_a_new_working_copy_cut_in_the_middle_is_not_made(tmp_path: Path, sig: int) -> None:
-    args = ["teach", "blocks-tower", "--save", "c.yaml"]
-    code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", sig=sig, after=0.2)
-    assert assert_stopped(code, lines, sig) == "nothing written"
+    args = ["teach", "blocks-tower", "--save", "c.yaml"]  # made at the first save: the demonstration's
+    order = "red\nyellow\ngreen\nwhite\norange\npurple\nblack\nblue\n"
+    code, _, lines = interrupt(args, tmp_path, hold="fsync", wait_for="WRITING", stdin=order, sig=sig, after=0.2)
+    assert assert_stopped(code, lines, sig) == (
+        "nothing written; dropped the demonstration being saved (the save did not finish)"
+    )
     assert list(tmp_path.iterdir()) == []
 
 

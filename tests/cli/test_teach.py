@@ -6,6 +6,8 @@ import sys
 from collections.abc import Iterator
 from pathlib import Path
 
+import pytest
+
 from supportive import examples
 from supportive.cli.teach_console import TeachingConsole
 from supportive.io.taskfile import parse_task_file
@@ -85,7 +87,7 @@ def test_teach_command_reads_stdin(tmp_path: Path) -> None:
     assert "robot: Can you place the" in result.stdout
     assert "unknown action 'nonsense'" in result.stdout
     copy = tmp_path / "towers.edited.yaml"  # the file given is read, never changed
-    assert result.stdout.startswith(f"Saving to {copy}, a new copy of {path} (which is not changed).")
+    assert result.stdout.startswith(f"Saving to {copy}, a new copy of {path} (which is not changed), made at the first change.")
     assert parse_task_file(copy).demonstrations[-1].actions == tuple(order)
     assert path.read_bytes() == examples.path("blocks-towers").read_bytes()
     bad = subprocess.run(
@@ -137,20 +139,23 @@ def test_yes_performs_what_the_robot_asked_and_no_declines(tmp_path: Path) -> No
         return next(a for a in TOWER if f"place the {a} block" in question)
 
     def script() -> Iterator[str]:
-        yield "no"
         yield "red"
-        second = asked()  # the question after the first step
+        declined = asked()  # the question after the first step
+        yield "no"
+        instead = next(a for a in TOWER[1:-1] if a != declined)
+        yield instead
+        third = asked()
         yield "yes"
-        yield from (a for a in TOWER if a not in ("red", second))
+        yield from (a for a in TOWER if a not in ("red", instead, third))
 
     feed = script()
-    console = TeachingConsole(path, lambda: next(feed), shown.append, "distance", QuerySchedule(after_steps=(0, 1)))
+    console = TeachingConsole(path, lambda: next(feed), shown.append, "distance", QuerySchedule(after_steps=(1, 2)))
     console.run(demonstrations=1)
     assert "  all right: type the action you do instead" in shown
     assert not any("unknown action" in line for line in shown)
     steps = parse_task_file(path).demonstrations[-1].actions
     assert steps[0] == "red" and sorted(steps) == sorted(TOWER)
-    assert f"place the {steps[1]} block" in [line for line in shown if "robot: Can you" in line][-1]
+    assert f"place the {steps[2]} block" in [line for line in shown if "robot: Can you" in line][-1]
 
 
 def test_typos_get_a_did_you_mean_and_case_does_not_matter(tmp_path: Path) -> None:
@@ -205,3 +210,81 @@ def test_save_names_the_copy_and_refuses_another_tasks_file(tmp_path: Path) -> N
         f"supportive: error: {mine}: it holds task 'blocks-tower', not 'knife-carrots-celery': choose another "
         "file with --save PATH"
     )
+
+
+def test_the_robot_never_asks_for_what_the_structure_rules_out(tmp_path: Path) -> None:
+    """Issue 26: "yes" to "Can you place the blue block next?" after red recorded an order the tower's own
+    structure forbids. Whatever the strategy and seed, saying yes to every question now gives a demonstration
+    the structure admits."""
+    from supportive.tasks.htn import HTN
+
+    path = _tower(tmp_path)
+    structure = parse_task_file(path).structure
+    assert structure is not None
+    for strategy in ("distance", "connectivity", "random"):
+        for seed in range(4):
+            shown: list[str] = []
+            done: list[str] = []
+
+            def answer(shown: list[str] = shown, done: list[str] = done) -> str:
+                waiting = shown[-1].removeprefix("  robot: ") if "robot: Can you" in shown[-1] else None
+                if waiting is not None:
+                    done.append(next(a for a in TOWER if f"place the {a} block" in waiting))
+                    return "yes"
+                done.append(next(a for a in TOWER if a not in done))
+                return done[-1]
+
+            schedule = QuerySchedule(after_steps=tuple(range(8)), max_per_demonstration=8)
+            TeachingConsole(path, answer, shown.append, strategy, schedule, seed).run(demonstrations=1)
+            steps = parse_task_file(path).demonstrations[-1].actions
+            assert HTN("tower", (structure,)).admits(steps), (strategy, seed, steps)
+            assert not any("note:" in line for line in shown)
+
+
+def test_a_demonstration_is_numbered_as_saved_and_echoed(tmp_path: Path) -> None:
+    """Issue 26: teach showed "Demonstration 1" and saved d5, and did not say what it recorded."""
+    path = _tower(tmp_path)
+    shown: list[str] = []
+    _console(path, [*TOWER], shown).run(demonstrations=1)
+    assert "Demonstration d5:" in shown and not any(line.startswith("Demonstration 1") for line in shown)
+    assert f"  recorded: {', '.join(TOWER)}" in shown
+    assert parse_task_file(path).demonstrations[-1].id == "d5"
+
+
+def test_an_order_the_structure_rules_out_is_recorded_with_a_note(tmp_path: Path) -> None:
+    path = _tower(tmp_path)
+    shown: list[str] = []
+    order = ["red", "blue", *TOWER[1:-1]]
+    _console(path, order, shown).run(demonstrations=1)
+    assert any(line.startswith("  note: the task's structure has no order with blue here") for line in shown)
+    assert parse_task_file(path).demonstrations[-1].actions == tuple(order)  # the person's word is recorded
+
+
+def test_a_session_that_records_nothing_makes_no_copy(tmp_path: Path) -> None:
+    """Issue 26: teach and chat made their copy even on a bare quit."""
+    script = Path(sys.executable).parent / "supportive"
+    for command, task in (("teach", "blocks-tower"), ("chat", "ikea-chair")):
+        result = subprocess.run(
+            [str(script), command, task, "--save", "c.yaml"],
+            cwd=tmp_path, input="quit\n", capture_output=True, text=True, check=False,
+        )
+        assert result.returncode == 0, result.stderr
+        assert "made at the first change" in result.stdout
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_consoles_get_line_editing_on_a_terminal(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 26: no line editing (readline) in teach or chat."""
+    import importlib.util
+    import io
+
+    from supportive.cli.output import line_editing
+
+    monkeypatch.setattr(sys, "stdin", io.StringIO("red\n"))
+    assert line_editing() is False  # a pipe: nothing to edit
+    fake = io.StringIO()
+    monkeypatch.setattr(fake, "isatty", lambda: True)
+    monkeypatch.setattr(sys, "stdin", fake)
+    assert line_editing() is (importlib.util.find_spec("readline") is not None)
+    if line_editing():
+        assert "readline" in sys.modules

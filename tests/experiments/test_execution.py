@@ -76,6 +76,23 @@ def test_unreachable_scheduler(monkeypatch: pytest.MonkeyPatch) -> None:
         pass  # pragma: no cover
 
 
+def test_a_refused_scheduler_address_fails_at_once() -> None:
+    """Issue 26: a refused address waited 31.5 s (dask's retries) before failing."""
+    import socket
+    import time
+
+    with socket.socket() as probe:  # a port nothing listens on: bound, then closed
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    began = time.monotonic()
+    with (
+        pytest.raises(ExperimentError, match=rf"tcp://127\.0\.0\.1:{port}: connection refused"),
+        open_executor(scheduler=f"tcp://127.0.0.1:{port}"),
+    ):
+        pass  # pragma: no cover
+    assert time.monotonic() - began < 5.0
+
+
 def test_scheduler_without_workers(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(execution, "CONNECT_TIMEOUT", 0.5)
     with distributed.LocalCluster(

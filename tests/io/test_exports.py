@@ -10,6 +10,7 @@ from supportive.io.htn_json import htn_from_dict, htn_to_dict
 from supportive.learning import learn
 from supportive.render.tree import render_tree
 from supportive.tasks.htn import HTN, ActionNode, ChainNode
+from supportive.tasks.naming import full_name
 
 
 @pytest.mark.parametrize("name", examples.names())
@@ -22,8 +23,8 @@ def test_json_round_trip(name: str) -> None:
     assert back.canonical() == learner.htn_.canonical()
     assert back.top_level == learner.htn_.top_level
     assert [a.canonical() for a in back.alternatives] == [a.canonical() for a in learner.htn_.alternatives]
-    assert [getattr(r, "name", None) for r in back.roots] == [
-        getattr(r, "name", None) for r in learner.htn_.roots
+    assert [getattr(r, "name", None) for r in back.roots] == [  # made-up names come back whole (issue 26)
+        None if isinstance(r, ActionNode) else full_name(r) for r in learner.htn_.roots
     ]
 
 
@@ -78,3 +79,35 @@ def test_counts_beyond_what_json_holds_are_written_as_scientific_strings() -> No
     assert data["stats"]["task_graph"]["paths"] == "5.35720e+4304"
     assert json_count(2**53) == 2**53 and json_count(2**53 + 1) == "9.00719e+15"
     assert [json_count(10**k) for k in (16, 300, 5000)] == ["1.00000e+16", "1.00000e+300", "1.00000e+5000"]
+
+
+def test_the_tree_of_a_partial_hierarchy_shows_the_orders_of_its_parts() -> None:
+    """Issue 26: "partial: 4 top-level parts" hid the orders seen among the parts."""
+    from supportive.render.tree import top_level_orders
+
+    spec = examples.load("two-glasses")
+    htn = learn(spec).htn_
+    assert not htn.complete and htn.top_level is not None
+    text = render_tree(htn, spec.texts())
+    orders, total = top_level_orders(htn)
+    assert f"orders of these parts it admits ({total}):" in text
+    for order in orders:
+        assert " → ".join(htn.roots[i].label for i in order) in text  # type: ignore[union-attr]
+        assert htn.admits([htn.roots[i].label for i in order])  # type: ignore[union-attr]
+    assert total == htn.top_level.count_orderings() and len(orders) == min(total, 6)
+
+
+@pytest.mark.parametrize("name", examples.names())
+def test_json_names_are_never_cut(name: str) -> None:
+    """Issue 26: names made up for people ("pour_water → … → stir") were written to JSON cut with "…"."""
+
+    def names(node: dict[str, object]) -> list[str]:
+        own = [str(node["name"])] if node.get("name") else []
+        return own + [n for child in node.get("children", []) for n in names(child)]  # type: ignore[attr-defined]
+
+    learner = learn(examples.load(name))
+    data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
+    written = [n for root in data["roots"] for n in names(root)]
+    assert not any("…" in n for n in written), written
+    if name == "tea-mistakes":
+        assert "pour_water → steep → remove_teabag → Milk and sugar → stir" in written

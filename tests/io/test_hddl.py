@@ -202,3 +202,29 @@ def test_missing_planning_extra_is_reported(monkeypatch: pytest.MonkeyPatch) -> 
     )
     with pytest.raises(ExportError, match=r"supportive\[planning\]"):
         htn_to_problem(CLIQUE)
+
+
+def _goal(problem: str) -> set[str]:
+    found = re.search(r"\(:goal \(and(.*?)\)\s*\)\s*\)\s*$", problem, re.S)
+    return set(re.findall(r"\((done_[a-z0-9_]+)\)", found.group(1))) if found else set()
+
+
+def test_the_goal_is_every_leaf_no_execution_skips() -> None:
+    """Issue 26: `--format hddl` wrote an empty `(:goal (and ))`. The goal is what every plan achieves."""
+    problem = hddl_strings(CLIQUE)[1]
+    assert _goal(problem) == {"done_a", "done_b", "done_c", "done_d"}
+    optional = HTN("opt", (chain("a", ChainNode((ActionNode("b"),), optional=True), "c"),))
+    assert _goal(hddl_strings(optional)[1]) == {"done_a", "done_c"}
+    # a top level where root 1 (c) may be left out: only the leaves of the root every path takes
+    top = TopLevel(initial=(0,), terminal=(1, 2), edges=((0, 0, 1), (1, 1, 2)))
+    assert _goal(hddl_strings(HTN("skip", (chain("a", "b"), ActionNode("c")), top))[1]) == {"done_a", "done_b"}
+    nothing = HTN("all optional", (ChainNode((ActionNode("a"),), optional=True),))
+    assert ":goal" not in hddl_strings(nothing)[1]
+
+
+@pytest.mark.parametrize("name", ["two-glasses", "tea-mistakes", "ikea-chair"])
+def test_the_goal_cuts_no_plan(name: str, tmp_path: Path) -> None:
+    htn = learn(examples.load(name)).htn_
+    problem = hddl_strings(htn)[1]
+    assert _goal(problem), problem
+    assert_valid_plan(htn, solve_hddl(round_trip(htn, tmp_path), htn))

@@ -171,7 +171,34 @@ def test_csv_sorts_steps_and_groups_demonstrations(tmp_path: Path) -> None:
 
 
 def test_unknown_suffix_and_missing_file(tmp_path: Path) -> None:
-    with pytest.raises(TaskFileError, match="unsupported file type"):
+    (tmp_path / "task.txt").write_text("name: t\n")
+    with pytest.raises(TaskFileError, match=r"unsupported file type '\.txt'; expected a task file \(\.yaml, \.yml, \.json or \.csv\)"):
         parse_task_file(tmp_path / "task.txt")
     with pytest.raises(TaskFileError, match="no such file"):
         parse_task_file(tmp_path / "missing.yaml")
+    # issue 26: a missing file or a folder without a suffix said "unsupported file type '(none)'"
+    with pytest.raises(TaskFileError, match=r"nope: no such file; expected a task file \(\.yaml"):
+        parse_task_file(tmp_path / "nope")
+    with pytest.raises(TaskFileError, match=r": is a folder; expected a task file \(\.yaml"):
+        parse_task_file(tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # issue 26: a key whose value is a block was named by the line after it
+        ("name: t\nactions: [a, b]\nstructure:\n  chian:\n    - a\n    - b\n", "t.yaml:4: structure: unknown key 'chian'; did you mean 'chain'?"),
+        ("name: t\nactoins: [a]\n", "t.yaml:2: unknown key 'actoins'; did you mean 'actions'?"),
+        ("name: t\nactions: [a]\ndemonstrations:\n  - steps: [a]\n    id:\n      x: 1\n", "t.yaml:5: demonstrations[0].id: expected a string, got a mapping"),
+        ("name: t\nactions: [a, b]\ndemonstrations:\n  - steps:\n      - a\n      - bb\n", "t.yaml:6: demonstrations[0].steps[1]: action 'bb' is not declared in 'actions'; did you mean 'b'?"),
+        ("name: t\nactions: [green, red]\nstructure: {chain: [red, gren]}\n", "structure.chain[1]: action 'gren' is not declared in 'actions'; did you mean 'green'?"),
+        ("name: t\nactions:\n  - id: a\n    extra: 1\n", "t.yaml:4: actions[0]: unknown key 'extra'"),
+    ],
+)
+def test_errors_name_the_key_line_and_a_close_name(tmp_path: Path, text: str, expected: str) -> None:
+    path = tmp_path / "t.yaml"
+    path.write_text(text)
+    with pytest.raises(TaskFileError) as caught:
+        parse_task_file(path)
+    assert str(caught.value).endswith(expected) and "did you mean 'text'" not in str(caught.value)
+    assert "Input should" not in str(caught.value) and "Value error" not in str(caught.value)

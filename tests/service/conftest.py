@@ -8,7 +8,6 @@ download); screenshots go to test-artifacts/. Missing binaries fail the tests ra
 
 from __future__ import annotations
 
-import glob
 import io
 import os
 import shutil
@@ -26,6 +25,7 @@ import pytest
 from fastapi.testclient import TestClient
 from PIL import Image
 from playwright.sync_api import Browser, Page, ViewportSize, expect, sync_playwright
+from tests.conftest import CHROMIUM, need_system, postgres_binaries
 
 from supportive.examples import path as example_path
 from supportive.io.taskfile import parse_task_file
@@ -72,9 +72,8 @@ class Postgres:
 
 @pytest.fixture(scope="session")
 def postgres() -> Iterator[Postgres]:
-    found = sorted(glob.glob("/usr/lib/postgresql/*/bin/initdb"))
-    if not found:
-        raise RuntimeError("PostgreSQL is not installed: run `make test` (it installs Debian's postgresql)")
+    found = postgres_binaries()
+    need_system("PostgreSQL", bool(found))  # absent: an error as root (CI), else a skip saying why
     binaries = Path(found[-1]).parent
     directory = Path(tempfile.mkdtemp(prefix="supportive-pg-"))
     run_as: list[str] = []
@@ -209,7 +208,6 @@ def headers() -> Callable[[str], dict[str, str]]:
     return auth
 
 
-CHROMIUM = "/usr/bin/chromium"
 FLAGS = [
     "--headless=new",
     "--no-sandbox",
@@ -228,8 +226,7 @@ SCREEN: ViewportSize = {"width": 1920, "height": 1080}
 
 @pytest.fixture(scope="session")
 def browser() -> Iterator[Browser]:
-    if not Path(CHROMIUM).exists():
-        raise RuntimeError("Debian's chromium is not installed: run `make test` (it installs it)")
+    need_system("chromium", Path(CHROMIUM).exists())  # absent: an error as root (CI), else a skip saying why
     with sync_playwright() as playwright:
         launched = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
         yield launched

@@ -16,7 +16,7 @@ from typing import Annotated
 import typer
 
 from supportive.cli.interrupt import writing
-from supportive.cli.output import finite
+from supportive.cli.output import csv_note, finite
 from supportive.errors import OptionError, TaskFileError
 
 __all__ = ["bag_app"]
@@ -101,6 +101,7 @@ def import_bags(
         spec = TaskSpec(name or bag_name(bags[0]), (), None, demonstrations)
     else:
         spec = replace(template, name=name or template.name, demonstrations=demonstrations)
+    csv_note(spec, fmt, output)  # what a CSV leaves out (the template's structure, texts, …)
     if output is None:
         sys.stdout.write(dump_task(spec, fmt))
         return

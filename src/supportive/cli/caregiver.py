@@ -13,12 +13,19 @@ from supportive.errors import OptionError
 from supportive.extras import require_extra
 from supportive.render.terminal import markup_safe
 
-__all__ = ["caregiver"]
+__all__ = ["TERMINAL_DELAY", "caregiver"]
+
+TERMINAL_DELAY = 0.1
+"""Seconds between steps on a terminal by default: 200 steps take 20 s to watch, each redrawn in place (with
+none, they flash past in a blink); ``--delay 0`` shows only the last."""
 
 
 def caregiver(
     map_name: Annotated[
-        str, typer.Option("--map", help="A shipped map (house, playroom, apartment) or a map file.")
+        str,
+        typer.Option(
+            "--map", metavar="house|playroom|apartment|FILE", help="A shipped map (house, playroom, apartment) or a map file."
+        ),
     ] = "house",
     novice: Annotated[
         float, typer.Option("--novice", help="The novice's share of random moves ε, in [0, 1].")
@@ -32,15 +39,16 @@ def caregiver(
     ] = None,
     every: Annotated[int, typer.Option("--every", min=1, help="Print every k-th step (and the last).")] = 1,
     delay: Annotated[
-        float,
+        float | None,
         typer.Option(
             "--delay",
             min=0.0,
             max=60.0,
             callback=finite,
-            help="Seconds between printed steps (on a terminal: redrawn in place).",
+            help=f"Seconds between printed steps (default: {TERMINAL_DELAY} on a terminal, where each step is redrawn "
+            "in place; 0 when the output is not a terminal).",
         ),
-    ] = 0.0,
+    ] = None,
 ) -> None:
     """Watch a novice play in a house, with the caregiver robot keeping it safe (§3.5): the map and what the
     caregiver believes and does, step by step, then the episode's damage, steps until the critical damage and
@@ -70,6 +78,8 @@ def caregiver(
     )
     out.print(LEGEND, markup=False)
     shown = [f for f in result.frames if f.step % every == 0 or f.step == len(result.frames)]
+    if delay is None:
+        delay = TERMINAL_DELAY if out.is_terminal else 0.0
     live = Live(console=out, auto_refresh=False) if delay > 0 and out.is_terminal else None
     with live or nullcontext():
         for i, frame in enumerate(shown):

@@ -7,8 +7,8 @@ from typing import Annotated
 
 import typer
 
-from supportive.cli.interrupt import explained
-from supportive.cli.output import about, out, say
+from supportive.cli.interrupt import NOTHING_WRITTEN, explained
+from supportive.cli.output import about, line_editing, out, say
 from supportive.render.terminal import printable
 
 __all__ = ["chat"]
@@ -30,7 +30,7 @@ def chat(
     matcher: Annotated[
         str,
         typer.Option(
-            "--matcher", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra)."
+            "--matcher", metavar="bow|embeddings", help="Subtask matcher: bow (bag of words) or embeddings (needs the extra)."
         ),
     ] = "bow",
 ) -> None:
@@ -49,12 +49,14 @@ def chat(
 
     copy = working_copy(task_path(file), save)
     with about(file):
-        console = ChatConsole(copy.reads(), read, say, matcher)
-        console.path = copy.start()  # made once the console is ready: a missing extra leaves no copy behind
+        console = ChatConsole(copy.reads(), read, say, matcher, copy=copy)  # the copy is made at the first change
     out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+    line_editing()
 
     def stopped() -> str:
         """What an interruption kept: the copy, with every change acknowledged."""
+        if not copy.exists:
+            return NOTHING_WRITTEN
         changes = f"{console.saved} change{'s' if console.saved != 1 else ''}"
         return f"kept {copy.path}: every change acknowledged is saved in it ({changes} this session)"
 

@@ -28,6 +28,7 @@ from pathlib import Path
 from supportive.errors import UnderstandingError
 from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
+from supportive.io.working_copy import WorkingCopy
 from supportive.language.explain import explain_behavior, explain_subtask
 from supportive.language.grammar import ExplainBehavior, ExplainSubtask, Preference, parse_utterance
 from supportive.language.grounding import Candidate, is_confident
@@ -58,6 +59,7 @@ class ChatConsole:
         read: Returns the next line typed by the person (raises EOFError at the end of input).
         write: Shows one line to the person.
         matcher: ``"bow"`` or ``"embeddings"`` (see :class:`~supportive.language.understand.Understanding`).
+        copy: The working copy to save to (made at the first change); None saves to ``path``.
 
     Raises:
         TaskFileError: for a task file that cannot be read.
@@ -69,6 +71,7 @@ class ChatConsole:
     read: Callable[[], str]
     write: Callable[[str], None]
     matcher: str = "bow"
+    copy: WorkingCopy | None = None
     spec: TaskSpec = field(init=False)
     states: TaskStates = field(init=False)
     understanding: Understanding = field(init=False)
@@ -206,7 +209,7 @@ class ChatConsole:
             others.insert(position, behavior)
             return current.with_behaviors(others)
 
-        self.spec = update_task_file(self.path, put)
+        self.spec = self.copy.update(put) if self.copy is not None else update_task_file(self.path, put)
         self.saved += 1
         self.states = TaskStates.of(self.spec, self.states.structure)
         self.understanding = self.understanding.with_states(self.states)

@@ -13,7 +13,7 @@ import typer
 from supportive.cli.output import about, finite
 from supportive.errors import OptionError, TaskFileError
 
-__all__ = ["infer"]
+__all__ = ["UnknownNames", "infer"]
 
 
 class InferenceModel(StrEnum):
@@ -61,9 +61,18 @@ def infer(
     types: Annotated[
         list[Path] | None,
         typer.Option(
-            "--types", help="A .msg/.idl file or folder of message types the bag lacks; repeatable."
+            "--types",
+            metavar="PATH",
+            help="A .msg/.idl file or folder of message types the bag lacks; repeatable.",
         ),
     ] = None,
+    strict: Annotated[
+        bool,
+        typer.Option(
+            "--strict",
+            help="Refuse (exit 2) an event or action the task does not know, instead of warning once per name.",
+        ),
+    ] = False,
 ) -> None:
     """Learn the task's CC-HTN, then print what the teammate is doing after each observation or known action
     (one JSON line each: top subgoals, enclosing subtasks and next steps, with probabilities; with the progress
@@ -91,6 +100,15 @@ def infer(
         raise TaskFileError("no demonstrations to learn from", path=file, place="demonstrations")
     steps = parse_action_file(actions) if actions is not None else []
     stream = parse_observation_file(observations) if observations is not None else []
+    known_events = frozenset(ObservationModel.from_spec(spec).events) if actions is None else frozenset()
+    source = actions or observations or bag
+    assert source is not None  # one source, checked above
+    unknown = UnknownNames(source, strict)
+    for number, action in enumerate(steps, start=1):  # a file is checked whole before anything is printed
+        unknown.check([action], frozenset(spec.action_ids()), "action", f"step {number}")
+    for number, (moment, _) in enumerate(stream, start=1):
+        unknown.check(sorted(moment), known_events, "event", f"moment {number}")
+    unknown.report()
     detector: MistakeDetector | None = None
     running: Filter
     with about(file):
@@ -109,6 +127,8 @@ def infer(
         sys.stdout.write(json.dumps(record) + "\n")
 
     def frame(moment: frozenset[str], time: float | None) -> dict[str, Any]:
+        unknown.check(sorted(moment), known_events, "event", f"the frame at {time} s")
+        unknown.report()
         if detector is None:
             return belief_record(running, running.update(moment), top, time)
         verdict = detector.update(moment)
@@ -127,3 +147,52 @@ def infer(
         verdict = detector.observe(action)
         emit(belief_record(running, running.last, top, None) | {"mistake": mistake_record(verdict, texts)})
 
+
+
+class UnknownNames:
+    """Events or actions an input names that the task does not know: warned about once per name on stderr
+    (the models ignore an unknown event; an unknown action is judged a mistake), or, ``strict``, refused.
+
+    Args:
+        source: The input file or bag (named in the warning or error).
+        strict: Refuse the first unknown name (exit 2) instead of warning.
+    """
+
+    def __init__(self, source: Path, strict: bool) -> None:
+        self.source = source
+        self.strict = strict
+        self.warned: set[tuple[str, str]] = set()
+        self._new: list[tuple[str, str, str]] = []
+
+    def check(self, names: list[str], known: frozenset[str], kind: str, place: str) -> None:
+        """Note the names not in ``known`` (``kind`` "event" or "action", first seen at ``place``).
+
+        Raises:
+            ObservationFileError: with ``strict``, for the first unknown name.
+        """
+        from supportive.errors import ObservationFileError
+
+        for name in names:
+            if name in known or (kind, name) in self.warned:
+                continue
+            if self.strict:
+                raise ObservationFileError(
+                    f"unknown {kind} {name!r}: the task has no such {kind} (--strict refuses it)",
+                    path=self.source,
+                    place=place,
+                )
+            self.warned.add((kind, name))
+            self._new.append((kind, name, place))
+
+    def report(self) -> None:
+        """Warn, one line each, about the names noted since the last report."""
+        from supportive.cli.output import say
+
+        effect = {"event": "the model ignores it", "action": "it is judged a mistake"}
+        for kind, name, place in self._new:
+            say(
+                f"supportive: warning: {self.source}: {place}: unknown {kind} {name!r} ({effect[kind]}; "
+                "said once per name; --strict refuses it)",
+                to_stderr=True,
+            )
+        self._new.clear()

@@ -12,7 +12,7 @@ from typing import Annotated, Any
 
 import typer
 
-from supportive.cli.output import about, finite, out, say, write_text
+from supportive.cli.output import about, csv_note, finite, out, say, write_text
 from supportive.errors import OptionError, TaskFileError
 from supportive.extras import require_extra
 from supportive.io.values import is_digits
@@ -122,6 +122,9 @@ def learn(
 SLIPS_SHOWN = 5
 """Slips named in ``learn``'s notice; ``--format json`` lists every one."""
 
+NAMED = 10
+"""Held-out demonstrations ``evaluate`` names as not admitted; ``--json`` lists every one."""
+
 
 def _slips_notice(slips: list[dict[str, object]]) -> str:
     """One line: how many steps were set aside as slips, the first few, where to find the rest."""
@@ -174,12 +177,13 @@ def generate(
             path=output or "<stdout>",
         )
     write_text(text, output)
+    csv_note(spec, fmt, output)
 
 
 def evaluate(
     file: Annotated[Path, typer.Argument(help="Task file with at least two demonstrations.")],
     folds: Annotated[
-        str, typer.Option("--folds", help="loo (leave one out) or a number of folds K.")
+        str, typer.Option("--folds", metavar="loo|K", help="loo (leave one out) or a number of folds K.")
     ] = "loo",
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the folds (K folds only).")] = 0,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
@@ -245,6 +249,10 @@ def evaluate(
     learning = [
         f"{data['admitted']} of {data['held_out']} held-out demonstrations admitted ({data['admission']:.1%})",
     ]
+    if result.not_admitted:
+        shown = ", ".join(result.not_admitted[:NAMED])
+        more = f", … and {len(result.not_admitted) - NAMED} more" if len(result.not_admitted) > NAMED else ""
+        learning.append(f"not admitted when held out: {shown}{more}")
     if data["recall"] is not None:
         learning.append(f"orderings of the structure: recall {data['recall']:.3f}, precision {data['precision']:.3f}")
     say(f"{spec.name}: {'leave one out' if k is None else f'{k} folds'}, {result.folds} folds")

@@ -13,8 +13,9 @@ import typer
 
 from supportive.errors import FileFormatError, MissingExtraError, SupportiveError, TaskFileError, naming
 from supportive.render.terminal import printable, terminal_console
+from supportive.tasks.spec import TaskSpec
 
-__all__ = ["about", "err", "finite", "local_workers", "out", "say", "write_text"]
+__all__ = ["about", "csv_note", "err", "finite", "line_editing", "local_workers", "out", "say", "write_text"]
 
 out = terminal_console(soft_wrap=False)  # wraps at words to the terminal's width (COLUMNS when set)
 err = terminal_console(stderr=True)  # an error is one line, whatever its length
@@ -77,3 +78,33 @@ def write_text(text: str, output: Path | None) -> None:
 
     with writing(output):
         atomic_write(output, text, error=TaskFileError)
+
+
+def line_editing() -> bool:
+    """Give ``input()`` line editing and history (arrow keys, Ctrl-A/E, …) where Python has readline and the
+    input is a terminal; whether it did. Importing :mod:`readline` is all it takes."""
+    if not sys.stdin.isatty():
+        return False
+    try:
+        import readline  # noqa: F401 - importing it turns line editing on for input()
+    except ImportError:  # a Python built without it (Windows): plain input
+        return False
+    return True
+
+
+def csv_note(spec: TaskSpec, fmt: str, output: Path | None) -> None:
+    """Say on stderr, in one line, what a task written as CSV leaves out (the structure, the action texts, …):
+    nothing when the format is not CSV or nothing is lost."""
+    from supportive.io.taskfile import csv_leaves_out
+
+    if fmt != "csv":
+        return
+    lost = csv_leaves_out(spec)
+    if lost:
+        where = output if output is not None else "the CSV"
+        said = ", ".join(lost[:-1]) + (" and " if len(lost) > 1 else "") + lost[-1]
+        say(
+            f"supportive: note: {where} holds the demonstrations only: {said} {'are' if len(lost) > 1 else 'is'} "
+            "not written (.yaml or .json keeps them)",
+            to_stderr=True,
+        )

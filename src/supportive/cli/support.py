@@ -36,7 +36,7 @@ def support(
         typer.Option("--environments", "-e", min=1, max=100_000, help="Hypothetical environments to sample."),
     ] = None,
     scheme: Annotated[
-        str | None, typer.Option("--scheme", help="Plan weights: conservative, greedy or aggressive.")
+        str | None, typer.Option("--scheme", metavar="conservative|greedy|aggressive", help="Plan weights: conservative, greedy or aggressive.")
     ] = None,
     workers: Annotated[
         int, typer.Option("--workers", "-w", min=1, max=256, help="Local processes scoring them.")

@@ -7,8 +7,8 @@ from typing import Annotated
 
 import typer
 
-from supportive.cli.interrupt import explained
-from supportive.cli.output import about, out, say
+from supportive.cli.interrupt import NOTHING_WRITTEN, explained
+from supportive.cli.output import about, line_editing, out, say
 from supportive.render.terminal import printable
 
 __all__ = ["teach"]
@@ -27,7 +27,7 @@ def teach(
         ),
     ] = None,
     strategy: Annotated[
-        str, typer.Option("--strategy", help="Query strategy: distance, connectivity or random.")
+        str, typer.Option("--strategy", metavar="distance|connectivity|random", help="Query strategy: distance, connectivity or random.")
     ] = "distance",
     after: Annotated[
         str,
@@ -63,16 +63,19 @@ def teach(
 
     copy = working_copy(task_path(file), save)
     with about(file):
-        console = TeachingConsole(copy.reads(), read, say, strategy, schedule, seed)
+        console = TeachingConsole(copy.reads(), read, say, strategy, schedule, seed, copy=copy)
         at_start = len(console.prepare().demonstrations)  # a task the session refuses: refused before any copy
-        console.path = copy.start()
     out.print(printable(copy.describe()), markup=False, soft_wrap=True)  # a path stays whole, to copy and paste
+    line_editing()
 
     def stopped() -> str:
         """What an interruption kept: the copy as last saved; what it dropped: the demonstration under way,
         or the one being saved when the save did not finish."""
         dropped = console.in_progress
         lost = [f"dropped the unfinished demonstration ({dropped} step{'s' if dropped != 1 else ''})"] if dropped else []
+        if not copy.exists:  # nothing saved yet: no copy was made
+            unsaved = ["dropped the demonstration being saved (the save did not finish)"] if console.saving else []
+            return "; ".join([NOTHING_WRITTEN, *lost, *unsaved])
         try:
             count = len(parse_task_file(copy.path).demonstrations)
         except SupportiveError:  # changed meanwhile by someone else: say no more than is known

@@ -19,9 +19,11 @@ from pathlib import Path
 
 from supportive.io.task_edit import update_task_file
 from supportive.io.taskfile import parse_task_file
+from supportive.io.working_copy import WorkingCopy
 from supportive.learning.active import QuerySchedule, TeachingSession
 from supportive.learning.learner import HTNLearner
-from supportive.tasks.htn import leaf_actions
+from supportive.tasks.executions import Executions
+from supportive.tasks.htn import HTN, leaf_actions
 from supportive.tasks.naming import known_names
 from supportive.tasks.spec import Demonstration, TaskSpec
 
@@ -45,12 +47,14 @@ class Repertoire:
         required: How often each action is performed in a whole demonstration (its count in the structure,
             else the fewest times a recorded demonstration has it, else once).
         allowed: How often it may be performed (at least ``required``; more when a demonstration repeats it).
+        structure: The executions the task file's structure admits (None without a structure).
     """
 
     actions: tuple[str, ...]
     texts: Mapping[str, str]
     required: Mapping[str, int]
     allowed: Mapping[str, int]
+    structure: Executions | None = None
 
     @classmethod
     def of(cls, spec: TaskSpec) -> Repertoire:
@@ -64,7 +68,18 @@ class Repertoire:
         else:
             required = Counter(dict.fromkeys(actions, 1))
         allowed = {a: max([required[a], 1, *(c[a] for c in counts)]) for a in actions}
-        return cls(actions, spec.texts(), {a: required[a] for a in actions}, allowed)
+        structure = None if spec.structure is None else HTN(spec.name, (spec.structure,)).executions
+        return cls(actions, spec.texts(), {a: required[a] for a in actions}, allowed, structure)
+
+    def next_by_structure(self, done: tuple[str, ...]) -> frozenset[str] | None:
+        """The actions the task's structure allows after ``done``; None without a structure, or when ``done``
+        already left it (the person showed an order it does not have: it says nothing more)."""
+        if self.structure is None:
+            return None
+        states = self.structure.run(done)
+        if not states:
+            return None
+        return frozenset(action for state in states for action, _ in self.structure.allowed(state))
 
     def named(self, line: str) -> str | None:
         """The action a typed line names (id, text or number, any case), or None."""
@@ -118,6 +133,7 @@ class TeachingConsole:
         strategy: Query strategy name.
         schedule: When to ask.
         seed: Seeds the learner's choices among equally good questions.
+        copy: The working copy to save to (made at the first demonstration saved); None saves to ``path``.
     """
 
     path: Path
@@ -128,6 +144,7 @@ class TeachingConsole:
         default_factory=lambda: QuerySchedule(after_steps=(1, 3, 5), max_per_demonstration=3)
     )
     seed: int | None = 0
+    copy: WorkingCopy | None = None
 
     recorded: int = field(default=0, init=False)
     """Demonstrations saved by this session (each reported as saved)."""
@@ -178,20 +195,16 @@ class TeachingConsole:
             "'help' shows the actions again."
         )
         while demonstrations is None or self.recorded < demonstrations:
-            finished = self._demonstration(session, repertoire)
+            finished = self._demonstration(session, repertoire, _next_id(spec))
             if finished is None:
                 break
 
             def append(current: TaskSpec, finished: Demonstration = finished) -> TaskSpec:
                 """The file's task now (another session may have saved to it) with the new demonstration."""
-                taken = {d.id for d in current.demonstrations}
-                number = len(current.demonstrations) + 1
-                while f"d{number}" in taken:
-                    number += 1
-                return current.with_demonstrations([*current.demonstrations, replace(finished, id=f"d{number}")])
+                return current.with_demonstrations([*current.demonstrations, replace(finished, id=_next_id(current))])
 
             self.saving = True
-            spec = update_task_file(self.path, append)
+            spec = self.copy.update(append) if self.copy is not None else update_task_file(self.path, append)
             finished = spec.demonstrations[-1]
             self.recorded += 1
             self.saving = False
@@ -201,20 +214,23 @@ class TeachingConsole:
                 if session.learner.htn_.complete
                 else f"{len(session.learner.htn_.roots)} parts so far"
             )
+            self.write(f"  recorded: {', '.join(finished.actions)}")
+            saved_to = self.copy.path if self.copy is not None else self.path
             self.write(
-                f"Saved demonstration {finished.id} to {self.path}. Known valid orders: {graph.path_count()}; "
+                f"Saved demonstration {finished.id} to {saved_to}. Known valid orders: {graph.path_count()}; "
                 f"hierarchy: {shape}."
             )
         return spec
 
-    def _demonstration(self, session: TeachingSession, repertoire: Repertoire) -> Demonstration | None:
-        """One demonstration; None when the person quits (an unfinished demonstration is dropped: a partial
-        execution is not a valid demonstration)."""
+    def _demonstration(self, session: TeachingSession, repertoire: Repertoire, label: str) -> Demonstration | None:
+        """One demonstration, to be saved as ``label``; None when the person quits (an unfinished
+        demonstration is dropped: a partial execution is not a valid demonstration)."""
         session.begin()
-        self.write(f"Demonstration {len(session.demonstrations) + 1}:")
+        self.write(f"Demonstration {label}:")
         asked_at = -1
         while True:
             self.in_progress = len(session.done)
+            _rule_out(session, repertoire)
             question = session.query()
             if question is not None and asked_at != len(session.done):
                 asked_at = len(session.done)
@@ -244,6 +260,12 @@ class TeachingConsole:
             action = self._action(line, word, question, session, repertoire)
             if action is None:
                 continue
+            allowed = repertoire.next_by_structure(session.done)
+            if allowed is not None and action not in allowed:
+                self.write(
+                    f"  note: the task's structure has no order with {action} here (next it allows "
+                    f"{', '.join(sorted(allowed))}); recorded as you did it"
+                )
             session.observe(action)
             self.in_progress = len(session.done)
             if repertoire.exhausted(session.done):
@@ -286,6 +308,29 @@ class TeachingConsole:
             self.write(f"  {action} is already done ({times}) in this demonstration; type another action")
             return None
         return action
+
+
+def _next_id(spec: TaskSpec) -> str:
+    """The id the next demonstration saved to the task gets: ``d`` and the first free number from the count.
+
+    >>> _next_id(TaskSpec("t", demonstrations=(Demonstration.of(["a"], id="d1"), Demonstration.of(["a"], id="d3"))))
+    'd4'
+    """
+    taken = {d.id for d in spec.demonstrations}
+    number = len(spec.demonstrations) + 1
+    while f"d{number}" in taken:
+        number += 1
+    return f"d{number}"
+
+
+def _rule_out(session: TeachingSession, repertoire: Repertoire) -> None:
+    """Keep the learner from asking for what the task file's structure rules out next: each such action is
+    recorded as refused at this state, as if the person had said no."""
+    allowed = repertoire.next_by_structure(session.done)
+    if allowed:
+        for action in repertoire.actions:
+            if action not in allowed:
+                session.anti_edges.add(session.done, action)
 
 
 def _text_of(action: str, texts: Mapping[str, str]) -> str:

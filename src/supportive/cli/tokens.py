@@ -113,7 +113,7 @@ def add_token(
     ] = None,
     role: Annotated[
         AgentRole | None,
-        typer.Option("--role", help="A new agent's role (with --kind): lead, assistant or observer."),
+        typer.Option("--role", metavar="lead|assistant|observer", help="A new agent's role (with --kind): lead, assistant or observer."),
     ] = None,
 ) -> None:
     """Make a new token for an agent (a new agent too, given --kind and --role) and print it on stdout, this

@@ -14,7 +14,7 @@ __all__ = ["workbench_sim"]
 
 def workbench_sim(
     role: Annotated[
-        str, typer.Option("--role", help="The robot's role: student, peer or instructor.")
+        str, typer.Option("--role", metavar="student|peer|instructor", help="The robot's role: student, peer or instructor.")
     ] = "student",
     seconds: Annotated[
         float, typer.Option("--seconds", min=1.0, max=3600.0, callback=finite, help="Simulated seconds at most.")

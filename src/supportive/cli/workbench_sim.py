@@ -20,6 +20,7 @@ import math
 import tempfile
 import threading
 import time
+from collections import Counter
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -239,11 +240,30 @@ class _Story:
         self.t = 0.0
         self.lines: list[Line] = []
         self.arm = _Arm()
+        self.done_by: Counter[str] = Counter()
 
     def say(self, who: str, text: str) -> None:
+        """Tell a line; an action id quoted in it (``'pick_red'``, as the role policies name subtasks) is said
+        by its text (``'pick up the red block'``), as the person's lines say it."""
+        for action in self.actions.values():
+            if action.text and action.text != action.id:
+                text = text.replace(repr(action.id), repr(action.text))
         line = Line(round(self.t, 2), who, text)
         self.lines.append(line)
         self.tell(line)
+
+    def completed(self, who: str, action: str) -> None:
+        """Count a subtask ``who`` completed, and tell it."""
+        self.done_by[who] += 1
+        self.say(who, f"completed {action!r}")
+
+    def summary(self, seconds: float) -> str:
+        """The run in one line: how long it took, which subtasks each agent completed, whether the task is done."""
+        nodes = self.nodes()
+        done = sum(n["done"] for n in nodes.values())
+        by = ", ".join(f"{who} {count}" for who, count in sorted(self.done_by.items())) or "nobody"
+        end = "the task is finished" if done == len(nodes) else f"stopped at {seconds:g} s, the task unfinished"
+        return f"after {self.t:.1f} s: {done} of {len(nodes)} subtasks done ({by}); {end}"
 
     def nodes(self) -> dict[str, dict[str, Any]]:
         """The board's action nodes by action id."""
@@ -314,7 +334,7 @@ def _student(story: _Story, seconds: float, seed: int) -> None:
             last = decision
         elif story.arm.step(story.dt):
             story.robot.operate("complete", current[1])
-            story.say("robot", f"completed {current[0]!r}")
+            story.completed("robot", current[0])
             current = None
         story.t += story.dt
 
@@ -353,13 +373,14 @@ def _peer(story: _Story, seconds: float, seed: int) -> None:
             said.add(decision.reason)
         if decision.action is not RoleAction.HALT and current is not None and story.arm.step(story.dt):
             story.robot.operate("complete", current[1])
-            story.say("robot", f"completed {current[0]!r}")
+            story.completed("robot", current[0])
             current = None
         if person_red == "free" and story.t >= 1.2 and story.person.operate("claim", red):
             person_red = "claimed"
             story.say("alice", "claims 'pick up the red block'")
         elif person_red == "claimed" and story.t >= 3.0 and story.person.operate("complete", red):
             person_red = "done"
+            story.done_by["alice"] += 1
             story.say("alice", "picked up the red block")
         story.t += story.dt
 
@@ -399,6 +420,7 @@ def _instructor(story: _Story, seconds: float, seed: int) -> None:
                 )
                 node = story.nodes()[taken]["id"]
                 if story.person.operate("claim", node) and story.person.operate("complete", node):
+                    story.done_by["alice"] += 1
                     story.say("alice", f"does {story.actions[taken].text!r}")
                 story.arm.go([_REST_ROBOT])
             else:
@@ -428,6 +450,9 @@ def run_workbench(
     tell: Callable[[Line], None] = lambda line: None,
 ) -> list[Line]:
     """Run the workbench loop with the robot in ``role``; the story, line by line.
+
+    The story ends with a line by ``board``: how long the run took, the subtasks each agent completed, and
+    whether the task is finished.
 
     Args:
         role: ``student``, ``peer`` or ``instructor``.
@@ -462,6 +487,7 @@ def _run(
     story = _Story(url, spec, tell, dt)
     try:
         _SCENARIOS[role](story, seconds, seed)
+        story.say("board", story.summary(seconds))
     finally:
         story.close()
     return story.lines

@@ -133,6 +133,7 @@ class Evaluation:
         folds: How many held-out sets were tested.
         held_out: Held-out demonstrations.
         admitted: Held-out demonstrations the hierarchy learned from the rest admits.
+        not_admitted: The ids of those it does not admit, in the file's order.
         recall, precision: Mean over folds of the orderings' recall and precision (None: no structure, or
             too many orderings to list).
         prediction: Predictor name -> its scores (the progress-aware predictor and every baseline).
@@ -142,6 +143,7 @@ class Evaluation:
     folds: int = 0
     held_out: int = 0
     admitted: int = 0
+    not_admitted: list[str] = field(default_factory=list)
     recall: float | None = None
     precision: float | None = None
     prediction: dict[str, StepScores] = field(default_factory=dict)
@@ -154,6 +156,7 @@ class Evaluation:
             "held_out": self.held_out,
             "admitted": self.admitted,
             "admission": round(self.admitted / self.held_out, 4) if self.held_out else None,
+            "not_admitted": list(self.not_admitted),
             "recall": None if self.recall is None else round(self.recall, 4),
             "precision": None if self.precision is None else round(self.precision, 4),
             "prediction": {name: scores.as_dict() for name, scores in self.prediction.items()},
@@ -214,7 +217,10 @@ def evaluate_task(
         for index in held:
             actions = demos[index].actions
             result.held_out += 1
-            result.admitted += htn.admits(actions)
+            if htn.admits(actions):
+                result.admitted += 1
+            else:
+                result.not_admitted.append(demos[index].id or f"#{index + 1}")
             _score_demo(actions, fitted, baselines, most, result.prediction)
             if progress is not None:
                 progress()
@@ -225,6 +231,8 @@ def evaluate_task(
                 precisions.append(
                     sum(truth.admits_leaves(s) for s in learned) / len(learned) if learned else 1.0
                 )
+    order = {d.id or f"#{i + 1}": i for i, d in enumerate(demos)}
+    result.not_admitted.sort(key=order.__getitem__)
     if recalls:
         result.recall = float(np.mean(recalls))
         result.precision = float(np.mean(precisions))

@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 import queue
 import re
+import socket
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -27,6 +28,7 @@ __all__ = [
     "InProcess",
     "OnDask",
     "check_backend",
+    "check_listening",
     "import_distributed",
     "open_executor",
 ]
@@ -139,6 +141,32 @@ def check_backend(workers: int, scheduler: str | None) -> None:
             raise ExperimentError(f"scheduler address {scheduler!r}: expected tcp://HOST:PORT")
 
 
+def check_listening(scheduler: str, timeout: float = 5.0) -> None:
+    """Fail at once when nothing listens at a ``tcp://``/``tls://`` scheduler address: dask's client retries a
+    refused connection until its timeout (31.5 s), which only slows the error a mistyped port deserves. A
+    host that does not answer is left to dask's own timeout; another scheme is not checked.
+
+    Raises:
+        ExperimentError: when the connection is refused, or the host name does not resolve.
+    """
+    found = re.fullmatch(r"(?:tcp|tls)://\[?([^\]]+?)\]?:(\d+)/?", scheduler)
+    if found is None:
+        return
+    host, port = found.group(1), int(found.group(2))
+    try:
+        with socket.create_connection((host, port), timeout=timeout):
+            return
+    except ConnectionRefusedError:
+        raise ExperimentError(
+            f"cannot connect to the dask scheduler at {scheduler}: connection refused (is a scheduler running "
+            "there, on that port?)"
+        ) from None
+    except socket.gaierror as exc:
+        raise ExperimentError(f"cannot connect to the dask scheduler at {scheduler}: {exc.strerror}") from None
+    except OSError:  # a timeout or an unreachable network: dask's client says more, in its own time
+        return
+
+
 @contextmanager
 def open_executor(workers: int = 1, scheduler: str | None = None) -> Iterator[Executor]:
     """An executor for ``workers`` processes or the dask scheduler at ``scheduler``; closed on exit.
@@ -160,6 +188,7 @@ def open_executor(workers: int = 1, scheduler: str | None = None) -> Iterator[Ex
         return
     distributed = import_distributed()
     if scheduler is not None:
+        check_listening(scheduler)
         try:
             client = distributed.Client(scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False)
         except (OSError, TimeoutError) as exc:

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from supportive.errors import ExperimentError, MissingExtraError
+from supportive.render.layout import legends_outside
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -37,11 +38,13 @@ def new_figure(width: float = 7.0, height: float = 4.5) -> Figure:
 
 
 def save_png(figure: Figure, path: Path, *, dpi: int = 120) -> Path:
-    """Write ``figure`` to ``path`` as PNG, creating the directory.
+    """Write ``figure`` to ``path`` as PNG, creating the directory; every legend outside its axes
+    (:func:`~supportive.render.layout.legends_outside`).
 
     Raises:
         ExperimentError: when the file cannot be written.
     """
+    legends_outside(figure)  # no legend over the data it names, room made for every label
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         figure.savefig(path, format="png", dpi=dpi)

@@ -18,9 +18,10 @@ __all__ = ["belief_record", "infer_bag"]
 
 
 def belief_record(running: Filter, belief: Belief, top: int, time: float | None) -> dict[str, Any]:
-    """A belief of any :class:`~supportive.inference.filtering.Filter` as plain data: the filter's summary (the ``top`` most probable current subgoals, enclosing
-    subtasks and next subgoals, the step and the log-likelihood), the frame's ``time`` in seconds when known,
-    and ``surprise`` when the belief has such an attribute (a filter that measures how unexpected each
+    """A belief of any :class:`~supportive.inference.filtering.Filter` as plain data: the filter's summary (the
+    ``top`` most probable current subgoals, enclosing subtasks and next subgoals — those at probability 0 left
+    out, but for the first of each list — the step and the log-likelihood), the frame's ``time`` in seconds when
+    known, and ``surprise`` when the belief has such an attribute (a filter that measures how unexpected each
     observation was; without one the key is left out).
 
     >>> from supportive.learning import HTNLearner
@@ -32,6 +33,10 @@ def belief_record(running: Filter, belief: Belief, top: int, time: float | None)
     ([['a', 1.0]], 12.5, False)
     """
     record: dict[str, Any] = running.summary(belief, top)
+    for key in ("subgoals", "subtasks", "next"):  # an entry at probability 0 says nothing: left out
+        entries = record.get(key)
+        if isinstance(entries, list) and entries:
+            record[key] = [e for e in entries if e[1] > 0] or entries[:1]
     surprise = getattr(belief, "surprise", None)
     if surprise is not None:
         record["surprise"] = float(surprise)

@@ -10,7 +10,9 @@ The encoding is totally ordered, so no planner can interleave the children of a 
   done);
 * an optional node ``X`` is a compound task of its own with two methods: ``[X]`` and ``[]`` (skip it);
 * a partial hierarchy's top level is a state machine: one task per state, one method per edge
-  ``(s, root, s')`` with ordered subtasks ``[root, s']`` and an empty method for each terminal state.
+  ``(s, root, s')`` with ordered subtasks ``[root, s']`` and an empty method for each terminal state;
+* the problem's ``:goal`` is what every plan achieves: every leaf that no execution skips is done (it cuts no
+  plan of the task network; a hierarchy whose every part may be skipped has no ``:goal``).
 
 unified-planning is an optional dependency (the ``planning`` extra); it is imported only when needed.
 """
@@ -101,6 +103,9 @@ class _Builder:
             self.problem.add_action(action)
             self.actions[leaf] = action
         self.problem.task_network.add_subtask(self._top(htn), ident="s1")
+        required = [self.done[leaf] for leaf in _required(htn, skippable)]
+        if required:  # true after every plan of the task network: it says what a plan achieves, cuts none
+            self.problem.add_goal(up.And(*required))
         setattr(self.problem, _LEAVES, {name: leaf for leaf, name in self.leaf_names.items()})
 
     def _node(self, node: Node) -> Any:
@@ -171,6 +176,32 @@ class _Builder:
         self.problem.add_method(method)
 
 
+def _required(htn: HTN, skippable: set[Leaf]) -> list[Leaf]:
+    """The leaves every execution of ``htn`` performs: those of no optional node, in roots that every order of
+    the top level passes through (every root of a complete hierarchy)."""
+    top = htn.top_level
+    roots: set[int] = set(range(len(htn.roots)))
+    if top is not None:
+        successors = top.successors()
+        terminal = set(top.terminal)
+        memo: dict[int, frozenset[int] | None] = {}
+
+        def always(state: int) -> frozenset[int] | None:
+            """The roots on every path from ``state`` to a terminal state (None: no path)."""
+            if state not in memo:
+                memo[state] = None  # a cycle (none in a task graph) is no path
+                ways: list[frozenset[int] | None] = [frozenset() if state in terminal else None]
+                ways += [None if (rest := always(dst)) is None else rest | {root} for root, dst in successors.get(state, {}).items()]
+                found = [way for way in ways if way is not None]
+                memo[state] = frozenset.intersection(*found) if found else None
+            return memo[state]
+
+        starts = [always(state) for state in top.initial]
+        found = [way for way in starts if way is not None]
+        roots = set(frozenset.intersection(*found)) if found else set()
+    return [leaf for i in sorted(roots) for leaf in htn.roots[i].leaves if leaf not in skippable]
+
+
 def _skippable(node: Node, inside_optional: bool) -> list[Leaf]:
     """The leaves under ``node`` that an execution may skip (one of their ancestors, or they, optional)."""
     skipped = inside_optional or node.optional
@@ -202,7 +233,8 @@ def hddl_strings(htn: HTN) -> tuple[str, str]:
     from unified_planning.io import PDDLWriter
 
     writer = PDDLWriter(problem)
-    return writer.get_domain(), writer.get_problem()
+    text = writer.get_problem()
+    return writer.get_domain(), re.sub(r"\n \(:goal \(and\s*\)\s*\)", "", text)  # nothing every plan achieves: no goal
 
 
 def write_hddl(htn: HTN, directory: str | Path) -> tuple[Path, Path]:

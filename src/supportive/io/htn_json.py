@@ -7,6 +7,7 @@ from typing import Any
 
 from supportive.errors import TaskFileError
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Counts, Node, Support, TopLevel
+from supportive.tasks.naming import full_name
 
 __all__ = ["JSON_EXACT", "htn_from_dict", "htn_to_dict", "json_count", "node_from_dict", "node_to_dict"]
 
@@ -54,7 +55,7 @@ def node_to_dict(node: Node) -> dict[str, Any]:
         if node.occurrence != 1:
             data["occurrence"] = node.occurrence
     else:
-        data = {"kind": node.kind, "name": node.name, "children": [node_to_dict(c) for c in node.children]}
+        data = {"kind": node.kind, "name": full_name(node), "children": [node_to_dict(c) for c in node.children]}
     if node.optional:
         data["optional"] = True
     if node.counts is not None:

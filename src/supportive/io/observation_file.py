@@ -12,10 +12,13 @@ from typing import Any
 
 from supportive.errors import ObservationFileError
 from supportive.io.limits import MAX_SECONDS
-from supportive.io.safe_load import load_json, load_yaml, read_text
+from supportive.io.safe_load import check_kind, load_json, load_yaml, read_text
 from supportive.io.values import check_id, check_number
 
-__all__ = ["Moment", "parse_observation_file"]
+__all__ = ["SUFFIXES", "Moment", "parse_observation_file"]
+
+SUFFIXES = (".jsonl", ".ndjson", ".json", ".yaml", ".yml")
+"""The file types of an observation stream: JSON lines, or one JSON or YAML document."""
 
 Moment = tuple[frozenset[str], float | None]
 """The events that hold at one moment, and the moment's time when the file gives one."""
@@ -28,10 +31,10 @@ def parse_observation_file(path: str | Path) -> list[Moment]:
         ObservationFileError: naming the file, the line or item, and the problem.
     """
     path = Path(path)
+    suffix = check_kind(path, SUFFIXES, "an observation stream", ObservationFileError)
     text = read_text(path, ObservationFileError)
     if not text.strip():
         raise ObservationFileError("file is empty", path=path)
-    suffix = path.suffix.lower()
     if suffix in (".jsonl", ".ndjson"):
         moments = []
         for number, line in enumerate(text.splitlines(), start=1):
@@ -40,10 +43,6 @@ def parse_observation_file(path: str | Path) -> list[Moment]:
             item = load_json(line, path, ObservationFileError, line=number)
             moments.append(_moment(item, path, None, number))
         return moments
-    if suffix not in (".json", ".yaml", ".yml"):
-        raise ObservationFileError(
-            f"unsupported file type {suffix or '(none)'!r}; use .jsonl, .json, .yaml or .yml", path=path
-        )
     if suffix == ".json":
         data = load_json(text, path, ObservationFileError)
     else:

@@ -38,10 +38,33 @@ from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 from supportive.errors import FileFormatError
 from supportive.io.limits import MAX_CSV_FIELD, MAX_DEPTH, MAX_FILE_BYTES, MAX_NODES, MAX_NUMBER_CHARS
 
-__all__ = ["compose_yaml", "load_json", "load_yaml", "read_csv", "read_text"]
+__all__ = ["check_kind", "compose_yaml", "load_json", "load_yaml", "read_csv", "read_text"]
 
 _SURROGATE = re.compile("[\ud800-\udfff]")
 _JSON_TOKENS = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]')
+
+
+def check_kind(path: Path, suffixes: tuple[str, ...], what: str, error: type[FileFormatError]) -> str:
+    """The suffix (lower case) of a file to read as ``what`` ("a task file"), one of ``suffixes``.
+
+    Raises:
+        error: naming the file, saying what is wrong — a folder, no such file, or another suffix — and what
+            was expected.
+
+    >>> check_kind(Path("/"), (".yaml", ".json"), "a task file", FileFormatError)
+    Traceback (most recent call last):
+    ...
+    supportive.errors.FileFormatError: /: is a folder; expected a task file (.yaml or .json)
+    """
+    suffix = path.suffix.lower()
+    expected = f"{what} ({', '.join(suffixes[:-1])} or {suffixes[-1]})" if len(suffixes) > 1 else f"{what} ({suffixes[0]})"
+    if path.is_dir():
+        raise error(f"is a folder; expected {expected}", path=path)
+    if suffix not in suffixes:
+        if not path.exists():
+            raise error(f"no such file; expected {expected}", path=path)
+        raise error(f"unsupported file type {suffix or '(none)'!r}; expected {expected}", path=path)
+    return suffix
 
 
 class _Refused(Exception):

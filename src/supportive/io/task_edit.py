@@ -25,10 +25,10 @@ from ruamel.yaml.util import load_yaml_guess_indent
 from supportive.errors import TaskFileError
 from supportive.io.atomic import atomic_write, exclusive
 from supportive.io.safe_load import read_text
-from supportive.io.taskfile import dump_task, format_of, parse_task_string, task_to_dict
+from supportive.io.taskfile import Format, dump_task, format_of, parse_task_string, task_to_dict
 from supportive.tasks.spec import TaskSpec
 
-__all__ = ["update_task_file"]
+__all__ = ["edited_text", "update_task_file"]
 
 # The task's fields in file order, each with how its items are matched between the old and the new task.
 _LISTS: dict[str, Callable[[Any], object]] = {
@@ -61,16 +61,26 @@ def update_task_file(path: str | Path, change: Callable[[TaskSpec], TaskSpec]) -
         new = change(old)
         if new == old:
             return old
-        if fmt == "yaml":
-            updated = _edit_yaml(text, old, new)
-        elif fmt == "json":
-            updated = _edit_json(text, old, new)
-        else:
-            updated = dump_task(new, fmt)
-        if parse_task_string(updated, fmt, path=path) != new:  # never save what would not read back as `new`
-            updated = dump_task(new, fmt)
-        atomic_write(target, updated, error=TaskFileError)
+        atomic_write(target, edited_text(text, fmt, old, new, path=path), error=TaskFileError)
     return new
+
+
+def edited_text(text: str, fmt: Format, old: TaskSpec, new: TaskSpec, *, path: str | Path | None = None) -> str:
+    """The text of a task file (``text``, in format ``fmt``, holding ``old``) changed to hold ``new``,
+    keeping what did not change (comments and layout of YAML, key order of JSON).
+
+    Raises:
+        TaskFileError: (naming ``path``) when ``text`` is not a valid task.
+    """
+    if fmt == "yaml":
+        updated = _edit_yaml(text, old, new)
+    elif fmt == "json":
+        updated = _edit_json(text, old, new)
+    else:
+        updated = dump_task(new, fmt)
+    if parse_task_string(updated, fmt, path=path) != new:  # never save what would not read back as `new`
+        updated = dump_task(new, fmt)
+    return updated
 
 
 def _merge(document: dict[str, Any], old: TaskSpec, new: TaskSpec, fresh: dict[str, Any], make: Callable[[Any, Any], Any]) -> None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import difflib
 import io
 import json
 from collections import Counter
@@ -20,7 +21,7 @@ from pydantic import ValidationError
 from supportive.errors import FormulaError, TaskFileError, TaskModelError
 from supportive.io.atomic import atomic_write
 from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
-from supportive.io.safe_load import read_csv, read_text
+from supportive.io.safe_load import check_kind, read_csv, read_text
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.values import check_id, check_number, is_digits
@@ -38,6 +39,7 @@ from supportive.tasks.spec import Action, Demonstration, Keyframe, Step, TaskSpe
 __all__ = [
     "CSV_COLUMNS",
     "Format",
+    "csv_leaves_out",
     "dump_task",
     "format_of",
     "parse_task_file",
@@ -60,9 +62,12 @@ def format_of(path: str | Path) -> Format:
         TaskFileError: for an unknown suffix.
     """
     suffix = Path(path).suffix.lower()
+    if Path(path).is_dir():
+        raise TaskFileError("is a folder; expected a task file (.yaml, .yml, .json or .csv)", path=path)
     if suffix not in _SUFFIXES:
         raise TaskFileError(
-            f"unsupported file type {suffix or '(none)'!r}; use .yaml, .yml, .json or .csv", path=path
+            f"unsupported file type {suffix or '(none)'!r}; expected a task file (.yaml, .yml, .json or .csv)",
+            path=path,
         )
     return _SUFFIXES[suffix]
 
@@ -74,7 +79,7 @@ def parse_task_file(path: str | Path, format: Format | None = None) -> TaskSpec:
         TaskFileError: when the file is missing, unreadable or invalid.
     """
     path = Path(path)
-    fmt = format or format_of(path)
+    fmt = format or _SUFFIXES[check_kind(path, tuple(_SUFFIXES), "a task file", TaskFileError)]
     return parse_task_string(read_text(path, TaskFileError), fmt, path=path)
 
 
@@ -92,7 +97,7 @@ def parse_task_string(
     try:
         model = TaskIn.model_validate(data)
     except ValidationError as exc:
-        raise schema_error(exc, text, path, TaskFileError) from None
+        raise schema_error(exc, text, path, TaskFileError, TaskIn) from None
     return _to_spec(model, text, path)
 
 
@@ -130,7 +135,8 @@ def _to_spec(model: TaskIn, text: str, path: str | Path | None) -> TaskSpec:
         for j, step in enumerate(demo.steps):
             if declared and step.action not in declared:
                 raise fail(
-                    f"action {step.action!r} is not declared in 'actions'", ["demonstrations", i, "steps", j]
+                    f"action {step.action!r} is not declared in 'actions'{_did_you_mean(step.action, declared)}",
+                    ["demonstrations", i, "steps", j],
                 )
             try:
                 state = None if step.state is None else frozenset(step.state)
@@ -254,10 +260,20 @@ def _check_arguments(
             raise fail(f"{literal}: {arg!r} is not declared in 'objects'", loc)
 
 
+def _did_you_mean(name: str, known: set[str]) -> str:
+    """"; did you mean 'x'?" for the known name closest to a mistyped one (difflib), or nothing.
+
+    >>> _did_you_mean("gren", {"green", "red"}), _did_you_mean("zzz", {"green"})
+    ("; did you mean 'green'?", '')
+    """
+    close = difflib.get_close_matches(name, sorted(known), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
 def _node(model: NodeIn, loc: list[str | int], declared: set[str], fail: Any, seen: Counter[str]) -> Node:
     if model.action is not None:
         if declared and model.action not in declared:
-            raise fail(f"action {model.action!r} is not declared in 'actions'", loc)
+            raise fail(f"action {model.action!r} is not declared in 'actions'{_did_you_mean(model.action, declared)}", loc)
         seen[model.action] += 1
         return ActionNode(model.action, seen[model.action])
     if model.optional is not None:
@@ -487,6 +503,24 @@ def dump_task(spec: TaskSpec, format: Format) -> str:
     if format == "json":
         return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
     return yaml.dump(data, Dumper=_Dumper, sort_keys=False, allow_unicode=True, width=110)
+
+
+def csv_leaves_out(spec: TaskSpec) -> list[str]:
+    """What a CSV of ``spec`` does not hold (CSV has the demonstrations only), in words; empty when nothing.
+
+    >>> from supportive.tasks.htn import ActionNode
+    >>> csv_leaves_out(TaskSpec("t", (Action("a", "do a"),), ActionNode("a")))
+    ['the structure', 'the actions and their texts']
+    """
+    lost = []
+    if spec.structure is not None:
+        lost.append("the structure")
+    if any(a.text not in (None, a.id) or a.observations or a.effects or a.keyframes for a in spec.actions):
+        lost.append("the actions and their texts")
+    lost += [words for present, words in (
+        (spec.predicates, "the predicates"), (spec.behaviors, "the supportive behaviors"), (spec.objects, "the objects"),
+    ) if present]
+    return lost
 
 
 def _blank(value: float | None) -> object:

@@ -2,20 +2,25 @@
 and never the installed package's own data.
 
 :func:`working_copy` picks the copy (``--save PATH``; by default ``NAME.edited.yaml`` beside the user's file,
-or in the current directory for a bundled example); :meth:`WorkingCopy.start` makes it from the task file
-byte for byte (comments and layout kept) when it does not exist yet, and otherwise the session carries on in
-it, so a second session adds to the first. A file whose name already ends in ``.edited`` is its own working
+or in the current directory for a bundled example); the session's first change (:meth:`WorkingCopy.update`)
+makes it from the task file with that change applied (comments and layout kept), whole or not at all, when
+it does not exist yet — a session that changes nothing leaves no copy — and otherwise the session carries on
+in it, so a second session adds to the first. A file whose name already ends in ``.edited`` is its own working
 copy.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 from supportive.errors import TaskFileError
 from supportive.io.atomic import create_new, real_path
-from supportive.io.taskfile import dump_task, format_of, parse_task_file
+from supportive.io.safe_load import read_text
+from supportive.io.task_edit import edited_text, update_task_file
+from supportive.io.taskfile import dump_task, format_of, parse_task_file, parse_task_string
+from supportive.tasks.spec import TaskSpec
 
 __all__ = ["EDITED", "WorkingCopy", "package_folder", "working_copy"]
 
@@ -30,7 +35,7 @@ class WorkingCopy:
     Attributes:
         path: The working copy (saved to after every change).
         source: The task file it is made from.
-        made: True once :meth:`start` made it now; False while it is not made yet, or when it existed and the
+        made: True once :meth:`update` made it now; False while it is not made yet, or when it existed and the
             session carries on in it.
     """
 
@@ -40,44 +45,50 @@ class WorkingCopy:
 
     @property
     def exists(self) -> bool:
-        """Whether the copy is there already (made earlier, or by :meth:`start`)."""
+        """Whether the copy is there already (made earlier, or by :meth:`update`)."""
         return self.path.exists()
 
     def reads(self) -> Path:
         """The file the session's task comes from: the copy when it exists, else the source (nothing is written
-        yet, so a command that fails before :meth:`start` leaves no file behind)."""
+        yet: a session that changes nothing leaves no file behind)."""
         return self.path if self.exists else self.source
 
-    def start(self) -> Path:
-        """Make the copy (the source's text, byte for byte; converted when the suffixes name different formats)
-        unless it exists; its path. The copy appears whole or not at all (:func:`~supportive.io.atomic.create_new`).
+    def update(self, change: Callable[[TaskSpec], TaskSpec]) -> TaskSpec:
+        """Save a change to the copy (:func:`~supportive.io.task_edit.update_task_file`); the first change of a
+        session that found no copy makes it, from the source's text with the change applied (its comments
+        and layout kept; converted when the suffixes name different formats). The copy appears whole or not
+        at all (:func:`~supportive.io.atomic.create_new`): a session that changes nothing leaves no file.
+
+        Returns:
+            The task as saved.
 
         Raises:
-            TaskFileError: when it cannot be written.
+            TaskFileError: when the source cannot be read or the copy cannot be written.
         """
         if self.exists:
-            return self.path
-        same_format = format_of(self.source) == format_of(self.path)
-        text = (
-            self.source.read_text(encoding="utf-8")
-            if same_format
-            else dump_task(parse_task_file(self.source), format_of(self.path))
-        )
+            return update_task_file(self.path, change)
+        text = read_text(self.source, TaskFileError)
+        old = parse_task_string(text, format_of(self.source), path=self.source)
+        new = change(old)
+        if format_of(self.source) == format_of(self.path):
+            copied = edited_text(text, format_of(self.path), old, new, path=self.path)
+        else:
+            copied = dump_task(new, format_of(self.path))
         try:
-            create_new(self.path, text)
-        except FileExistsError:  # made meanwhile by another session: carry on in it
-            return self.path
+            create_new(self.path, copied)
+        except FileExistsError:  # made meanwhile by another session: save the change in it
+            return update_task_file(self.path, change)
         except OSError as exc:
             raise TaskFileError(f"cannot make the working copy: {exc.strerror}", path=self.path) from None
         self.made = True
-        return self.path
+        return new
 
     def describe(self) -> str:
         """One line for the person: where their work is saved, and what stays untouched."""
         if self.path.resolve() == self.source.resolve():
             return f"Saving to {self.path} (the file you named)."
-        if self.made:
-            return f"Saving to {self.path}, a new copy of {self.source} (which is not changed)."
+        if not self.exists or self.made:
+            return f"Saving to {self.path}, a new copy of {self.source} (which is not changed), made at the first change."
         return f"Carrying on in {self.path} (saved there before; {self.source} is not changed)."
 
 
@@ -87,7 +98,8 @@ def package_folder() -> Path:
 
 
 def working_copy(source: str | Path, save: str | Path | None = None) -> WorkingCopy:
-    """The working copy of the task file ``source`` (not made yet: :meth:`WorkingCopy.start` makes it).
+    """The working copy of the task file ``source`` (not made yet: the first :meth:`WorkingCopy.update` makes
+    it).
 
     Args:
         source: The task file the session starts from.

@@ -89,6 +89,29 @@ def _no_such_help(phrase: str, known: Sequence[str]) -> str:
     )
 
 
+_FINISHED = re.compile(
+    r"\b(?:is|are|was|were|has been|have been|gets?|got)\s+(?:\w+ly\s+)?\w+(?:ed|en|wn)\b"
+    r"|\b(?:finished|done|completed?|over)\b"
+)
+"""A phrase about something finished: "the seat is screwed", "has been fastened", "once screwing seat is done"."""
+
+
+def _in_tense(literal: Literal, text: str) -> Literal:
+    """A subtask literal read by its words in the tense the phrase has: "the seat is screwed" names the
+    subtask Screw seat as its words do "you are screwing seat" (``active``), but it says the subtask is
+    finished (``done``); any other literal as it is.
+
+    >>> str(_in_tense(Literal("active(Screw seat)"), "the seat is screwed"))
+    'done(Screw seat)'
+    >>> str(_in_tense(Literal("active(Screw seat)"), "you are screwing the seat"))
+    'active(Screw seat)'
+    """
+    name, _, rest = literal.atom.partition("(")
+    if name in ("active", "ready") and _FINISHED.search(text):
+        return Literal(f"done({rest}", literal.positive)
+    return literal
+
+
 def _content(text: str) -> frozenset[str]:
     return frozenset(normalise_words(text))
 
@@ -142,7 +165,8 @@ class ConditionReader:
             raise UnderstandingError(
                 phrase, None, "", f"a condition in the task's words, like '{example}'"
             )
-        return best[1] if positive else best[1].negated()
+        chosen = _in_tense(best[1], text)
+        return chosen if positive else chosen.negated()
 
     def read(self, text: str) -> DNF:
         """A whole condition ("A and not B or C") as a formula.

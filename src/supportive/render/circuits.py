@@ -14,6 +14,7 @@ from supportive.envs.tabletop.state import Status, TabletopState
 from supportive.envs.tabletop.world import Move
 from supportive.errors import ExportError, MissingExtraError
 from supportive.render.files import picture_file, picture_path
+from supportive.render.layout import legends_outside, spread_labels
 
 __all__ = ["ELEMENT_COLOURS", "draw_state", "write_before_after"]
 
@@ -34,9 +35,10 @@ def draw_state(
     state: TabletopState[Board],
     moved: Move | None = None,
     origin: TablePose | None = None,
-) -> None:
+) -> list[tuple[Any, tuple[float, float, float, float]]]:
     """Draw the table, the board and every piece into matplotlib ``axes``; the piece of ``moved`` is outlined
-    in black, with an arrow from ``origin`` (where it lay) when given."""
+    in black, with an arrow from ``origin`` (where it lay) when given. Returns each piece's label with the
+    piece's box, for :func:`~supportive.render.layout.spread_labels` once the figure is laid out."""
     from matplotlib.patches import FancyArrowPatch, Rectangle
 
     layout = world.layout
@@ -63,6 +65,7 @@ def draw_state(
             solid_capstyle="round",
         )
         axes.scatter([p[0] for p in points], [p[1] for p in points], s=12, color="black", zorder=5)
+    labels: list[tuple[Any, tuple[float, float, float, float]]] = []
     for index, item in enumerate(world.items):
         pose = state.poses[index]
         if pose is None or state.status[index] is not Status.TABLE:
@@ -80,7 +83,8 @@ def draw_state(
                 zorder=4,
             )
         )
-        axes.text(pose.x, pose.y, item.id, fontsize=5, ha="center", va="center", zorder=6)
+        label = axes.text(pose.x, pose.y, item.id, fontsize=5, ha="center", va="center", zorder=6)
+        labels.append((label, (rect.x0, rect.y0, rect.x1, rect.y1)))
     if moved is not None:
         start = world.initial_state.poses[moved.item]
         if start is not None:
@@ -99,6 +103,7 @@ def draw_state(
     axes.text(world.support_arm.home[0] + 3, world.support_arm.home[1], "support", fontsize=6, va="center")
     axes.set_xticks([])
     axes.set_yticks([])
+    return labels
 
 
 def write_before_after(
@@ -124,14 +129,18 @@ def write_before_after(
         raise MissingExtraError("drawing the circuit table", "matplotlib", "plot") from None
     figure = Figure(figsize=(10, 4.2))
     FigureCanvasAgg(figure)
+    drawn = []
     for i, (state, title) in enumerate(zip((before, after), titles, strict=True)):
         axes = figure.add_subplot(1, 2, i + 1)
         if i == 1 and moved is not None:
-            draw_state(axes, world, state, moved, before.poses[moved.item])
+            drawn.append((axes, draw_state(axes, world, state, moved, before.poses[moved.item])))
         else:
-            draw_state(axes, world, state)
+            drawn.append((axes, draw_state(axes, world, state)))
         axes.set_title(title, fontsize=9)
-    figure.tight_layout()
+    legends_outside(figure)
+    figure.draw_without_rendering()  # laid out: the labels' sizes on the page are known
+    for axes, labels in drawn:
+        spread_labels(axes, labels)
     target = Path(path)
     try:
         with picture_file(target, ".png", "the picture") as temporary:

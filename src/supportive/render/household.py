@@ -246,8 +246,8 @@ def render_frame(grid: GridMap, frame: Frame, *, steps: int | None = None, top: 
 
 
 def summary(result: EpisodeResult, *, threshold: int = THRESHOLD, steps: int | None = None) -> str:
-    """The measures of an episode (§3.5.6) in one line: damage, steps until the damage threshold, cells
-    explored until then, and the collisions by kind.
+    """The measures of an episode (§3.5.6) in one line: damage, the step the damage threshold was reached at
+    (or that it was not), cells explored until then, toy bins reached, and the collisions by kind.
 
     Args:
         result: The episode.
@@ -257,15 +257,18 @@ def summary(result: EpisodeResult, *, threshold: int = THRESHOLD, steps: int | N
     >>> from supportive.worlds.household import load_map
     >>> from supportive.safety.episode import run_episode
     >>> print(summary(run_episode(load_map("playroom"), 0.0, caregiver=False, seed=0, steps=10), steps=10))
-    damage 0 in 10 steps · steps until damage 15: 10 (never reached) · cells explored: 11 · collisions: none
+    damage 0 in 10 steps · damage 15 not reached in 10 steps · cells explored: 11 · toy bins reached: 0 · collisions: none
     """
     played = steps if steps is not None else (len(result.frames) or None)
     length = f" in {played} steps" if played is not None else ""
-    until = f"{result.steps}" if result.reached_threshold else f"{result.steps} (never reached)"
+    if result.reached_threshold:
+        until = f"damage {threshold} reached at step {result.steps}"
+    else:
+        until = f"damage {threshold} not reached" + (f" in {played} steps" if played is not None else "")
     bumps = ", ".join(f"{kind} {count}" for kind, count in result.collisions.items()) or "none"
     return (
-        f"damage {result.damage}{length} · steps until damage {threshold}: {until} · "
-        f"cells explored: {result.cells_explored} · collisions: {bumps}"
+        f"damage {result.damage}{length} · {until} · cells explored: {result.cells_explored} · "
+        f"toy bins reached: {result.bins_reached} · collisions: {bumps}"
     )
 
 

@@ -8,6 +8,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from supportive.errors import ExportError, MissingExtraError
+from supportive.render.layout import legends_outside
 
 __all__ = ["write_reliability"]
 
@@ -25,7 +26,7 @@ def write_reliability(tables: Mapping[str, Sequence[Mapping[str, float | int]]],
         from matplotlib.figure import Figure
     except ImportError:
         raise MissingExtraError("drawing a reliability diagram", "matplotlib", "plot") from None
-    figure = Figure(figsize=(5.2, 5.0))
+    figure = Figure(figsize=(6.6, 5.0))  # the legend beside the square diagram
     FigureCanvasAgg(figure)
     axes = figure.add_subplot(1, 1, 1)
     axes.plot([0, 1], [0, 1], color="#999999", linestyle="--", linewidth=1, label="calibrated")
@@ -42,8 +43,8 @@ def write_reliability(tables: Mapping[str, Sequence[Mapping[str, float | int]]],
     axes.set_xlabel("top-1 probability (mean of its tenth)")
     axes.set_ylabel("top-1 right (share)")
     axes.set_title(title, fontsize=9)
-    axes.legend(fontsize=7, loc="upper left")
-    figure.tight_layout()
+    axes.legend(fontsize=7)
+    legends_outside(figure)
     target = Path(path)
     try:
         target.parent.mkdir(parents=True, exist_ok=True)

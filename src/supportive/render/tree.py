@@ -10,7 +10,7 @@ from rich.tree import Tree
 from supportive.render.terminal import plain, printable, terminal_console
 from supportive.tasks.htn import HTN, ActionNode, Node
 
-__all__ = ["htn_tree", "render_tree"]
+__all__ = ["MAX_ORDERS", "htn_tree", "render_tree", "top_level_orders"]
 
 _KIND = {"chain": ("in order", "bold cyan"), "clique": ("any order", "bold magenta")}
 
@@ -38,7 +38,8 @@ def _add(parent: Tree, node: Node, texts: Mapping[str, str]) -> None:
 
 def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
     """A rich Tree: chains read "in order", cliques "any order" (with how many of their orders were seen,
-    when the clique was inferred); optional parts say so; leaves show their action text."""
+    when the clique was inferred); optional parts say so; leaves show their action text. A partial hierarchy
+    ends with the orders of its top-level parts it admits (up to :data:`MAX_ORDERS`, and how many in all)."""
     texts = texts or {}
     label = plain(htn.task or "task", style="bold")
     if not htn.complete:
@@ -46,7 +47,61 @@ def htn_tree(htn: HTN, texts: Mapping[str, str] | None = None) -> Tree:
     tree = Tree(label)
     for root in htn.roots:
         _add(tree, root, texts)
+    if not htn.complete and htn.top_level is not None:
+        orders, total = top_level_orders(htn)
+        seen = tree.add(
+            Text(f"orders of these parts it admits ({total}):" if total != 1 else "the one order of these parts it admits:", style="yellow")
+        )
+        for order in orders:
+            seen.add(plain(" → ".join(_part(htn.roots[i]) for i in order)))
+        if total > len(orders):
+            seen.add(Text(f"… and {total - len(orders)} more", style="dim"))
     return tree
+
+
+MAX_ORDERS = 6
+"""How many orders of a partial hierarchy's parts the tree lists (it says how many more there are)."""
+
+
+def top_level_orders(htn: HTN, limit: int = MAX_ORDERS) -> tuple[list[tuple[int, ...]], int]:
+    """The orders of a partial hierarchy's parts (root indices) that it admits — the task graph learned at the
+    level where compaction stopped — at most ``limit`` of them, in the order of the roots, and how many there
+    are in all.
+
+    >>> from supportive.examples import load
+    >>> from supportive.learning.learner import learn
+    >>> orders, total = top_level_orders(learn(load("two-glasses")).htn_, limit=2)
+    >>> orders, total
+    ([(0, 1, 2, 3), (0, 1, 3, 2)], 6)
+    """
+    top = htn.top_level
+    if top is None:
+        return [(0,)] if htn.roots else [], int(bool(htn.roots))
+    successors = top.successors()
+    terminal = set(top.terminal)
+    found: list[tuple[int, ...]] = []
+
+    def walk(state: int, path: tuple[int, ...]) -> None:
+        if len(found) >= limit:
+            return
+        if state in terminal:
+            found.append(path)
+        for root, following in sorted(successors.get(state, {}).items()):
+            walk(following, (*path, root))
+
+    for start in sorted(top.initial):
+        walk(start, ())
+    return found[:limit], top.count_orderings()
+
+
+def _part(node: Node) -> str:
+    """A top-level part as the list of orders names it: its action, its name, or its first and last action."""
+    if isinstance(node, ActionNode):
+        return node.label
+    if node.name:
+        return node.name
+    leaves = [leaf for leaf in node.leaves]
+    return f"{leaves[0][0]} … {leaves[-1][0]}" if len(leaves) > 1 else leaves[0][0]
 
 
 def render_tree(htn: HTN, texts: Mapping[str, str] | None = None, *, width: int = 100) -> str:

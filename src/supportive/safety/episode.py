@@ -69,7 +69,9 @@ class EpisodeResult:
         steps: Novice steps until its damage reached the threshold, or the episode's length when it never did.
         reached_threshold: Whether it did.
         cells_explored: Distinct cells the novice stood on (its start included) until then.
-        collisions: Count of collisions by kind.
+        collisions: Count of collisions by kind (harmful or not; reaching a toy bin, the novice's goal, is
+            not one).
+        bins_reached: How often the novice reached a toy bin (moved into it: it stays beside it).
         frames: Every step, when recorded.
     """
 
@@ -79,6 +81,7 @@ class EpisodeResult:
     cells_explored: int
     collisions: dict[str, int]
     frames: tuple[Frame, ...] = field(default=(), repr=False)
+    bins_reached: int = 0
 
 
 @cache
@@ -137,7 +140,7 @@ def run_episode(
     world = HouseholdWorld.start(
         grid, start, _caregiver_start(grid, distances, start, caregiver_rng) if carer else None
     )
-    damage, visited, collisions = 0, {start}, Counter[str]()
+    damage, visited, collisions, bins = 0, {start}, Counter[str](), 0
     frames: list[Frame] = []
     until: int | None = None
     explored = 0
@@ -151,7 +154,9 @@ def run_episode(
         move = novice.act(before)
         collision = world.move_novice(move)
         p_safe = carer.observe(before, move) if carer is not None else None
-        if collision is not None:
+        if collision is not None and collision.kind == "bin":  # its goal: reached, not bumped into
+            bins += 1
+        elif collision is not None:
             collisions[collision.kind] += 1
             damage += collision.damage
         visited.add(world.novice)
@@ -169,4 +174,5 @@ def run_episode(
         cells_explored=len(visited) if until is None else explored,
         collisions=dict(sorted(collisions.items())),
         frames=tuple(frames),
+        bins_reached=bins,
     )

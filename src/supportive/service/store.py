@@ -24,7 +24,7 @@ from typing import Any
 from urllib.parse import quote
 
 from sqlalchemy import Engine, create_engine, event, insert, inspect, select, update
-from sqlalchemy.engine import Connection
+from sqlalchemy.engine import Connection, make_url
 from sqlalchemy.exc import ArgumentError, DatabaseError, OperationalError
 
 from supportive.errors import BoardError, StoreError, TokenError
@@ -73,6 +73,29 @@ class _Pending:
     result: Future[tuple[TaskBoard, BoardEvent]] = field(default_factory=Future)
 
 
+SUPPORTED = ("sqlite", "postgresql")
+"""The databases a board is kept in (SQLAlchemy backend names)."""
+
+
+def _check_supported(url: str) -> None:
+    """Refuse a URL of a database the board does not support, saying which it does (SQLAlchemy would name a
+    missing driver module, "No module named 'MySQLdb'").
+
+    Raises:
+        StoreError: for another database (the password, if any, hidden).
+    """
+    try:
+        parsed = make_url(url)
+    except ArgumentError:
+        return  # not a URL: create_engine's error says so
+    if parsed.get_backend_name() not in SUPPORTED:
+        shown = parsed.render_as_string(hide_password=True)
+        raise StoreError(
+            f"cannot use database {shown!r}: a board is kept in SQLite (sqlite:///board.db) or PostgreSQL "
+            "(postgresql+psycopg://user@host/board)"
+        )
+
+
 class BoardStore:
     """The board's database.
 
@@ -86,6 +109,7 @@ class BoardStore:
     """
 
     def __init__(self, url: str, *, create: bool = True) -> None:
+        _check_supported(url)
         try:
             self.engine: Engine = create_engine(url, pool_pre_ping=True, **_engine_options(url))
         except (ArgumentError, ImportError) as exc:

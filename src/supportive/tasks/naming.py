@@ -6,7 +6,7 @@ from collections.abc import Mapping
 
 from supportive.tasks.htn import ActionNode, ChainNode, Leaf, Node, shape, with_children
 
-__all__ = ["known_names", "named"]
+__all__ = ["full_name", "known_names", "named"]
 
 
 def known_names(structure: Node | None) -> dict[frozenset[Leaf], str]:
@@ -85,3 +85,33 @@ def _describe(kind: str, children: tuple[Node, ...]) -> str:
         return " → ".join(parts) if len(parts) <= 3 else f"{parts[0]} → … → {parts[-1]}"
     shown = ", ".join(parts[:3])
     return "{" + (shown if len(parts) <= 3 else f"{shown}, +{len(parts) - 3}") + "}"
+
+
+def full_name(node: Node) -> str | None:
+    """The node's name with nothing cut: a name :func:`named` made up (which shortens long chains and long
+    names with "…" for people to read) is spelled out whole — every child, chains with " → ", cliques in
+    braces; any other name as it is (what JSON exports write: a program reading them gets every part).
+
+    >>> from supportive.tasks.htn import CliqueNode
+    >>> chain = named(ChainNode(tuple(ActionNode(a) for a in "abcd")))
+    >>> chain.name, full_name(chain)
+    ('a → … → d', 'a → b → c → d')
+    >>> full_name(named(CliqueNode(tuple(ActionNode(a) for a in "abcde"))))
+    '{a, b, c, d, e}'
+    """
+    if isinstance(node, ActionNode):
+        return node.label
+    if node.name is None or node.name != _describe(node.kind, node.children):
+        return node.name
+    parts = [_spelled(child) for child in node.children]
+    if node.kind == "clique" and len({shape(child, optional=False) for child in node.children}) == 1:
+        return f"{len(parts)} × {parts[0]}"
+    return " → ".join(parts) if node.kind == "chain" else "{" + ", ".join(parts) + "}"
+
+
+def _spelled(node: Node) -> str:
+    """A child as its parent's full name spells it: its own full name, or its parts when it has no name."""
+    name = full_name(node)
+    if name is not None or isinstance(node, ActionNode):
+        return name or ""
+    return full_name(with_children(node, node.children, name=_describe(node.kind, node.children))) or ""

@@ -38,7 +38,7 @@ from supportive.envs.tabletop.geometry import Rect
 from supportive.envs.tabletop.items import TablePose
 from supportive.envs.tabletop.layout import TableLayout
 from supportive.errors import InvalidValueError, PlanningError, ScenarioFileError, SearchLimitError
-from supportive.io.safe_load import read_text
+from supportive.io.safe_load import check_kind, read_text
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.values import Coordinate
 from supportive.planning.selection import SupportPlanner
@@ -303,11 +303,7 @@ def parse_scenario_file(path: str | Path) -> CircuitScenario:
         ScenarioFileError: when the file is missing, unreadable or invalid.
     """
     path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix not in (".yaml", ".yml", ".json"):
-        raise ScenarioFileError(
-            f"unsupported file type {suffix or '(none)'!r}; use .yaml, .yml or .json", path=path
-        )
+    suffix = check_kind(path, (".yaml", ".yml", ".json"), "a circuit scenario file", ScenarioFileError)
     return parse_scenario_string(
         read_text(path, ScenarioFileError), "json" if suffix == ".json" else "yaml", path=path
     )
@@ -331,7 +327,7 @@ def parse_scenario_string(
     try:
         model = ScenarioIn.model_validate(data)
     except ValidationError as exc:
-        raise schema_error(exc, text, path, ScenarioFileError) from None
+        raise schema_error(exc, text, path, ScenarioFileError, ScenarioIn) from None
 
     def fail(problem: str, loc: Sequence[str | int]) -> ScenarioFileError:
         return ScenarioFileError(problem, path=path, place=place_of(loc), line=line_of(text, loc))
