@@ -12,7 +12,12 @@ import pytest
 from supportive.errors import LearningError
 from supportive.evaluation.crossval import RELIABILITY_BINS, StepScores
 from supportive.inference import StepPredictor
-from supportive.inference.bigram import Bigram
+from collections import Counter
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from supportive.inference.bigram import END, OpenBigram
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, sample_ordering
 
 TASK = ChainNode((ActionNode("k"), CliqueNode((ActionNode("a"), ActionNode("b"), ActionNode("c"))), ActionNode("z")))
@@ -42,16 +47,42 @@ def test_given_settings_are_kept_and_too_few_demonstrations_take_the_grids_first
     assert (few.calibration_.smoothing, few.calibration_.backoff, few.calibration_.folds) == (1.0, 0.1, 0)
 
 
-def test_the_back_off_is_the_bigram_mixed_in() -> None:
+def test_the_back_off_is_the_open_bigram_mixed_in() -> None:
     demos = _demos(10, 2)
     alone = StepPredictor(backoff=0.0, smoothing=1.0).fit(demos)
     mixed = StepPredictor(backoff=0.3, smoothing=1.0).fit(demos)
-    bigram = Bigram().fit(demos)
+    bigram = OpenBigram().fit(demos)
     prefix = ["k", "b"]
     expected = {a: 0.7 * alone.next_step(prefix).get(a, 0.0) + 0.3 * p for a, p in bigram.next_step(prefix).items()}
     assert mixed.next_step(prefix) == pytest.approx(expected)
     assert math.isclose(sum(mixed.next_step(prefix).values()), 1.0)
     assert min(mixed.next_step(["k", "b", "z"]).values()) > 0, "with a back-off no step has probability 0"
+
+
+_WORDS = st.lists(st.lists(st.sampled_from("abcd"), min_size=1, max_size=6), min_size=1, max_size=6)
+
+
+@settings(max_examples=60, deadline=None)
+@given(demos=_WORDS, prefix=st.lists(st.sampled_from("abcd"), max_size=6))
+def test_the_open_bigram_never_ranks_a_finished_action_above_an_open_one(demos: list[list[str]], prefix: list[str]) -> None:
+    """By its definition, counted by hand: open actions get their evidence plus one, finished ones only one."""
+    bigram = OpenBigram().fit(demos)
+    known = [a for a in prefix if a in bigram.actions_]
+    most = {a: max(d.count(a) for d in demos) for a in bigram.actions_}
+    done = Counter(known)
+    finished = {a for a in most if done[a] >= most[a]}
+    after = [d[i + 1] if i + 1 < len(d) else END for d in demos for i in range(len(d)) if known and d[i] == known[-1]]
+    if not known:
+        after = [d[0] for d in demos]
+    into_open = Counter(a for a in after if a not in finished)
+    if not into_open:
+        into_open = Counter({a: sum(d.count(a) for d in demos) for a in most if a not in finished} | {END: len(demos)})
+    expected = {a: into_open.get(a, 0) + 1.0 for a in [*most, END]}
+    total = sum(expected.values())
+    got = bigram.next_step(known)
+    assert got == pytest.approx({a: w / total for a, w in expected.items()})
+    assert min(got.values()) > 0
+    assert all(got[f] <= got[o] for f in finished for o in set(got) - finished)
 
 
 @pytest.mark.parametrize("settings", [{"backoff": 1.0}, {"smoothing": 0.0}, {"calibration_folds": 1}])

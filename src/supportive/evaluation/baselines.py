@@ -11,10 +11,9 @@
 
 from __future__ import annotations
 
-from collections import Counter
 from collections.abc import Sequence
 
-from supportive.inference.bigram import END, START, Bigram, TransitionCounts
+from supportive.inference.bigram import END, Bigram, TransitionCounts
 
 __all__ = ["BASELINES", "END", "Bigram", "MaskedBigram", "MostFrequentNotDone"]
 
@@ -25,11 +24,7 @@ class MaskedBigram(TransitionCounts):
 
     def next_step(self, prefix: Sequence[str]) -> dict[str, float]:
         """P(next | last action), over the actions not yet done; the counts of those when none follows."""
-        allowed = self._open(prefix)
-        counts = self.transitions_.get(prefix[-1] if prefix else START, Counter())
-        weights = {a: float(counts[a]) for a in allowed if counts[a] > 0}
-        if not weights:
-            weights = {a: float(self.actions_[a] if a != END else self.ends_) for a in allowed}
+        weights = self._open_evidence(prefix)
         return self._normalised({a: weights.get(a, 0.0) for a in [*self.actions_, END]})
 
 

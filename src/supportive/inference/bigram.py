@@ -19,7 +19,7 @@ from typing import Self
 from supportive.estimator import Estimator
 from supportive.tasks.spec import Demonstration, TaskSpec
 
-__all__ = ["END", "START", "Bigram", "TransitionCounts", "sequences_of"]
+__all__ = ["END", "START", "Bigram", "OpenBigram", "TransitionCounts", "sequences_of"]
 
 END = "<end>"
 START = "<start>"
@@ -62,6 +62,14 @@ class TransitionCounts(Estimator):
         done = Counter(prefix)
         return {a for a in self.actions_ if done[a] < self.most_[a]} | {END}
 
+    def _open_evidence(self, prefix: Sequence[str]) -> dict[str, float]:
+        """Counts of the transitions from the last action of ``prefix`` into open actions; when there are none,
+        how often each open action is performed (``<end>``: how many demonstrations ended)."""
+        allowed = self._open(prefix)
+        counts = self.transitions_.get(prefix[-1] if prefix else START, Counter())
+        evidence = {a: float(counts[a]) for a in allowed if counts[a] > 0}
+        return evidence or {a: float(self.actions_[a] if a != END else self.ends_) for a in allowed}
+
     @staticmethod
     def _normalised(weights: dict[str, float]) -> dict[str, float]:
         total = sum(weights.values())
@@ -76,3 +84,21 @@ class Bigram(TransitionCounts):
         counts = self.transitions_.get(prefix[-1] if prefix else START, Counter())
         vocabulary = [*self.actions_, END]
         return self._normalised({a: counts[a] + 1.0 for a in vocabulary})
+
+
+class OpenBigram(TransitionCounts):
+    """The add-one smoothed bigram whose evidence goes only to actions still open: an action already done as
+    often as any demonstration does it keeps its pseudo-count (so it is never given probability 0) but not the
+    counts of the transitions into it; when no transition from the last action leads to an open action, the
+    evidence is how often each open action is performed (``<end>``: how many demonstrations ended). The
+    next-step predictor's back-off.
+
+    >>> bigram = OpenBigram().fit([["a", "b"], ["a", "c"]])
+    >>> {k: round(v, 2) for k, v in bigram.next_step(["a", "b"]).items()}
+    {'a': 0.2, 'b': 0.2, 'c': 0.2, '<end>': 0.4}
+    """
+
+    def next_step(self, prefix: Sequence[str]) -> dict[str, float]:
+        """P(next | last action of ``prefix``), the evidence counted only for open actions."""
+        evidence = self._open_evidence(prefix)
+        return self._normalised({a: evidence.get(a, 0.0) + 1.0 for a in [*self.actions_, END]})

@@ -6,9 +6,10 @@
 probability of each action id being done next, plus ``"<end>"`` for "the task is finished"; the
 probabilities add up to one. Unknown actions in ``prefix`` are slips, not errors.
 
-**Calibrated, not only accurate.** What the hierarchy says is mixed with an add-one smoothed bigram
-(:class:`~supportive.inference.bigram.Bigram`, weight ``backoff``), so a step it did not expect still has a
-probability, and its choices are smoothed by ``smoothing`` pseudo-counts per option. Both are fitted inside
+**Calibrated, not only accurate.** What the hierarchy says is mixed with an add-one smoothed bigram whose
+transition counts go only to actions still open (:class:`~supportive.inference.bigram.OpenBigram`, weight
+``backoff``), so a step it did not expect still has a probability but a step already done is not pushed to the
+top by the transitions that led to it the first time, and its choices are smoothed by ``smoothing`` pseudo-counts per option. Both are fitted inside
 ``fit`` by K-fold cross-validation over the demonstrations (``calibration_folds``; the grid pair with the
 highest held-out log-likelihood of the next step), unless given; with fewer than three demonstrations there is
 nothing to hold out and the first values of the grids' defaults apply (see :class:`StepPredictor`).
@@ -28,7 +29,7 @@ import numpy as np
 
 from supportive.errors import LearningError
 from supportive.estimator import Estimator
-from supportive.inference.bigram import Bigram
+from supportive.inference.bigram import OpenBigram
 from supportive.inference.tracker import END_LABEL, ProgressFilter, ProgressHMM
 from supportive.learning.learner import DemonstrationLike, HTNLearner, Mode
 from supportive.tasks.htn import HTN, ActionNode
@@ -166,7 +167,7 @@ class StepPredictor(Estimator):
         self._forget()
         demos = list(demonstrations.demonstrations if isinstance(demonstrations, TaskSpec) else demonstrations)
         self.learner_ = self._learner().fit(demonstrations)
-        self.bigram_ = Bigram().fit(demos)
+        self.bigram_ = OpenBigram().fit(demos)
         self.calibration_ = self._calibrate(demos)
         self.model_ = self._hmm(self.learner_.htn_, self.calibration_.smoothing)
         return self
@@ -219,7 +220,7 @@ class StepPredictor(Estimator):
             train = [d for i, d in enumerate(demos) if i % k != fold]
             held = [_actions(d) for i, d in enumerate(demos) if i % k == fold]
             htn = self._learner(self.learner_.reading_).fit(train).htn_
-            bigram = Bigram().fit(train)
+            bigram = OpenBigram().fit(train)
             for row, smoothing in enumerate(smoothings):
                 hmm = self._hmm(htn, float(smoothing))
                 for actions in held:
@@ -236,7 +237,7 @@ class StepPredictor(Estimator):
 class PredictionSession:
     """One prediction step by step: the tracker's belief of what comes next, mixed with the back-off."""
 
-    def __init__(self, tracker: ProgressFilter, bigram: Bigram, backoff: float) -> None:
+    def __init__(self, tracker: ProgressFilter, bigram: OpenBigram, backoff: float) -> None:
         self.tracker = tracker
         self.bigram = bigram
         self.backoff = backoff
@@ -260,7 +261,7 @@ def _mixed(model: dict[str, float], back: dict[str, float], weight: float) -> di
 
 
 def _truth_probabilities(
-    running: ProgressFilter, bigram: Bigram, actions: Sequence[str]
+    running: ProgressFilter, bigram: OpenBigram, actions: Sequence[str]
 ) -> tuple[np.ndarray, np.ndarray]:
     """The probability the tracker and the bigram gave each next step of ``actions`` (and its end)."""
     model, back = [], []
