@@ -24,7 +24,7 @@ from supportive.estimator import Estimator
 from supportive.evaluation.baselines import Bigram, MaskedBigram, MostFrequentNotDone
 from supportive.examples import load
 from supportive.inference import FlatHMM, HierarchicalHMM, ObservationModel, ProgressHMM, StepPredictor
-from supportive.inference.bigram import TransitionCounts
+from supportive.inference.bigram import OpenBigram, TransitionCounts
 from supportive.inference.synthetic import synthetic_stream
 from supportive.language.demonstrated import BehaviorRecorder
 from supportive.language.states import TaskStates
@@ -109,7 +109,7 @@ def _hmm(kind: type[FlatHMM] | type[HierarchicalHMM] | type[ProgressHMM]) -> Cas
     )
 
 
-def _baseline(kind: type[Bigram] | type[MaskedBigram] | type[MostFrequentNotDone]) -> Case:
+def _baseline(kind: type[TransitionCounts]) -> Case:
     return Case(
         kind.__name__,
         kind,
@@ -184,6 +184,7 @@ CASES = [
     _baseline(Bigram),
     _baseline(MaskedBigram),
     _baseline(MostFrequentNotDone),
+    _baseline(OpenBigram),
     Case(
         "TransitionCounts",
         TransitionCounts,
