@@ -167,7 +167,8 @@ def check_caregiver(result: subprocess.CompletedProcess[str], folder: Path) -> N
 
 
 def check_chat(result: subprocess.CompletedProcess[str], folder: Path) -> None:
-    assert (folder / "my-chair.yaml").is_file() and "I can" in result.stdout
+    assert "I can" in result.stdout
+    assert not (folder / "my-chair.yaml").exists(), "a session that only asks changes nothing: no copy (issue 26)"
 
 
 def check_support(result: subprocess.CompletedProcess[str], folder: Path) -> None:

@@ -50,27 +50,22 @@ def task_path(file: str | Path) -> Path:
         TaskFileError: for a name without a suffix that is neither a file nor a bundled example (the message
             says what a task file's name ends in, and lists the examples).
     """
-    try:
-        return _named(file, names(), path)
-    except LookupError:
+    found = _named(file, names(), path)
+    if found is None:
         raise TaskFileError(
             "no such file, nor a bundled example of that name; expected a task file (.yaml, .yml, .json or .csv) "
             f"or one of: {', '.join(names())}",
             path=file,
-        ) from None
+        )
+    return found
 
 
-def _named(file: str | Path, bundled: list[str], path_of: Callable[[str], Path]) -> Path:
-    """``file`` itself, or the bundled file of that name when it is no file and has no suffix.
-
-    Raises:
-        LookupError: for a name without a suffix that is neither.
-    """
+def _named(file: str | Path, bundled: list[str], path_of: Callable[[str], Path]) -> Path | None:
+    """``file`` itself, or the bundled file of that name when it is no file and has no suffix; None for a name
+    without a suffix that is neither."""
     given = Path(file)
     if not given.suffix and not given.exists():
-        if str(file) in bundled:
-            return path_of(str(file))
-        raise LookupError(str(file))
+        return path_of(str(file)) if str(file) in bundled else None
     return given
 
 
@@ -107,12 +102,12 @@ def scenario_path(file: str | Path) -> Path:
         ScenarioFileError: for a name without a suffix that is neither a file nor a bundled scenario (naming
             the task examples when it is one of them: ``support`` reads circuit scenarios, not task files).
     """
-    try:
-        return _named(file, circuit_names(), circuit_path)
-    except LookupError:
+    found = _named(file, circuit_names(), circuit_path)
+    if found is None:
         task = " (that is a bundled task, for learn, teach, chat, …)" if str(file) in names() else ""
         raise ScenarioFileError(
             f"no such file, nor a bundled circuit scenario of that name{task}; expected a scenario file "
             f"(.yaml, .yml or .json) or one of: {', '.join(circuit_names())}",
             path=file,
-        ) from None
+        )
+    return found
