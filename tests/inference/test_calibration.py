@@ -4,19 +4,17 @@ figures ``evaluate`` reports (expected calibration error, reliability table)."""
 from __future__ import annotations
 
 import math
+from collections import Counter
 from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from supportive.errors import LearningError
 from supportive.evaluation.crossval import RELIABILITY_BINS, StepScores
 from supportive.inference import StepPredictor
-from collections import Counter
-
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from supportive.inference.bigram import END, OpenBigram
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, sample_ordering
 
