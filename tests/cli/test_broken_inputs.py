@@ -58,7 +58,7 @@ BROKEN: dict[str, list[tuple[list[str], str]]] = {
     ],
     "evaluate": [
         (["evaluate", "{dir}/one-demo.yaml"], "cross-validation needs at least two demonstrations"),
-        (["evaluate", "{dir}/no-events.yaml", "--folds", "one"], "--folds: expected loo or a number of folds"),
+        (["evaluate", "{dir}/no-events.yaml", "--folds", "one"], "--folds: expected auto, loo or a number of folds"),
         (["evaluate", "{dir}/garbage.yaml"], "garbage.yaml:1: invalid YAML"),
     ],
     "captaincook": [

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from pathlib import Path
 
 import pytest
 
@@ -100,3 +101,24 @@ def test_evaluate_cli_says_which_were_not_admitted(cli: CliRunner) -> None:
     code, out, _ = cli(["evaluate", "blocks-tower"])
     assert code == 0 and "3 of 4 held-out demonstrations admitted" in out
     assert "  not admitted when held out: d3\n" in out
+
+
+@pytest.mark.parametrize(("copies", "said"), [(25, "leave one out, 50 folds"), (26, "10 folds, 10 folds")])
+def test_evaluate_leaves_one_out_up_to_fifty_demonstrations_and_uses_ten_folds_above(
+    cli: CliRunner, tmp_path: Path, copies: int, said: str
+) -> None:
+    """Issue 28: leave one out fits once per demonstration, so `evaluate` grew with their square (3,000: about
+    17 minutes); above 50 demonstrations the default is ten folds (`--folds loo` still leaves one out)."""
+    from dataclasses import replace
+
+    from supportive.io.taskfile import dump_task
+
+    spec = examples.load("knife-carrots-celery")
+    assert len(spec.demonstrations) == 2
+    demos = [replace(d, id=f"{d.id}-{i}") for i in range(copies) for d in spec.demonstrations]
+    file = tmp_path / "many.yaml"
+    file.write_text(dump_task(spec.with_demonstrations(demos), "yaml"))
+    code, out, _ = cli(["evaluate", str(file)])
+    assert code == 0 and f"{spec.name}: {said}" in out
+    code, out, _ = cli(["evaluate", str(file), "--folds", "loo"])
+    assert code == 0 and f"leave one out, {copies * 2} folds" in out

@@ -162,7 +162,7 @@ def test_unicode_digits_in_numeric_options_keep_the_promise(
 @pytest.mark.parametrize("value", ["²", "٣", "１２", "2²", "𝟐"])
 def test_folds_given_in_other_digits_than_ascii_are_refused_naming_the_option(value: str) -> None:
     code, out, err = run_cli(["evaluate", "two-glasses", "--folds", value])
-    assert code == 2 and out == "" and err == f"supportive: error: --folds: expected loo or a number of folds of at least 2, got {value!r}\n"
+    assert code == 2 and out == "" and err == f"supportive: error: --folds: expected auto, loo or a number of folds of at least 2, got {value!r}\n"
 
 
 @pytest.fixture(scope="module")

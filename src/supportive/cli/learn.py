@@ -183,8 +183,14 @@ def generate(
 def evaluate(
     file: Annotated[Path, typer.Argument(help="Task file with at least two demonstrations.")],
     folds: Annotated[
-        str, typer.Option("--folds", metavar="loo|K", help="loo (leave one out) or a number of folds K.")
-    ] = "loo",
+        str,
+        typer.Option(
+            "--folds",
+            metavar="auto|loo|K",
+            help="auto (leave one out up to 50 demonstrations, 10 folds above), loo (leave one out) or a number "
+            "of folds K.",
+        ),
+    ] = "auto",
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seeds the folds (K folds only).")] = 0,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")] = False,
     plot: Annotated[
@@ -204,13 +210,14 @@ def evaluate(
     With --mistakes: leave each demonstration out and detect its labelled mistakes step by step, beside a
     precondition check and an unseen-bigram rule."""
     from supportive.evaluation import evaluate_task
+    from supportive.evaluation.crossval import default_folds
     from supportive.examples import task_path
     from supportive.experiments.progress import progress_bar
     from supportive.io.taskfile import parse_task_file
     from supportive.render.tables import fitted_table
 
-    if folds != "loo" and not (is_digits(folds) and int(folds) >= 2):
-        raise OptionError(f"expected loo or a number of folds of at least 2, got {folds!r}", "--folds")
+    if folds not in ("auto", "loo") and not (is_digits(folds) and int(folds) >= 2):
+        raise OptionError(f"expected auto, loo or a number of folds of at least 2, got {folds!r}", "--folds")
     if plot is not None:
         require_extra("drawing the reliability diagram (--plot)", "matplotlib", "plot")
     spec = parse_task_file(task_path(file))
@@ -220,7 +227,7 @@ def evaluate(
         from supportive.cli.mistakes import print_mistakes
         from supportive.evaluation.mistakes import evaluate_mistakes
 
-        if folds != "loo" or plot is not None:
+        if folds not in ("auto", "loo") or plot is not None:
             raise OptionError("--mistakes leaves one demonstration out and draws nothing: drop --folds and --plot")
         if not any(demo.labelled for demo in spec.demonstrations):
             raise TaskFileError(
@@ -232,7 +239,7 @@ def evaluate(
             found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), progress=advance)
         print_mistakes(found, printable(spec.name), as_json=as_json)
         return
-    k = None if folds == "loo" else int(folds)
+    k = default_folds(len(spec.demonstrations)) if folds == "auto" else None if folds == "loo" else int(folds)
     with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
         result = evaluate_task(spec, k=k, seed=seed, progress=advance)
     data = result.as_dict()

@@ -163,6 +163,23 @@ class Evaluation:
         }
 
 
+LEAVE_ONE_OUT_UP_TO = 50
+"""``evaluate``'s default: leave one out up to this many demonstrations, :data:`FOLDS_BEYOND` folds above it."""
+FOLDS_BEYOND = 10
+"""Folds of the default above :data:`LEAVE_ONE_OUT_UP_TO` demonstrations: ten fits, each on 90 % of them, so the
+cost grows with the demonstrations rather than with their square (leave one out fits once per demonstration)."""
+
+
+def default_folds(n: int) -> int | None:
+    """The folds ``evaluate`` uses unless told: None (leave one out) for up to :data:`LEAVE_ONE_OUT_UP_TO`
+    demonstrations, :data:`FOLDS_BEYOND` above.
+
+    >>> default_folds(50), default_folds(51)
+    (None, 10)
+    """
+    return None if n <= LEAVE_ONE_OUT_UP_TO else FOLDS_BEYOND
+
+
 def folds(n: int, k: int | None, seed: Seed = 0) -> list[list[int]]:
     """Held-out index sets: one per demonstration (``k`` None: leave one out) or ``k`` shuffled folds.
 
