@@ -91,6 +91,9 @@ docs-results: $(VENV)/.dev
 	cp out/reproduce/goal-inference/timing.json docs/results/goal-inference-timing.json
 	cp out/reproduce/transfer/metrics.json docs/results/transfer.json
 	cp out/reproduce/caregiver/metrics.json docs/results/caregiver.json
+	cp out/reproduce/captaincook-prediction/metrics.json docs/results/captaincook-prediction.json
+	$(BIN)/supportive reproduce mistake-detection --workers 2 --output out/reproduce/mistake-detection
+	cp out/reproduce/mistake-detection/metrics.json docs/results/mistake-detection.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
 	mv out/captaincook.json docs/results/captaincook.json
 	$(BIN)/python tools/docs_numbers.py

@@ -99,6 +99,7 @@ RECORDED = {
     "goal-inference": "goal-inference.json",
     "transfer": "transfer.json",
     "caregiver": "caregiver.json",
+    "captaincook-prediction": "captaincook-prediction.json",
 }
 
 
@@ -128,6 +129,8 @@ RECORDED_RUNS = [
     pytest.param("goal-inference", RECORDED["goal-inference"], marks=_MINUTES),
     pytest.param("transfer", RECORDED["transfer"], marks=_MINUTES),
     pytest.param("caregiver", RECORDED["caregiver"], marks=_MINUTES),
+    pytest.param("captaincook-prediction", RECORDED["captaincook-prediction"], marks=_MINUTES),
+    pytest.param("mistake-detection", "mistake-detection.json", marks=_MINUTES),
 ]
 
 
@@ -138,7 +141,7 @@ def test_a_recorded_run_is_what_a_fresh_run_gives(experiment: str, file: str) ->
     dataset is)."""
     recorded = (tool.RESULTS / file).read_text(encoding="utf-8")
     metrics = json.loads(recorded)
-    if experiment == "captaincook":
+    if experiment in ("captaincook", "captaincook-prediction", "mistake-detection"):
         _captaincook_or_skip()
     result = run_experiment(experiment, trials=metrics["trials"], seed=metrics["seed"], progress=False)
     assert dump_json(result.metrics) == recorded

@@ -503,6 +503,17 @@ BLOCKS: dict[str, Block] = {
         "goal-inference", "goal-inference-timing.json", "## Beside Figure 2.4"
     ),
     "edge-reduction-learned": Block(_EDGES, edge_reduction_learned),
+    "captaincook-prediction-models": report_table(
+        "captaincook-prediction", "captaincook-prediction.json", "| model | top-1 |"
+    ),
+    "captaincook-prediction-reliability": report_table(
+        "captaincook-prediction", "captaincook-prediction.json", "| top-1 probability |"
+    ),
+    "mistake-detection-thresholds": report_table("mistake-detection", "mistake-detection.json", "| threshold |"),
+    "mistake-detection-captaincook": report_table(
+        "mistake-detection", "mistake-detection.json", "| method | precision |"
+    ),
+    "mistake-detection-kinds": report_table("mistake-detection", "mistake-detection.json", "| method | kind |"),
     "bench-service": from_benchmark(
         "service",
         "**{claim_release.ops_per_second:,.0f} operations/s, p50 {claim_release.p50_ms:.1f} ms, p90 {claim_release.p90_ms:.1f} ms, p99 {claim_release.p99_ms:.1f} ms** (targets ≥ {targets.ops_per_second:.0f} ops/s and p99 < {targets.p99_ms:.0f} ms)",
