@@ -81,7 +81,8 @@ def test_captaincook_never_cuts_a_number(
 
     monkeypatch.setattr(recipes, "captaincook_report", lambda recipes: captaincook_reports)
     rows = json.loads(in_process("captaincook", "--json", columns=200))
-    assert len(rows) == 24
+    assert len(rows) == 24 and all(r["admits_demonstrations"] for r in rows)  # (was test_cli's captaincook JSON test)
+    assert all(0 < r["recall"] <= 1 for r in rows)
     for columns in (80, 60):
         shown = in_process("captaincook", columns=columns)
         assert "…" not in shown and all(len(line) <= columns for line in shown.splitlines())
