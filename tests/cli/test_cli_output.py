@@ -4,6 +4,7 @@ repository has."""
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import re
@@ -39,15 +40,16 @@ InProcess = Callable[..., str]
 
 @pytest.fixture
 def in_process(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> InProcess:
-    """``in_process(*args, columns=N)``: what ``supportive ARGS`` prints at a terminal N columns wide, run in
-    this process (the same text as :func:`supportive`'s fresh process, without its second of start-up; the
+    """``in_process(*args, columns=N, stdin="")``: what ``supportive ARGS`` prints at a terminal N columns wide
+    (given ``stdin``), run in this process (the same text as :func:`supportive`'s fresh process, without its second of start-up; the
     program is named ``supportive`` as the script names it, also under ``python -m pytest``)."""
     from supportive.cli import main
 
     monkeypatch.setattr(sys.modules["__main__"], "__package__", None, raising=False)
 
-    def run(*args: str, columns: int) -> str:
+    def run(*args: str, columns: int, stdin: str = "") -> str:
         monkeypatch.setattr(sys, "argv", ["supportive", *args])
+        monkeypatch.setattr(sys, "stdin", io.StringIO(stdin))
         monkeypatch.setenv("COLUMNS", str(columns))
         try:
             main()
@@ -92,9 +94,9 @@ def test_captaincook_never_cuts_a_number(
                 assert f"{value:.3f}" in seen or f"{value:.3f}," in seen, (row["recipe"], columns, value)
 
 
-def test_the_demo_wraps_at_words_and_cuts_nothing() -> None:
+def test_the_demo_wraps_at_words_and_cuts_nothing(in_process: InProcess) -> None:
     """Issue 16.6: the demo cut the actions' descriptions mid-word at 80 columns."""
-    shown = supportive("demo", columns=80)
+    shown = in_process("demo", columns=80)
     assert "…" not in shown and all(len(line) <= 80 for line in shown.splitlines())
     text = " ".join(words(shown))
     for action in load("ikea-chair").actions:
@@ -102,17 +104,20 @@ def test_the_demo_wraps_at_words_and_cuts_nothing() -> None:
 
 
 @pytest.mark.parametrize("columns", [60, 100])
-def test_chat_and_learn_only_move_line_breaks(columns: int, tmp_path: Path) -> None:
+def test_chat_and_learn_only_move_line_breaks(
+    columns: int, tmp_path: Path, in_process: InProcess, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """Issue 16.6: chat wrapped mid-word; wrapped at words, the words are those of a wide terminal."""
     said = "How will you help me attach the seat?\nbehaviors\nquit\n"
-    narrow = supportive("chat", "ikea-chair", "--save", "a.yaml", columns=columns, stdin=said, cwd=tmp_path)
-    wide = supportive("chat", "ikea-chair", "--save", "b.yaml", columns=1000, stdin=said, cwd=tmp_path)
+    monkeypatch.chdir(tmp_path)
+    narrow = in_process("chat", "ikea-chair", "--save", "a.yaml", columns=columns, stdin=said)
+    wide = in_process("chat", "ikea-chair", "--save", "b.yaml", columns=1000, stdin=said)
     shown = [line.removeprefix("> ") for line in narrow.splitlines()[1:]]  # "> " is input()'s prompt
     assert all(len(line) <= columns for line in shown)  # (the first line names a file, kept whole)
     assert words(narrow)[4:] == words(wide)[4:]
-    tree = supportive("learn", "ikea-chair", columns=columns)
+    tree = in_process("learn", "ikea-chair", columns=columns)
     assert all(len(line) <= columns for line in tree.splitlines())
-    assert words(tree) == words(supportive("learn", "ikea-chair", columns=1000))
+    assert words(tree) == words(in_process("learn", "ikea-chair", columns=1000))
 
 
 def test_help_shows_no_type_placeholders(in_process: InProcess) -> None:
