@@ -38,6 +38,11 @@ SLOW = {
     "tests/io/test_safe_load.py::test_the_largest_benchmark_task_passes_the_limits": "the largest benchmark task",
     "tests/envs/tabletop/test_world_and_team.py::test_prohibited_operators_are_never_chosen": "many team runs",
     "tests/fuzz/test_fuzz.py::test_malformed_observation_streams_get_one_line": "a command per generated stream",
+    "tests/service/test_tokens.py::test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once": "a server started three times",
+    "tests/service/test_reconcile.py::test_a_subtask_made_lead_only_at_a_restart_is_refused_to_an_assistant": "servers restarted",
+    "tests/service/test_reconcile.py::test_a_robot_demoted_by_the_command_line_loses_its_role_its_old_token_and_its_claims": "servers restarted",
+    "tests/service/test_hardening.py::test_sigterm_under_load_answers_every_request_it_took_and_stops_at_once": "a server under load, stopped",
+    "tests/service/test_hardening.py::test_serve_refuses_a_bad_set_up_before_printing_url_or_tokens": "a `supportive serve` process per bad set-up",
 }
 """Test modules (``path``) and single tests (``path::function``) of the ``slow`` tier, with why."""
 

@@ -124,14 +124,6 @@ def test_demo_says_what_was_and_was_not_learned(cli: CliRunner) -> None:
     assert "Teaching with questions" in out and "“Can you place the" in out
 
 
-def test_captaincook_json(cli: CliRunner) -> None:
-    code, out, _ = cli(["captaincook", "--json"])
-    assert code == 0
-    rows = json.loads(out)
-    assert len(rows) == 24 and all(r["admits_demonstrations"] for r in rows)
-    assert all(0 < r["recall"] <= 1 for r in rows)
-
-
 def test_console_script_has_no_traceback(tmp_path: Path) -> None:
     script = shutil.which("supportive", path=str(Path(sys.executable).parent))
     assert script is not None

@@ -4,12 +4,14 @@ repository has."""
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import re
 import subprocess
 import sys
 import tomllib
+from collections.abc import Callable
 from importlib.metadata import version
 from pathlib import Path
 
@@ -17,6 +19,7 @@ import pytest
 
 from supportive.cli import app
 from supportive.examples import load
+from supportive.experiments.captaincook.recipes import RecipeReport
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = Path(sys.executable).parent / "supportive"
@@ -32,25 +35,68 @@ def supportive(*args: str, columns: int, stdin: str = "", cwd: Path | None = Non
     return result.stdout
 
 
+InProcess = Callable[..., str]
+
+
+@pytest.fixture
+def in_process(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> InProcess:
+    """``in_process(*args, columns=N, stdin="")``: what ``supportive ARGS`` prints at a terminal N columns wide
+    (given ``stdin``), run in this process (the same text as :func:`supportive`'s fresh process, without its second of start-up; the
+    program is named ``supportive`` as the script names it, also under ``python -m pytest``)."""
+    from supportive.cli import main
+
+    monkeypatch.setattr(sys.modules["__main__"], "__package__", None, raising=False)
+
+    def run(*args: str, columns: int, stdin: str = "") -> str:
+        monkeypatch.setattr(sys, "argv", ["supportive", *args])
+        monkeypatch.setattr(sys, "stdin", io.StringIO(stdin))
+        monkeypatch.setenv("COLUMNS", str(columns))
+        try:
+            main()
+        except SystemExit as exc:
+            assert not exc.code, capsys.readouterr().err
+        return capsys.readouterr().out
+
+    return run
+
+
+@pytest.fixture(scope="module")
+def captaincook_reports() -> list[RecipeReport]:
+    """The CaptainCook4D reports, computed once for the module's runs of ``captaincook`` (which differ only
+    in how they show them)."""
+    from supportive.experiments.captaincook.recipes import captaincook_report
+    from supportive.io.captaincook import load_captaincook
+
+    return captaincook_report(load_captaincook(None))
+
+
 def words(text: str) -> list[str]:
     return GUIDES.sub(" ", text).split()
 
 
-@pytest.mark.parametrize("columns", [80, 60])
-def test_captaincook_never_cuts_a_number(columns: int) -> None:
-    """Issue 16.6: at 80 columns every number was cut ("0.9…")."""
-    shown = supportive("captaincook", columns=columns)
-    rows = json.loads(supportive("captaincook", "--json", columns=200))
-    assert "…" not in shown and all(len(line) <= columns for line in shown.splitlines())
-    seen = set(shown.split())
-    for row in rows:
-        for value in (row["precision"], row["recall"], row["f1"]):
-            assert f"{value:.3f}" in seen or f"{value:.3f}," in seen, (row["recipe"], value)
+def test_captaincook_never_cuts_a_number(
+    in_process: InProcess, captaincook_reports: list[RecipeReport], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Issue 16.6: at 80 columns every number was cut ("0.9…"). (The recipes are learned once; each run
+    shows them.)"""
+    from supportive.experiments.captaincook import recipes
+
+    monkeypatch.setattr(recipes, "captaincook_report", lambda recipes: captaincook_reports)
+    rows = json.loads(in_process("captaincook", "--json", columns=200))
+    assert len(rows) == 24 and all(r["admits_demonstrations"] for r in rows)  # (was test_cli's captaincook JSON test)
+    assert all(0 < r["recall"] <= 1 for r in rows)
+    for columns in (80, 60):
+        shown = in_process("captaincook", columns=columns)
+        assert "…" not in shown and all(len(line) <= columns for line in shown.splitlines())
+        seen = set(shown.split())
+        for row in rows:
+            for value in (row["precision"], row["recall"], row["f1"]):
+                assert f"{value:.3f}" in seen or f"{value:.3f}," in seen, (row["recipe"], columns, value)
 
 
-def test_the_demo_wraps_at_words_and_cuts_nothing() -> None:
+def test_the_demo_wraps_at_words_and_cuts_nothing(in_process: InProcess) -> None:
     """Issue 16.6: the demo cut the actions' descriptions mid-word at 80 columns."""
-    shown = supportive("demo", columns=80)
+    shown = in_process("demo", columns=80)
     assert "…" not in shown and all(len(line) <= 80 for line in shown.splitlines())
     text = " ".join(words(shown))
     for action in load("ikea-chair").actions:
@@ -58,31 +104,34 @@ def test_the_demo_wraps_at_words_and_cuts_nothing() -> None:
 
 
 @pytest.mark.parametrize("columns", [60, 100])
-def test_chat_and_learn_only_move_line_breaks(columns: int, tmp_path: Path) -> None:
+def test_chat_and_learn_only_move_line_breaks(
+    columns: int, tmp_path: Path, in_process: InProcess, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """Issue 16.6: chat wrapped mid-word; wrapped at words, the words are those of a wide terminal."""
     said = "How will you help me attach the seat?\nbehaviors\nquit\n"
-    narrow = supportive("chat", "ikea-chair", "--save", "a.yaml", columns=columns, stdin=said, cwd=tmp_path)
-    wide = supportive("chat", "ikea-chair", "--save", "b.yaml", columns=1000, stdin=said, cwd=tmp_path)
+    monkeypatch.chdir(tmp_path)
+    narrow = in_process("chat", "ikea-chair", "--save", "a.yaml", columns=columns, stdin=said)
+    wide = in_process("chat", "ikea-chair", "--save", "b.yaml", columns=1000, stdin=said)
     shown = [line.removeprefix("> ") for line in narrow.splitlines()[1:]]  # "> " is input()'s prompt
     assert all(len(line) <= columns for line in shown)  # (the first line names a file, kept whole)
     assert words(narrow)[4:] == words(wide)[4:]
-    tree = supportive("learn", "ikea-chair", columns=columns)
+    tree = in_process("learn", "ikea-chair", columns=columns)
     assert all(len(line) <= columns for line in tree.splitlines())
-    assert words(tree) == words(supportive("learn", "ikea-chair", columns=1000))
+    assert words(tree) == words(in_process("learn", "ikea-chair", columns=1000))
 
 
-def test_help_shows_no_type_placeholders() -> None:
+def test_help_shows_no_type_placeholders(in_process: InProcess) -> None:
     """Issue 16.8: --help showed <bool>, <str>, <int range>, <path> for every option."""
     import typer
 
     command = typer.main.get_command(app)
     names = [[name] for name in getattr(command, "commands", {}) if name != "bag"] + [["bag", "import"], ["bag", "export"], []]
     for name in names:
-        shown = supportive(*name, "--help", columns=120)
+        shown = in_process(*name, "--help", columns=120)
         assert not re.search(r"<(bool|str|int|float|path|int range|float range)>", shown), (name, shown)
 
 
-def test_help_reads_as_text_and_answers_to_h() -> None:
+def test_help_reads_as_text_and_answers_to_h(in_process: InProcess) -> None:
     """Issue 26: `{FILE}`, `list[str]` as a type, TEXT where the choices could be listed, line breaks where the
     docstring wrapped, and no -h."""
     import typer
@@ -91,8 +140,8 @@ def test_help_reads_as_text_and_answers_to_h() -> None:
     names = [[name] for name in getattr(command, "commands", {}) if name not in ("bag", "tokens")]
     names += [["bag", "import"], ["bag", "export"], ["tokens", "add"], ["tokens", "list"], ["tokens", "revoke"], []]
     for name in names:
-        shown = supportive(*name, "-h", columns=120)
-        assert shown == supportive(*name, "--help", columns=120), name
+        shown = in_process(*name, "-h", columns=120)
+        assert shown == in_process(*name, "--help", columns=120), name
         assert "Usage: supportive" in shown and "-h" in shown, name
         assert not re.search(r"\{[A-Z]+\}|list\[", shown), (name, shown)
     choices = {
@@ -104,8 +153,8 @@ def test_help_reads_as_text_and_answers_to_h() -> None:
         "evaluate": "loo|K",
     }
     for shown_for, listed in choices.items():
-        assert listed in supportive(shown_for, "-h", columns=160), shown_for
-    wide = supportive("infer", "-h", columns=400)  # a sentence is not broken where its docstring wrapped
+        assert listed in in_process(shown_for, "-h", columns=160), shown_for
+    wide = in_process("infer", "-h", columns=400)  # a sentence is not broken where its docstring wrapped
     assert "after each observation or known action (one JSON line each" in wide
 
 
