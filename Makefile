@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-fast lint bench serve system clean example-bags architecture docs-numbers docs-results docs-verify
+.PHONY: demo test test-fast lint types suite bench serve system clean example-bags architecture docs-numbers docs-results docs-verify
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -38,22 +38,32 @@ system:
 demo: $(VENV)/.demo
 	$(BIN)/supportive demo
 
-# Lint, types (src and tests) and the import-layer contract first, then the suite.
+RUFF := $(BIN)/ruff check src tests benchmarks tools conftest.py
+
+# Lint and the import-layer contract first (a second), then the types (src and tests) beside the suite: mypy
+# takes half a minute from a cold cache, spent on the core the suite leaves idle while its tests wait on
+# servers and processes. Each one's output is shown whole when it ends; either failing fails `make test`.
 test: $(VENV)/.dev system
-	$(BIN)/ruff check src tests benchmarks tools conftest.py
-	$(BIN)/mypy
+	$(RUFF)
 	$(BIN)/lint-imports
-	$(BIN)/pytest -q -n auto
+	@$(MAKE) --no-print-directory -j 2 --output-sync=target types suite
+
+types: $(VENV)/.dev
+	$(BIN)/mypy
+
+# The whole suite on every core; an idle worker takes queued tests from a busy one (docs/architecture.md).
+suite: $(VENV)/.dev
+	$(BIN)/pytest -q -n auto --dist worksteal
 
 # The edit-test loop: the suite without the tests marked slow (by a marker, or in SLOW in conftest.py), on every core.
 test-fast: $(VENV)/.dev
-	$(BIN)/pytest -q -n auto -m "not slow"
+	$(BIN)/pytest -q -n auto --dist worksteal -m "not slow"
 
 serve: $(VENV)/.server
 	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000
 
 lint: $(VENV)/.dev
-	$(BIN)/ruff check src tests benchmarks tools conftest.py
+	$(RUFF)
 	$(BIN)/mypy
 	$(BIN)/lint-imports
 

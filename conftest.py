@@ -5,7 +5,8 @@
   where they run (issue 17). Checked in the suite's own run of the doctests, not by running them twice.
 * The ``slow`` tier: besides the tests marked ``@pytest.mark.slow`` where they are, every test of the modules
   in :data:`SLOW` (and the single tests named there) is marked slow here, in one list. ``make test`` runs
-  every test, the slow ones first (so that the longest do not run alone at the end on one core);
+  every test, the slow ones first (so that the longest do not run alone at the end on one core), with
+  ``--dist worksteal`` (an idle worker takes queued tests from a busy one);
   ``make test-fast`` (``-m "not slow"``) leaves them out for the edit-test loop.
 """
 
@@ -27,6 +28,8 @@ SLOW = {
     "tests/service/test_browser.py": "chromium against a running board",
     "tests/service/test_lab_screen.py": "chromium against a running board",
     "tests/service/test_faults.py": "ten thousand operations; servers killed and restarted",
+    "tests/service/test_hardening.py": "a real `supportive serve` process per test, some under load or stopped",
+    "tests/service/test_board_client.py": "the example client against a real `supportive serve`",
     "tests/fuzz/test_schemathesis.py": "the HTTP API fuzzed from its schema against a running server",
     "tests/experiments/test_reproduce_cli.py": "`reproduce all`: every experiment",
     "tests/experiments/test_active_learning.py": "whole experiment runs",
@@ -40,11 +43,10 @@ SLOW = {
     "tests/envs/tabletop/test_world_and_team.py::test_prohibited_operators_are_never_chosen": "many team runs",
     "tests/fuzz/test_fuzz.py::test_malformed_observation_streams_get_one_line": "a command per generated stream",
     "tests/fuzz/test_fuzz_inputs.py::test_an_output_that_is_an_input_or_inside_one_is_refused": "a command per output placed in an input",
+    "tests/fuzz/test_fuzz_commands.py::test_output_paths_that_are_folders_or_have_no_suffix_keep_the_promise": "a command per output path",
     "tests/service/test_tokens.py::test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once": "a server started three times",
     "tests/service/test_reconcile.py::test_a_subtask_made_lead_only_at_a_restart_is_refused_to_an_assistant": "servers restarted",
     "tests/service/test_reconcile.py::test_a_robot_demoted_by_the_command_line_loses_its_role_its_old_token_and_its_claims": "servers restarted",
-    "tests/service/test_hardening.py::test_sigterm_under_load_answers_every_request_it_took_and_stops_at_once": "a server under load, stopped",
-    "tests/service/test_hardening.py::test_serve_refuses_a_bad_set_up_before_printing_url_or_tokens": "a `supportive serve` process per bad set-up",
 }
 """Test modules (``path``) and single tests (``path::function``) of the ``slow`` tier, with why."""
 

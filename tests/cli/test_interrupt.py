@@ -168,7 +168,7 @@ CASES: dict[str, Callable[[Path, Path, Path], list[str]]] = {
     "support": lambda task, stream, out: ["support", "two-cells-led", "-e", "3000", "--render", str(out / "t.png")],
     "workbench-sim": lambda task, stream, out: ["workbench-sim", "--seconds", "3600"],
     "demo": lambda task, stream, out: ["demo"],
-    "reproduce": lambda task, stream, out: ["reproduce", "edge-reduction", "-o", str(out / "run")],
+    "reproduce": lambda task, stream, out: ["reproduce", "edge-reduction", "-n", "1000", "-o", str(out / "run")],
     "bag export": lambda task, stream, out: ["bag", "export", str(task), "-o", str(out / "bag")],
 }
 
@@ -194,8 +194,8 @@ def test_sigterm_stops_like_ctrl_c_with_status_143(tmp_path: Path, big_task: Pat
 def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_path: Path) -> None:
     """The whole process group gets the signal, the workers too (as from a terminal), while they start and
     while they run trials."""
-    for after in (0.5, 2.0, 6.0):
-        args = ["reproduce", "edge-reduction", "--workers", "2", "-o", str(tmp_path / "run")]
+    for after in (0.5, 2.0, 6.0):  # 1,000 trials: a run of a minute or more, still working when the signal comes
+        args = ["reproduce", "edge-reduction", "-n", "1000", "--workers", "2", "-o", str(tmp_path / "run")]
         code, _, lines = interrupt(args, tmp_path, after=after, group=True)
         assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/, once it was running)
         assert list(tmp_path.iterdir()) == []
@@ -207,7 +207,7 @@ def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:
                           capture_output=True, check=False).returncode
     assert code == 0
     files = {p.name: p.read_bytes() for p in run.iterdir()}
-    code, _, lines = interrupt(["reproduce", "edge-reduction", "-o", str(run)], tmp_path, after=3.0)
+    code, _, lines = interrupt(["reproduce", "edge-reduction", "-n", "1000", "-o", str(run)], tmp_path, after=3.0)
     assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/: once the run had begun)
     assert {p.name: p.read_bytes() for p in run.iterdir()} == files and leftovers(tmp_path) == []
 
