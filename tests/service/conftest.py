@@ -9,7 +9,9 @@ download); screenshots go to test-artifacts/. Missing binaries fail the tests ra
 from __future__ import annotations
 
 import io
+import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -19,6 +21,7 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import httpx
 import pytest
@@ -26,6 +29,8 @@ from fastapi.testclient import TestClient
 from PIL import Image
 from playwright.sync_api import Browser, Page, ViewportSize, expect, sync_playwright
 from tests.conftest import CHROMIUM, need_system, postgres_binaries
+from websockets.exceptions import ConnectionClosed
+from websockets.sync.client import connect
 
 from supportive.examples import path as example_path
 from supportive.io.taskfile import parse_task_file
@@ -186,6 +191,77 @@ def start_server(database: str, port: int | None = None, extra: tuple[str, ...] 
             time.sleep(0.1)
     process.kill()
     raise RuntimeError("server did not start within 30 s")
+
+
+BANNER_END = "  API docs at "
+"""The start of the last line of the banner ``serve`` prints (and flushes) before it serves."""
+
+
+class ServeProcess:
+    """``supportive serve`` of the chair's board on a database, run in a folder with the options a test gives:
+    started, its banner read, waited on until its page answers, stopped with SIGTERM (which must exit 0)."""
+
+    def __init__(self, database: str, cwd: Path) -> None:
+        self.database, self.cwd, self.port = database, cwd, free_port()
+        self.process: subprocess.Popen[str] | None = None
+        self.banner: list[str] = []
+        self.stderr = ""
+        """What the last run that was stopped wrote on stderr (its log)."""
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    def start(self, *args: str) -> dict[str, str]:
+        """Start it with ``args``; the tokens its banner shows, by agent (none when every agent has one)."""
+        command = [sys.executable, "-m", "supportive.cli", "serve", "--db", self.database, "--port", str(self.port), *args]
+        self.process = subprocess.Popen(command, cwd=self.cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        assert self.process.stdout is not None
+        self.banner = []
+        while not self.banner or not self.banner[-1].startswith(BANNER_END):
+            line = self.process.stdout.readline()
+            assert line, self.process.communicate()
+            self.banner.append(line.rstrip("\n"))
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:
+            try:
+                if httpx.get(f"{self.url}/", timeout=1).status_code == 200:
+                    break
+            except httpx.HTTPError:
+                time.sleep(0.05)
+        return dict(re.findall(r"new token for (\w+) \([^)]*\): (\S+)$", "\n".join(self.banner), re.MULTILINE))
+
+    def stop(self) -> None:
+        if self.process is not None and self.process.poll() is None:
+            self.process.send_signal(signal.SIGTERM)
+            _, self.stderr = self.process.communicate(timeout=30)
+            assert self.process.returncode == 0, self.stderr
+
+    def post(self, path: str, token: str) -> int:
+        """The status of a POST to ``path`` with the token."""
+        return httpx.post(f"{self.url}{path}", headers={"Authorization": f"Bearer {token}"}, timeout=10).status_code
+
+    def me(self, token: str, key: str) -> Any:
+        """``key`` of who the token signs in as over HTTP (``/api/me``), or the status when it is refused."""
+        response = httpx.get(f"{self.url}/api/me", headers={"Authorization": f"Bearer {token}"}, timeout=10)
+        return response.json()[key] if response.status_code == 200 else response.status_code
+
+    def socket(self, token: str, key: str) -> Any:
+        """``key`` of the first message a WebSocket with the token gets, or the code it is closed with."""
+        with connect(f"ws://127.0.0.1:{self.port}/api/ws?token={token}", open_timeout=10) as ws:
+            try:
+                return json.loads(ws.recv(timeout=10))[key]
+            except ConnectionClosed as closed:
+                assert closed.rcvd is not None
+                return closed.rcvd.code
+
+
+@pytest.fixture
+def served(database: str, tmp_path: Path) -> Iterator[ServeProcess]:
+    """A :class:`ServeProcess` in the test's folder, stopped after the test."""
+    server = ServeProcess(database, tmp_path)
+    yield server
+    server.stop()
 
 
 @pytest.fixture

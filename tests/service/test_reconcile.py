@@ -7,26 +7,17 @@ processes in the issue's two scenarios."""
 
 from __future__ import annotations
 
-import json
 import random
 import re
-import signal
-import subprocess
-import sys
-import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-import httpx
-import pytest
 import yaml
 from fastapi.testclient import TestClient
 from hypothesis import given
 from hypothesis import strategies as st
 from starlette.websockets import WebSocketDisconnect
-from websockets.exceptions import ConnectionClosed
-from websockets.sync.client import connect
 
 from supportive.errors import BoardError
 from supportive.examples import path as example_path
@@ -37,6 +28,7 @@ from supportive.service.reconcile import reconcile_board
 from supportive.service.settings import ServiceSettings, board_of, parse_agent
 from supportive.social.board import Role, TaskBoard
 
+from .conftest import ServeProcess
 from .rules_model import RulesModel
 
 SPEC = parse_task_file(example_path("ikea-chair"))
@@ -174,70 +166,11 @@ def test_a_task_file_edited_under_the_same_name_is_refused_and_the_board_kept(
 # -- real `serve` processes: the issue's two scenarios ------------------------------------------------------
 
 
-class Served:
-    """``supportive serve`` of the chair on a database: started, its banner read, stopped with SIGTERM."""
-
-    def __init__(self, database: str, cwd: Path) -> None:
-        self.database, self.cwd, self.port = database, cwd, free_port()
-        self.process: subprocess.Popen[str] | None = None
-        self.banner: list[str] = []
-        self.stderr = ""
-
-    def start(self, *args: str) -> None:
-        command = [sys.executable, "-m", "supportive.cli", "serve", "--db", self.database, "--port", str(self.port), *args]
-        self.process = subprocess.Popen(command, cwd=self.cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        assert self.process.stdout is not None
-        self.banner = []
-        while not self.banner or not self.banner[-1].startswith("  API docs at "):
-            line = self.process.stdout.readline()
-            assert line, self.process.communicate()
-            self.banner.append(line.rstrip("\n"))
-        deadline = time.monotonic() + 30
-        while time.monotonic() < deadline:
-            try:
-                if httpx.get(f"http://127.0.0.1:{self.port}/", timeout=1).status_code == 200:
-                    return
-            except httpx.HTTPError:
-                time.sleep(0.05)
-
-    def stop(self) -> None:
-        if self.process is not None and self.process.poll() is None:
-            self.process.send_signal(signal.SIGTERM)
-            _, self.stderr = self.process.communicate(timeout=30)
-            assert self.process.returncode == 0, self.stderr
-
-    def post(self, path: str, token: str) -> int:
-        url = f"http://127.0.0.1:{self.port}{path}"
-        return httpx.post(url, headers={"Authorization": f"Bearer {token}"}, timeout=10).status_code
-
-    def me(self, token: str) -> str | int:
-        response = httpx.get(
-            f"http://127.0.0.1:{self.port}/api/me", headers={"Authorization": f"Bearer {token}"}, timeout=10
-        )
-        return str(response.json()["role"]) if response.status_code == 200 else response.status_code
-
-    def socket(self, token: str) -> dict[str, Any] | int:
-        """The board a WebSocket with the token gets, or the code it is closed with."""
-        with connect(f"ws://127.0.0.1:{self.port}/api/ws?token={token}", open_timeout=10) as ws:
-            try:
-                return dict(json.loads(ws.recv(timeout=10))["board"])
-            except ConnectionClosed as closed:
-                assert closed.rcvd is not None
-                return closed.rcvd.code
-
-
-@pytest.fixture
-def served(database: str, tmp_path: Path) -> Iterator[Served]:
-    server = Served(database, tmp_path)
-    yield server
-    server.stop()
-
-
 def seat(board: dict[str, Any]) -> dict[str, Any]:
     return next(n for n in board["nodes"] if n["name"] == "Attach seat")
 
 
-def test_a_robot_demoted_by_the_command_line_loses_its_role_its_old_token_and_its_claims(served: Served) -> None:
+def test_a_robot_demoted_by_the_command_line_loses_its_role_its_old_token_and_its_claims(served: ServeProcess) -> None:
     served.start(
         "--lead-only", "Attach seat",
         "--agent", "alice:human:lead:ALICE-TOKEN-123", "--agent", "robot:robot:lead:OLD-TOKEN-123",
@@ -251,17 +184,17 @@ def test_a_robot_demoted_by_the_command_line_loses_its_role_its_old_token_and_it
     assert "changed at this start: robot's token 2 from serve is given no more: revoked" in banner
     assert "changed at this start: alice is not on the command line: revoked its token 1 from serve" in banner
     assert re.search(r"robot's claim of 'Attach seat' \(n35\) went back to the pool: robot is an observer", banner)
-    assert served.me("OLD-TOKEN-123") == 401 and served.socket("OLD-TOKEN-123") == 4401
-    assert served.me("ALICE-TOKEN-123") == 401 and served.socket("ALICE-TOKEN-123") == 4401
-    assert served.me("NEW-TOKEN-456") == "observer"
+    assert served.me("OLD-TOKEN-123", "role") == 401 and served.socket("OLD-TOKEN-123", "board") == 4401
+    assert served.me("ALICE-TOKEN-123", "role") == 401 and served.socket("ALICE-TOKEN-123", "board") == 4401
+    assert served.me("NEW-TOKEN-456", "role") == "observer"
     assert served.post("/api/nodes/n35/claim", "NEW-TOKEN-456") == 403
-    now = served.socket("NEW-TOKEN-456")
+    now = served.socket("NEW-TOKEN-456", "board")
     assert isinstance(now, dict) and seat(now)["owner"] is None and seat(now)["lead_only"]
     served.stop()
     assert "robot is now an observer (was a lead)" in served.stderr  # logged at the start too
 
 
-def test_a_subtask_made_lead_only_at_a_restart_is_refused_to_an_assistant(served: Served) -> None:
+def test_a_subtask_made_lead_only_at_a_restart_is_refused_to_an_assistant(served: ServeProcess) -> None:
     agents = ("--agent", "alice:human:lead:tok-alice", "--agent", "robot:robot:assistant:tok-robot")
     served.start(*agents)
     assert served.post("/api/nodes/n36/claim", "tok-robot") == 200  # not reserved yet
@@ -270,7 +203,7 @@ def test_a_subtask_made_lead_only_at_a_restart_is_refused_to_an_assistant(served
     assert "changed at this start: 'Attach seat' (n35) is now lead-only" in "\n".join(served.banner)
     assert served.post("/api/nodes/n35/claim", "tok-robot") == 403
     assert served.post("/api/nodes/n37/claim", "tok-robot") == 403
-    now = served.socket("tok-robot")
+    now = served.socket("tok-robot", "board")
     assert isinstance(now, dict) and seat(now)["lead_only"]
     assert all(n["owner"] is None for n in now["nodes"] if n["id"] in ("n35", "n36"))  # given back
     assert served.post("/api/nodes/n35/claim", "tok-alice") == 200

@@ -7,15 +7,9 @@ from __future__ import annotations
 
 import json
 import re
-import signal
-import subprocess
-import sys
-import time
-from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from collections.abc import Callable
 from pathlib import Path
 
-import httpx
 import pytest
 import sqlalchemy
 from fastapi.testclient import TestClient
@@ -24,76 +18,13 @@ from websockets.sync.client import connect
 
 from supportive.errors import TokenError
 from supportive.service.agents import token_hash
-from supportive.service.launch import free_port
 
-from .conftest import chair_settings
+from .conftest import ServeProcess, chair_settings
 
-BANNER_END = "  API docs at "
 CliRunner = Callable[[list[str]], tuple[int, str, str]]
 
 
-@dataclass
-class Serve:
-    """A ``supportive serve`` of the chair's board without ``--agent`` (tokens drawn), and its banner."""
-
-    database: str
-    cwd: Path
-    port: int = field(default_factory=free_port)
-    banner: list[str] = field(default_factory=list)
-    process: subprocess.Popen[str] | None = None
-
-    def start(self) -> dict[str, str]:
-        """Start it; the tokens its banner shows, by agent."""
-        command = [sys.executable, "-m", "supportive.cli", "serve", "--db", self.database, "--port", str(self.port)]
-        self.process = subprocess.Popen(command, cwd=self.cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        assert self.process.stdout is not None
-        self.banner = []
-        while not self.banner or not self.banner[-1].startswith(BANNER_END):  # flushed before it serves
-            line = self.process.stdout.readline()
-            assert line, self.process.communicate()
-            self.banner.append(line.rstrip("\n"))
-        deadline = time.monotonic() + 30
-        while time.monotonic() < deadline:
-            try:
-                if httpx.get(f"{self.url}/", timeout=1).status_code == 200:
-                    break
-            except httpx.HTTPError:
-                time.sleep(0.05)
-        return dict(re.findall(r"new token for (\w+) \([^)]*\): (\S+)$", "\n".join(self.banner), re.MULTILINE))
-
-    @property
-    def url(self) -> str:
-        return f"http://127.0.0.1:{self.port}"
-
-    def stop(self) -> None:
-        if self.process is not None and self.process.poll() is None:
-            self.process.send_signal(signal.SIGTERM)
-            _, err = self.process.communicate(timeout=30)
-            assert self.process.returncode == 0, err
-
-    def me(self, token: str) -> int | str:
-        """Who the token signs in as over HTTP (the status when refused)."""
-        response = httpx.get(f"{self.url}/api/me", headers={"Authorization": f"Bearer {token}"}, timeout=10)
-        return response.json()["id"] if response.status_code == 200 else response.status_code
-
-    def socket(self, token: str) -> str | int:
-        """``"snapshot"`` when a WebSocket with the token gets the board, else the code it is closed with."""
-        with connect(f"ws://127.0.0.1:{self.port}/api/ws?token={token}", open_timeout=10) as ws:
-            try:
-                return str(json.loads(ws.recv(timeout=10))["type"])
-            except ConnectionClosed as closed:
-                assert closed.rcvd is not None
-                return closed.rcvd.code
-
-
-@pytest.fixture
-def served(database: str, tmp_path: Path) -> Iterator[Serve]:
-    server = Serve(database, tmp_path)
-    yield server
-    server.stop()
-
-
-def test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once(served: Serve, cli: CliRunner) -> None:
+def test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once(served: ServeProcess, cli: CliRunner) -> None:
     """``supportive tokens`` runs in this process, the board in another."""
     first = served.start()
     assert sorted(first) == ["alice", "robot", "screen"] and len(set(first.values())) == 3
@@ -109,8 +40,8 @@ def test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once(se
         served.stop()
         assert served.start() == {}, served.banner
         assert "#token=" not in served.banner[0] and "agents as before: alice (human, lead)" in "\n".join(served.banner)
-        assert {name: served.me(token) for name, token in shown.items()} == who
-        assert {name: served.socket(token) for name, token in shown.items()} == dict.fromkeys(shown, "snapshot")
+        assert {name: served.me(token, "id") for name, token in shown.items()} == who
+        assert {name: served.socket(token, "type") for name, token in shown.items()} == dict.fromkeys(shown, "snapshot")
         if restart:
             break
         # revoke robot's first token while the board runs: refused at once, its open socket closed
@@ -118,12 +49,12 @@ def test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once(se
             assert json.loads(open_socket.recv(timeout=10))["type"] == "snapshot"
             code, out, err = cli(["tokens", "revoke", "2", "--db", served.database])
             assert code == 0 and out.startswith("revoked token 2 of robot"), err
-            assert served.me(shown["robot"]) == 401
-            assert served.socket(shown["robot"]) == 4401
+            assert served.me(shown["robot"], "id") == 401
+            assert served.socket(shown["robot"], "type") == 4401
             with pytest.raises(ConnectionClosed) as closed:
                 open_socket.recv(timeout=5)  # token_recheck is 1 s
             assert closed.value.rcvd is not None and closed.value.rcvd.code == 4401
-        assert served.me(arm2) == "robot"  # the agent keeps its other token
+        assert served.me(arm2, "id") == "robot"  # the agent keeps its other token
         shown.pop("robot")
         who.pop("robot")
 
@@ -134,7 +65,7 @@ def test_restarts_keep_every_token_shown_and_a_revoked_one_is_refused_at_once(se
         (3, "screen", "made by serve", True),
         (4, "robot", "arm 2", True),
     ]
-    assert served.me(first["robot"]) == 401 and served.socket(first["robot"]) == 4401  # still, after a restart
+    assert served.me(first["robot"], "id") == 401 and served.socket(first["robot"], "type") == 4401  # still, after a restart
 
 
 def test_a_given_token_is_kept_and_a_revoked_one_cannot_be_given_again(database: str) -> None:
