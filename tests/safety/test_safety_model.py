@@ -57,7 +57,7 @@ def test_p_safe_matches_equation_3_2(trajectory: list[tuple[tuple[int, int], str
     priors = ActionPriors.from_experts(MapDistances(parse_map(CORRIDOR)), hyperprior=0.5, seed=0)
     estimate = SafetyEstimate(priors, prior_safe=prior)
     for cell, move in trajectory:
-        estimate.update(cell, move)
+        estimate.observe(cell, move)
     assert estimate.probability == pytest.approx(_direct(priors, trajectory, prior), rel=1e-9, abs=1e-12)
     assert estimate.steps == len(trajectory)
 
@@ -66,11 +66,11 @@ def test_p_safe_does_not_underflow_on_long_trajectories() -> None:
     priors = ActionPriors.from_experts(MapDistances(parse_map(CORRIDOR)), hyperprior=0.5, seed=0)
     estimate = SafetyEstimate(priors)
     for _ in range(5000):
-        estimate.update((1, 3), "north")  # bumping into the wall: never what an expert does
+        estimate.observe((1, 3), "north")  # bumping into the wall: never what an expert does
     assert 0.0 <= estimate.probability < 1e-300 or estimate.probability == 0.0
     assert math.isfinite(estimate.log_odds) and estimate.log_odds < -1000
     for _ in range(10_000):
-        estimate.update((1, 2), "east")
+        estimate.observe((1, 2), "east")
     assert estimate.probability > 0.999
 
 
@@ -78,10 +78,10 @@ def test_memory_forgets_old_steps() -> None:
     priors = ActionPriors.from_experts(MapDistances(parse_map(CORRIDOR)), hyperprior=0.5, seed=0)
     forgetful = SafetyEstimate(priors, memory=0.9)
     for _ in range(100):
-        forgetful.update((1, 3), "north")
+        forgetful.observe((1, 3), "north")
     low = forgetful.probability
     for _ in range(20):
-        forgetful.update((1, 2), "east")
+        forgetful.observe((1, 2), "east")
     assert low < 0.01 and forgetful.probability > 0.9
     with pytest.raises(ValueError):
         SafetyEstimate(priors, memory=0.0)

@@ -161,7 +161,7 @@ class Caregiver:
 
     def observe(self, cell: Cell, move: str) -> float:
         """Watch the novice take ``move`` from ``cell``; return the new P(safe | τ)."""
-        return self.safety.update(cell, move)
+        return self.safety.observe(cell, move)
 
     # -- choosing an intervention -------------------------------------------------------------------------
 

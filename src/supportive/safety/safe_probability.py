@@ -64,7 +64,7 @@ class SafetyEstimate:
         self.log_odds = self._prior_log_odds
         self.steps = 0
 
-    def update(self, cell: Cell, move: str) -> float:
+    def observe(self, cell: Cell, move: str) -> float:
         """Add the novice's move ``move`` from ``cell``; return the new P(safe | τ)."""
         evidence = math.log(self.priors.probability(cell, move)) - math.log(self.unsafe)
         self.log_odds = self._prior_log_odds + self.memory * (self.log_odds - self._prior_log_odds) + evidence

@@ -69,7 +69,7 @@ class Insight:
         """Whether goal inference is configured."""
         return self.model is not None
 
-    def observe(self, events: list[str], board: TaskBoard | None = None) -> dict[str, Any]:
+    def update(self, events: list[str], board: TaskBoard | None = None) -> dict[str, Any]:
         """Feed one moment's contact events to the tracker; the belief after it. A step the detector judges
         a mistake is kept (:attr:`mistakes`, :meth:`latest_mistake`) with the help it calls for and, given
         the ``board``, the nodes that help concerns which are not done yet.

@@ -52,7 +52,7 @@ async def observe(request: Request, me: Me, body: Annotated[ObservationIn, Body(
     board, _ = await run_in_threadpool(state.store.board)
     before = state.insight.raised
     try:
-        summary = await run_in_threadpool(state.insight.observe, list(body.events), board)
+        summary = await run_in_threadpool(state.insight.update, list(body.events), board)
     except SupportiveError as exc:
         raise HTTPException(409, str(exc)) from None
     state.hub.publish({"type": "belief", "belief": state.insight.belief()})
