@@ -102,6 +102,14 @@ docs-results: $(VENV)/.dev
 	cp out/reproduce/transfer/metrics.json docs/results/transfer.json
 	cp out/reproduce/caregiver/metrics.json docs/results/caregiver.json
 	cp out/reproduce/captaincook-prediction/metrics.json docs/results/captaincook-prediction.json
+	cp out/reproduce/active-learning/metrics.json docs/results/active-learning.json
+	cp out/reproduce/active-learning/run.json docs/results/active-learning-run.json
+	cp out/reproduce/support-tamp/metrics.json docs/results/support-tamp.json
+	cp out/reproduce/support-tamp/run.json docs/results/support-tamp-run.json
+	cp out/reproduce/generalisation/metrics.json docs/results/generalisation.json
+	cp out/reproduce/generalisation/run.json docs/results/generalisation-run.json
+	cp out/reproduce/learner-settings/metrics.json docs/results/learner-settings.json
+	cp out/reproduce/learner-settings/run.json docs/results/learner-settings-run.json
 	$(BIN)/supportive reproduce mistake-detection --workers 2 --output out/reproduce/mistake-detection
 	cp out/reproduce/mistake-detection/metrics.json docs/results/mistake-detection.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
