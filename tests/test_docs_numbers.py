@@ -17,6 +17,8 @@ from types import ModuleType
 
 import pytest
 
+from docs_blocks import caregiver, runs
+from docs_blocks.common import RESULTS, filled
 from supportive.experiments import get, run_experiment
 from supportive.experiments.output import dump_json
 
@@ -89,7 +91,7 @@ def test_a_block_no_generator_knows_is_refused(tmp_path: Path, monkeypatch: pyte
 
 
 def _recorded(name: str) -> object:
-    return json.loads((tool.RESULTS / name).read_text(encoding="utf-8"))
+    return json.loads((RESULTS / name).read_text(encoding="utf-8"))
 
 
 RECORDED = {
@@ -135,7 +137,7 @@ def test_the_recorded_summary_covers_every_experiment_from_its_recording() -> No
 
 def test_the_recorded_run_times_belong_to_the_recorded_runs() -> None:
     """Each ``NAME-run.json`` the docs quote a wall time from is the ``run.json`` of the run recorded beside it."""
-    for name in tool._TIMED:
+    for name in runs._TIMED:
         run, metrics = _recorded(f"{name}-run.json"), _recorded(RECORDED[name])
         assert isinstance(run, dict) and isinstance(metrics, dict)
         assert (run["experiment"], run["trials"], run["seed"]) == (name, metrics["trials"], metrics["seed"])
@@ -162,8 +164,8 @@ def test_the_caregiver_prose_holds_on_the_recorded_run() -> None:
     names less than either shorter memory does (the *Deviation: memory* paragraph's claim)."""
     metrics = _recorded("caregiver.json")
     assert isinstance(metrics, dict)
-    _, differ = tool._novice_groups(metrics)
-    reductions = tool._reductions(metrics, differ[0])
+    _, differ = caregiver._novice_groups(metrics)
+    reductions = caregiver._reductions(metrics, differ[0])
     assert reductions["trajectory"] < min(reductions["memory"], reductions["per-step"])
 
 
@@ -192,7 +194,7 @@ RECORDED_RUNS = [
 def test_a_recorded_run_is_what_a_fresh_run_gives(experiment: str, file: str) -> None:
     """The recorded ``metrics.json`` is what a fresh full run writes, byte for byte (captaincook where the
     dataset is)."""
-    recorded = (tool.RESULTS / file).read_text(encoding="utf-8")
+    recorded = (RESULTS / file).read_text(encoding="utf-8")
     metrics = json.loads(recorded)
     if experiment in ("captaincook", "captaincook-prediction", "mistake-detection", "generalisation"):
         _captaincook_or_skip()
@@ -212,10 +214,10 @@ def _captaincook_or_skip() -> None:
 
 def test_filling_a_template_scales_and_formats() -> None:
     data = {"a": {"b/c": 0.01234, "n": 1904.5}, "share": 0.03}
-    assert tool.filled("{a.b/c|ms:.1f} ms, {a.b/c|us:.0f} µs", data) == "12.3 ms, 12340 µs"
-    assert tool.filled("{a.n:,.0f} ops, {share|pct:.0f} %, {a.n|k:.1f}k", data) == "1,904 ops, 3 %, 1.9k"
+    assert filled("{a.b/c|ms:.1f} ms, {a.b/c|us:.0f} µs", data) == "12.3 ms, 12340 µs"
+    assert filled("{a.n:,.0f} ops, {share|pct:.0f} %, {a.n|k:.1f}k", data) == "1,904 ops, 3 %, 1.9k"
     with pytest.raises(KeyError):
-        tool.filled("{a.missing}", data)
+        filled("{a.missing}", data)
 
 
 @pytest.mark.slow

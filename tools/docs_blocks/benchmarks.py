@@ -1,0 +1,113 @@
+"""Benchmark numbers: ``make bench`` > ``benchmarks/results/NAME.json``."""
+
+from __future__ import annotations
+
+from .common import BENCHMARKS, Block, filled, read_json
+
+
+def from_benchmark(name: str, template: str) -> Block:
+    """An inline block: ``template`` filled from ``benchmarks/results/NAME.json``."""
+    return Block(
+        f"benchmarks/results/{name}.json (make bench)",
+        lambda: filled(template, read_json(BENCHMARKS / f"{name}.json")),
+        inline=True,
+    )
+
+
+def _seconds(value: float) -> str:
+    if value >= 10:
+        return f"{value:.0f} s"
+    if value >= 1:
+        return f"{value:.2f} s"
+    milliseconds = value * 1000
+    return f"{milliseconds:.3g} ms" if milliseconds < 100 else f"{milliseconds:.0f} ms"
+
+
+def learn_benchmark() -> str:
+    """docs/exports.md: each case's median time beside the strict learner's and its goal, if it has one."""
+    cases = read_json(BENCHMARKS / "learn.json")["cases"]
+    rows = ["| case | actions | default learner | strict | ratio | goal |", "|---|---:|---:|---:|---:|---|"]
+    ratios = []
+    for name, case in cases.items():
+        strict, ratio = case["strict"]["median_seconds"], case["general_over_strict"]
+        comparable = ratio <= _COMPARABLE
+        ratios += [ratio] if comparable else []
+        goal = case["goal_seconds"]
+        met = "–" if goal is None else f"{_seconds(goal)}: {'met' if case['meets_goal'] else '**not met**'}"
+        rows.append(
+            f"| `{name}` | {case['actions']:,} | {_seconds(case['median_seconds'])} | {_seconds(strict)} | "
+            f"{f'{ratio:.1f}×' if comparable else '—'} | {met} |"
+        )
+    return "\n".join(rows) + (
+        f"\n\nWhere the two are comparable (a ratio under {_COMPARABLE}×), the default learner takes "
+        f"{min(ratios):.1f}–{max(ratios):.1f}× the strict one's time.\n"
+    )
+
+
+_COMPARABLE = 100  # a larger ratio means the learners did different work (the slip search), shown as "—"
+
+BLOCKS: dict[str, Block] = {
+    "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
+    "bench-service": from_benchmark(
+        "service",
+        "**{claim_release.ops_per_second:,.0f} operations/s, p50 {claim_release.p50_ms:.1f} ms, p90 {claim_release.p90_ms:.1f} ms, p99 {claim_release.p99_ms:.1f} ms** (targets ≥ {targets.ops_per_second:.0f} ops/s and p99 < {targets.p99_ms:.0f} ms)",
+    ),
+    "bench-social-update": from_benchmark(
+        "social",
+        "{update_plus_ellipse.median_seconds|us:.1f} µs median, {update_plus_ellipse.p99_seconds|us:.1f} µs p99 (target {target_seconds|us:.0f} µs)",
+    ),
+    "bench-social": from_benchmark(
+        "social",
+        "| `update` + `ellipse()`, {samples_in_window} samples in the window (target {target_seconds|us:.0f} µs) | {update_plus_ellipse.median_seconds|us:.1f} µs | {update_plus_ellipse.p99_seconds|us:.1f} µs |\n| peer, measured in the same run: deque → `numpy.array`, `numpy.cov`, `numpy.linalg.eigh` per update | {peer_update_plus_ellipse.median_seconds|us:.1f} µs | {peer_update_plus_ellipse.p99_seconds|us:.1f} µs |\n| `field` at {field.points:,} points, one agent | {field.one_agent.median_seconds|ms:.2f} ms | |\n| `field` at {field.points:,} points, three agents combined | {field.three_agents.median_seconds|ms:.2f} ms | |\n| `PeerPolicy.decide` over the example's six subtasks | {peer_role_decision.median_seconds|us:.0f} µs | |",
+    ),
+    "bench-rosbag": from_benchmark(
+        "rosbag",
+        "| `read_contact_frames` (what `infer --bag` consumes) | **{ours.seconds:.2f}** ({ours.frames_per_second|k:,.0f},000 frames/s) | **{rss_above_baseline_mb.ours:.0f} MB** ({ours.peak_rss_mb:.0f} MB in all, = the baseline) | **{ours.tracemalloc_peak_mb:.1f} MB** |\n| a naive peer: deserialize every message into a list first | {naive_peer.seconds:.2f} | {rss_above_baseline_mb.naive_peer:.0f} MB | {naive_peer.tracemalloc_peak_mb:.0f} MB |",
+    ),
+    "bench-rosbag-bag": from_benchmark(
+        "rosbag",
+        "({bag.frames:,}\n`ContactFrame`s, a {bag.size_mb:.0f} MB MCAP bag)",
+    ),
+    "bench-caregiver": from_benchmark(
+        "caregiver",
+        "20 episodes, default reading, one core: {experiment.seconds_one_process:.1f} s (target {experiment.target_seconds:.0f} s);\n                # the full default run on 2 workers: {full_run.seconds_two_workers:.1f} s at load ≈ 3–4 (target {full_run.target_seconds:.0f} s);\n                # one decision on the {decision.map} map: median {decision.median_seconds|ms:.2f} ms, p99 {decision.p99_seconds|ms:.2f} ms (target {decision.target_seconds|ms:.0f} ms)",
+    ),
+    "bench-active-learning": from_benchmark(
+        "experiments",
+        "{active_learning.trials} trials: {active_learning.in_process_seconds:.1f} s in one\nprocess and {active_learning.workers_2_seconds:.1f} s with 2 workers",
+    ),
+    "bench-progress": from_benchmark(
+        "inference",
+        "one contact-event update {cases.ikea-100-subgoals.update_seconds.progress|us:.0f} µs at 100 subgoals ({cases.ikea-100-subgoals.progress_states} states),\n{cases.ikea-1000-subgoals.update_seconds.progress|us:.0f} µs at 1,000 ({cases.ikea-1000-subgoals.progress_states:,} states); the hierarchical HMM {cases.ikea-100-subgoals.update_seconds.hierarchical|us:.0f} µs and {cases.ikea-1000-subgoals.update_seconds.hierarchical|us:.0f} µs in the same run",
+    ),
+    "bench-hmm": from_benchmark(
+        "inference",
+        "10 subgoals {cases.ikea-10-subgoals.update_seconds.hierarchical|us:.1f} µs\n(flat {cases.ikea-10-subgoals.update_seconds.flat|us:.1f} µs); 100 subgoals {cases.ikea-100-subgoals.update_seconds.hierarchical|us:.1f} µs (flat {cases.ikea-100-subgoals.update_seconds.flat|us:.1f} µs; goal < {cases.ikea-100-subgoals.goal_update_seconds|us:.0f} µs); 1,000 subgoals {cases.ikea-1000-subgoals.update_seconds.hierarchical|us:.1f} µs (flat {cases.ikea-1000-subgoals.update_seconds.flat|us:.1f} µs; goal\n< {cases.ikea-1000-subgoals.goal_update_seconds|ms:.0f} ms)",
+    ),
+    "bench-language": from_benchmark(
+        "language",
+        "target {target_seconds|ms:.0f} ms; {per_utterance.gc_as_is.samples} timings, one other process busy on one of the two\n  cores) takes a median {per_utterance.gc_as_is.median_seconds|ms:.2f} ms with a p99 of {per_utterance.gc_as_is.p99_seconds|ms:.1f} ms and a maximum of {per_utterance.gc_as_is.max_seconds|ms:.0f} ms; with the start-up objects frozen\n  (`gc.freeze()`) a median {per_utterance.gc_frozen.median_seconds|ms:.2f} ms, p99 {per_utterance.gc_frozen.p99_seconds|ms:.1f} ms, maximum {per_utterance.gc_frozen.max_seconds|ms:.1f} ms",
+    ),
+    "bench-language-accuracy": from_benchmark(
+        "language",
+        "On {utterances} held-out chair\n  utterances written by hand (`{held_out}`): **top-1 {accuracy.top1:.2f}, top-3 {accuracy.top3:.2f}**",
+    ),
+    "bench-language-table": from_benchmark(
+        "language",
+        "| bag of words, naive Bayes (the thesis's) | {accuracy.top1:.3f} | {accuracy.top3:.3f} | {per_utterance.gc_as_is.median_seconds|ms:.2f} ms |\n| sentence embeddings | {embeddings_peer.top1:.3f} | {embeddings_peer.top3:.3f} | {embeddings_peer.per_utterance.median_seconds|ms:.1f} ms |",
+    ),
+    "bench-cover": from_benchmark(
+        "cover",
+        "an exact cover takes a median {runs.exact/ilp.median_seconds|ms:.0f} ms (max {runs.exact/ilp.max_seconds|ms:.0f} ms), the thesis's full coverage with\nirrelevant states allowed {runs.exact/ilp_full_allow_irrelevant.median_seconds|ms:.0f} ms (max {runs.exact/ilp_full_allow_irrelevant.max_seconds:.2f} s), a partial cover {runs.exact/ilp_partial.median_seconds|ms:.0f} ms, ESPRESSO {runs.exact/espresso.median_seconds|ms:.0f} ms; with {setup.noise|pct:.0f} % of the labels\nflipped (no exact cover) a partial cover takes a median {runs.noisy/ilp_partial.median_seconds|ms:.0f} ms (max {runs.noisy/ilp_partial.max_seconds:.2f} s), all under the {target_seconds:.0f} s target, and\nis more faithful than ESPRESSO's (precision {runs.noisy/ilp_partial.mean_precision:.2f} / recall {runs.noisy/ilp_partial.mean_recall:.2f} in {runs.noisy/ilp_partial.mean_formula_literals:.0f} literals against {runs.noisy/espresso_partial.mean_precision:.2f} / {runs.noisy/espresso_partial.mean_recall:.2f} in {runs.noisy/espresso_partial.mean_formula_literals:.0f})",
+    ),
+    "bench-support": from_benchmark(
+        "support",
+        "200 environments {environments.200.one_process.median_seconds:.2f} s median, {environments.200.one_process.max_seconds:.2f} s max on one core (target {target_seconds_200:.0f} s); with 2 workers {environments.200.two_workers.median_seconds:.2f} s, a {environments.200.speedup_two_workers}×\nspeed-up; 400 environments {environments.400.one_process.median_seconds:.2f} s → {environments.400.two_workers.median_seconds:.2f} s ({environments.400.speedup_two_workers}×); 800: {environments.800.one_process.median_seconds:.2f} s → {environments.800.two_workers.median_seconds:.2f} s ({environments.800.speedup_two_workers}×",
+    ),
+    "bench-hmm-speedup": from_benchmark(
+        "inference", "{cases.ikea-1000-subgoals.hierarchical_speedup_over_flat:.1f}"
+    ),
+    "bench-hmmlearn": from_benchmark(
+        "inference", "{cases.ikea-100-subgoals.hmmlearn.rescore_prefix_10000_seconds:.1f}"
+    ),
+}

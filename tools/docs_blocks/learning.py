@@ -1,0 +1,204 @@
+"""generalisation and learner-settings (docs/learning.md): docs/results/generalisation.json and
+learner-settings.json."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from statistics import mean
+from typing import Any
+
+from .captaincook import CAPTAINCOOK, captaincook_recipes
+from .common import RESULTS, Block, read_json
+from .prose import span
+from .reports import report_table
+from .runs import run_time
+
+_GEN = "docs/results/generalisation.json (supportive reproduce generalisation)"
+_LS = "docs/results/learner-settings.json (supportive reproduce learner-settings)"
+
+
+def _gen() -> dict[str, Any]:
+    metrics: dict[str, Any] = read_json(RESULTS / "generalisation.json")
+    return metrics
+
+
+def generalisation_table() -> str:
+    """docs/learning.md: the default learner, the general reading and the strict learner on generated tasks and
+    CaptainCook4D, beside what the issues asked."""
+    from supportive.learning.graph_edges import PEERS
+
+    metrics = _gen()
+    learners = ("auto", "general", "strict")
+    synthetic, captaincook, slips = metrics["synthetic"], metrics["captaincook"], metrics["slips"]
+
+    def orderings(profile: str) -> list[str]:
+        return [
+            f"{synthetic[profile][m]['recall']:.3f} / {synthetic[profile][m]['precision']:.3f}"
+            for m in learners
+        ]
+
+    def admitted(m: str) -> str:
+        c = captaincook[m]
+        return f"{c['admitted']} / {c['held_out']} ({c['admission']:.1%})".replace("%", " %")
+
+    def pr(m: str, data: str) -> str:
+        return f"{captaincook[m][f'{data}_precision']:.3f} / {captaincook[m][f'{data}_recall']:.3f}"
+
+    def f1(m: str) -> str:
+        text = f"{captaincook[m]['edges']['full']['f1']:.3f} / {captaincook[m]['edges']['5-shot']['f1']:.3f}"
+        return f"**{text}**" if m == learners[0] else text
+
+    def slipped(data: str) -> str:
+        return " · ".join(
+            f"{slips[p][data]['recall']:.3f} / {slips[p][data]['precision']:.3f}" for p in ("ikea", "uniform")
+        )
+
+    peer = PEERS["DO (Seminara et al. 2024)"]
+    rows = [
+        "| | auto (default) | general | strict | asked |",
+        "|---|---:|---:|---:|---|",
+        f"| generated `uniform` tasks, 4–12 actions, 4 demonstrations: recall / precision of orderings "
+        f"({synthetic['uniform']['auto']['tasks']} tasks) | "
+        + " | ".join(orderings("uniform"))
+        + " | ≥ 0.7 / ≥ 0.95 |",
+        f"| generated `ikea` tasks, same ({synthetic['ikea']['auto']['tasks']} tasks) | "
+        + " | ".join(orderings("ikea"))
+        + " | |",
+        "| CaptainCook4D, learned from the first half of each recipe's error-free recordings: other half admitted | "
+        + " | ".join(admitted(m) for m in learners)
+        + " | ≥ 60 % |",
+        "| CaptainCook4D precedence P / R among the graph's steps, all error-free recordings | "
+        + " | ".join(pr(m, "error_free") for m in learners)
+        + " | |",
+        "| … all recordings, errors included | "
+        + " | ".join(pr(m, "with_errors") for m in learners)
+        + " | |",
+        "| CaptainCook4D task graphs, DTGL protocol, F1 full / 5-shot (P / R in the report) | "
+        + " | ".join(f1(m) for m in learners)
+        + f" | ≥ 0.90 / ≥ 0.86; DO {peer['full']:.3f} / {peer['5-shot']:.3f} |",
+        "| generated tasks, 16 clean demonstrations (general): recall / precision, ikea · uniform | | "
+        + slipped("clean")
+        + " | | |",
+        "| … and 4 more with one step moved to a random place | | "
+        + slipped("with_slips")
+        + " | | must not flatten |",
+        "| … the same, nothing set aside (`slips=False`) | | "
+        + slipped("with_slips_none_set_aside")
+        + " | | |",
+    ]
+    return "\n".join(rows) + "\n"
+
+
+_ISSUE_23_F1 = {"full": 0.90, "5-shot": 0.86}
+_ISSUE_13_ADMISSION = 0.60
+
+
+def generalisation_verdicts() -> str:
+    """docs/learning.md: the default learner's task-graph F1 (from captaincook.json, the block above) beside the
+    published model, the pinned readings and issue #23's target; its held-out admission beside issue #13's."""
+    from supportive.learning.graph_edges import PEERS
+
+    recipes = captaincook_recipes()
+    ours = {
+        s: mean(r["edges" if s == "full" else "edges_5_shot"]["f1"] for r in recipes)
+        for s in ("full", "5-shot")
+    }
+    captaincook = _gen()["captaincook"]
+    peer = PEERS["DO (Seminara et al. 2024)"]
+    general = captaincook["general"]["edges"]["5-shot"]["f1"]
+    strict = {s: captaincook["strict"]["edges"][s]["f1"] for s in ("full", "5-shot")}
+
+    def side(theirs: Mapping[str, float]) -> str:
+        above = [ours[s] > theirs[s] for s in ("full", "5-shot")]
+        return "above" if all(above) else "below" if not any(above) else "level with"
+
+    met = all(round(ours[s], 3) >= _ISSUE_23_F1[s] for s in ours)
+    admission, kept = captaincook["auto"]["admission"], captaincook["general"]["admission"]
+    synthetic = _gen()["synthetic"]["uniform"]["auto"]
+    return (
+        f"— {side(peer)} the published Direct Optimization model's ({peer['full']:.3f} / {peer['5-shot']:.3f}) and "
+        f"{'above' if ours['5-shot'] > general else 'below'} the pinned general reading's 5-shot {general:.3f}, "
+        f"{'but ' if side(strict) == 'below' else ''}{side(strict)} our strict learner's ({strict['full']:.3f} / {strict['5-shot']:.3f}) and "
+        f"{'at or above' if met else 'below'} the issue's {_ISSUE_23_F1['full']:.2f} / {_ISSUE_23_F1['5-shot']:.2f} — "
+        f"**{'met' if met else 'not met'}**. Its held-out half admission, {admission:.1%}, is "
+        f"{'at or above' if admission >= _ISSUE_13_ADMISSION else 'below'} the {_ISSUE_13_ADMISSION:.0%} issue #13 "
+        f"asked to keep (the general reading keeps {kept:.1%}"
+        + (
+            "; where held-out likelihood prefers a tighter reading than the general one, fewer unseen recordings are admitted"
+            if kept > admission
+            else ""
+        )
+        + f") — **{'met' if admission >= _ISSUE_13_ADMISSION else 'not met'}**. Generated tasks from 4 demonstrations: "
+        f"recall {synthetic['recall']:.3f} at precision {synthetic['precision']:.3f} — "
+        + (
+            "kept"
+            if synthetic["recall"] >= 0.7 and synthetic["precision"] >= 0.95
+            else "**not kept** (≥ 0.7 / ≥ 0.95 asked)"
+        )
+        + ".\n"
+    ).replace("%", " %")
+
+
+def generalisation_subtasks() -> str:
+    """docs/learning.md (inline): the default learner on generated ``uniform`` tasks from 4 demonstrations."""
+    synthetic = _gen()["synthetic"]["uniform"]["auto"]
+    return f"recall {synthetic['recall']:.2f} / precision {synthetic['precision']:.3f}"
+
+
+def _ls() -> dict[str, Any]:
+    metrics: dict[str, Any] = read_json(RESULTS / "learner-settings.json")
+    return metrics
+
+
+_KINDS = {"moved": " to a random place", "repeated": " later"}
+_COUNT = {1: "one", 2: "two"}
+
+
+def learner_settings_chosen() -> str:
+    """docs/learning.md: the chosen setting against issue #23's precision and recall, cell by cell."""
+    metrics = _ls()
+    chosen = metrics["chosen"]
+    cells = {name: cell for name, cell in metrics["settings"][chosen]["kinds"].items() if cell["mistakes"]}
+    precisions = [c["precision"] for c in cells.values()]
+    short = [name for name, c in cells.items() if c["recall"] < 0.7]
+
+    def by_kind(name: str) -> str:
+        kind, n = name.rsplit(" ", 1)
+        others = [(m, c["recall"]) for m, c in cells.items() if m.startswith(kind + " ") and m != name]
+        return (
+            f"a step **{kind}**{_KINDS.get(kind, '')}, {n} demonstrations, recall {cells[name]['recall']:.2f} ("
+            + ", ".join(f"{r:.2f} at {m.rsplit(' ', 1)[1]}" for m, r in others)
+            + ")"
+        )
+
+    recall = (
+        "in every cell"
+        if not short
+        else f"in every cell but {_COUNT[len(short)]}: " + "; ".join(by_kind(name) for name in short)
+        if len(short) < 3
+        else f"in {len(cells) - len(short)} of {len(cells)} cells"
+    )
+    return (
+        f"The chosen setting (`{chosen}`) "
+        + ("meets" if min(precisions) >= 0.9 else "misses")
+        + f" issue #23's precision (≥ 0.9 in every cell: {span(precisions, 2)}) and meets its recall (≥ 0.7) {recall}.\n"
+    )
+
+
+def learner_settings_clean() -> str:
+    """docs/learning.md (inline): what the chosen setting reported on clean data."""
+    row = _ls()["settings"][_ls()["chosen"]]
+    quiet = row["clean_tasks"] - row["clean_tasks_flagged"]
+    return f"reported no slip in {quiet} of the {row['clean_tasks']} clean tasks ({row['clean_flagged']:.4f} of steps)"
+
+
+BLOCKS: dict[str, Block] = {
+    "generalisation-table": Block(_GEN, generalisation_table),
+    "generalisation-verdicts": Block(f"{_GEN}; {CAPTAINCOOK}", generalisation_verdicts),
+    "generalisation-subtasks": Block(_GEN, generalisation_subtasks, inline=True),
+    "generalisation-time": run_time("generalisation"),
+    "learner-settings-table": report_table("learner-settings", "learner-settings.json", "| setting |"),
+    "learner-settings-chosen": Block(_LS, learner_settings_chosen),
+    "learner-settings-clean": Block(_LS, learner_settings_clean, inline=True),
+    "learner-settings-time": run_time("learner-settings"),
+}
