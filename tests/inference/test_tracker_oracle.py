@@ -1,6 +1,9 @@
 """The progress-aware tracker against brute force (issue 27), over both forms of its belief — the exact
 vector and the beam's map of states (a beam wide enough to hold every state) — as hmmlearn runs each test over
-each implementation.
+each implementation, and over both kinds of hierarchy the learners make: single-root trees of chains, cliques,
+optional and repeated leaves, and partial hierarchies — two or three such roots in the order a top level
+gives, either the general learner's partial order of the roots (some optional, some that may be performed as
+nothing) or the orders of roots seen (the strict learner's), with or without learned counts.
 
 On small generated tasks the oracle enumerates every hidden path of states through the evidence (contact
 events, known actions, or both mixed), each step's moves written out here from the model's own next-step
@@ -9,10 +12,17 @@ way stays with probability ``1 - 1/mean_duration``; a step is off-script with pr
 contact events skip one step; an off-script action lands on the nearest state ahead in which it was just
 done, or keeps the progress), weighs each path by its moves and by the observation probabilities worked out
 event by event from the observation table, and compares the posterior over states, what is done, finished,
-the probability that the last step was off-script and the log-likelihood with the tracker's, to 1e-9."""
+the probability that the last step was off-script and the log-likelihood with the tracker's, to 1e-9.
+
+For a partial hierarchy the oracle first checks that those moves follow the top level's edges
+(:func:`assert_follows_top_level`): from every prefix, the actions the model allows next, and whether it may
+end, are exactly those of the walks through the top level that begin with that prefix — every walk from an
+initial state to a terminal one, each edge's root performed in any order it admits, as nothing where it may
+be (:func:`top_level_walks`) — and its probabilities add up to one over those walks."""
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from collections import defaultdict
@@ -36,7 +46,17 @@ from supportive.inference import (
 )
 from supportive.learning.distribution import END, ProgressModel
 from supportive.tasks.executions import Progress
-from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Node, iter_orderings
+from supportive.tasks.htn import (
+    HTN,
+    ActionNode,
+    ChainNode,
+    CliqueNode,
+    Counts,
+    Leaf,
+    Node,
+    TopLevel,
+    iter_orderings,
+)
 
 Shape = str | tuple[str, list["Shape"]]
 State = Progress | None  # None: finished
@@ -47,11 +67,11 @@ FORMS: dict[str, dict[str, Any]] = {
     "beam": {"max_states": 1, "beam": 1_000_000},  # not enumerated: a map of states, cut to the beam
 }
 
-def _shapes(leaves: list[str]) -> st.SearchStrategy[Shape]:
+def _shapes(leaves: list[str], max_leaves: int = 4) -> st.SearchStrategy[Shape]:
     return st.recursive(
         st.sampled_from(leaves),
         lambda inner: st.tuples(st.sampled_from(["chain", "clique"]), st.lists(inner, min_size=2, max_size=3)),
-        max_leaves=4,
+        max_leaves=max_leaves,
     )
 
 
@@ -78,6 +98,145 @@ def build(shape: Shape, names: itertools.count[int] | None = None, done: list[Ac
     return (ChainNode if kind == "chain" else CliqueNode)(children)
 
 
+def partial_order(n: int, before: set[tuple[int, int]], required: frozenset[int]) -> TopLevel:
+    """The top level the general learner makes of ``n`` roots and the precedences ``before`` (``(u, v)``: ``u``
+    comes before ``v``), written out from its rule (docs/learning.md, ``top_order.py``): its states are the sets
+    of roots done; a root may be done when it is not done, no root that must follow it is done, and every
+    *required* root that must precede it is done (a precedence binds an optional root only when it is
+    performed); the task may end once every required root is done. The optional roots are ``free``."""
+    number: dict[frozenset[int], int] = {frozenset(): 0}
+    edges: list[tuple[int, int, int]] = []
+    frontier = [frozenset[int]()]
+    while frontier:
+        done = frontier.pop()
+        for root in range(n):
+            if root in done or any((root, v) in before for v in done):
+                continue
+            if any((u, root) in before and u in required and u not in done for u in range(n)):
+                continue
+            after = done | {root}
+            if after not in number:
+                number[after] = len(number)
+                frontier.append(after)
+            edges.append((number[done], root, number[after]))
+    terminal = tuple(sorted(state for done, state in number.items() if required <= done))
+    return TopLevel((0,), terminal, tuple(sorted(edges)), free=frozenset(range(n)) - required)
+
+
+def seen_orders(orders: list[list[int]]) -> TopLevel:
+    """The top level of exactly the orders of roots seen (the strict learner's, and the general learner's when
+    a partial order would have too many states): its states are the sets of roots done, each order a path
+    from the empty set to the set it ends in."""
+    number: dict[frozenset[int], int] = {frozenset(): 0}
+    edges: set[tuple[int, int, int]] = set()
+    terminal: set[int] = set()
+    for order in orders:
+        done: frozenset[int] = frozenset()
+        for root in order:
+            after = done | {root}
+            number.setdefault(after, len(number))
+            edges.add((number[done], root, number[after]))
+            done = after
+        terminal.add(number[done])
+    return TopLevel((0,), tuple(sorted(terminal)), tuple(sorted(edges)))
+
+
+@st.composite
+def partial_hierarchies(draw: st.DrawFn, shape: st.SearchStrategy[Shape], top: str, *, roots: int = 3) -> HTN:
+    """A partial hierarchy: two to ``roots`` roots, each a drawn shape (numbered on from the previous root's
+    actions, so an ``again`` leaf may repeat another root's action), under a top level of the given form,
+    with or without learned counts (which root comes first, which follows which, how often each was
+    performed).
+
+    ``top="partial order"``: the general learner's (:func:`partial_order`) over a random partial order of the
+    roots, some roots optional. ``top="seen orders"``: the top level of one to three random orders of the
+    roots (:func:`seen_orders`), every root required (the strict learner makes no optional nodes; ``shape``
+    should draw none, see :func:`test_a_top_level_of_seen_orders_with_an_optional_root_loses_walks`)."""
+    names: itertools.count[int] = itertools.count()
+    done: list[ActionNode] = []
+    nodes = [build(s, names, done) for s in draw(st.lists(shape, min_size=2, max_size=roots))]
+    n = len(nodes)
+    if top == "partial order":
+        nodes = [dataclasses.replace(node, optional=True) if draw(st.booleans()) else node for node in nodes]
+        order = draw(st.permutations(range(n)))
+        before = {(order[i], order[j]) for i in range(n) for j in range(i + 1, n) if draw(st.booleans())}
+        top_level = partial_order(n, before, frozenset(r for r, node in enumerate(nodes) if not node.optional))
+    else:
+        top_level = seen_orders(draw(st.lists(st.permutations(range(n)), min_size=1, max_size=3)))
+    if draw(st.booleans()):
+        counts = st.integers(0, 3)
+        first = tuple(draw(st.lists(counts, min_size=n, max_size=n)))
+        after = tuple(tuple(draw(st.lists(counts, min_size=n, max_size=n))) for _ in range(n))
+        top_level = dataclasses.replace(top_level, counts=Counts(performed=sum(first), first=first, after=after))
+        nodes = [dataclasses.replace(node, counts=Counts(performed=draw(counts))) for node in nodes]
+    return HTN("t", tuple(nodes), top_level)
+
+
+def tree(shape: Shape) -> HTN:
+    """The complete hierarchy of one drawn shape."""
+    return HTN("t", (build(shape),))
+
+
+HIERARCHIES: dict[str, st.SearchStrategy[HTN]] = {
+    "tree": repeating.map(tree),
+    "partial order": partial_hierarchies(_shapes(["leaf", "optional", "again"], max_leaves=3), "partial order"),
+    "seen orders": partial_hierarchies(_shapes(["leaf", "again"], max_leaves=3), "seen orders"),
+}
+"""The hierarchies the tracker is checked over: single-root trees, and partial hierarchies of a few small roots
+under either form of top level the learners make (kept small: the oracle's paths grow as a power of the
+states)."""
+
+
+def top_level_walks(htn: HTN) -> list[tuple[Leaf, ...]]:
+    """Every leaf sequence a partial hierarchy admits, by brute force over its top level: every walk from an
+    initial state to a terminal one along the top level's edges, each edge's root performed in any order it
+    admits (as nothing, when it may be: ``iter_orderings``), the same sequence counted once."""
+    top = htn.top_level
+    assert top is not None
+    out = top.successors()
+    terminal = set(top.terminal)
+    orders = [list(iter_orderings(root)) for root in htn.roots]
+    found: set[tuple[Leaf, ...]] = set()
+
+    def walk(state: int, sequence: tuple[Leaf, ...]) -> None:
+        if state in terminal:
+            found.add(sequence)
+        for root, after in out.get(state, {}).items():
+            for part in orders[root]:
+                walk(after, sequence + part)
+
+    for state in top.initial:
+        walk(state, ())
+    return sorted(found)
+
+
+def assert_follows_top_level(model: ProgressModel) -> None:
+    """The model's next steps from every prefix, action by action, are exactly the next actions (or the end) of
+    the walks through the top level that begin with that prefix (:func:`top_level_walks`), and its
+    probabilities add up to one over those walks: the model's on-script moves, which the oracle takes from
+    it, follow the top level's edges. (Action by action, because the model starts only the lowest-numbered of
+    a repeated subtask's instances; which actions come next is the same.)"""
+    walks = {tuple(action for action, _ in w) for w in top_level_walks(model.htn)}
+    following: dict[tuple[str, ...], set[str | None]] = defaultdict(set)  # None: the end
+    for w in walks:
+        for k in range(len(w) + 1):
+            following[w[:k]].add(w[k] if k < len(w) else None)
+    stack: list[tuple[tuple[str, ...], set[Progress]]] = [((), set(model.executions.initial()))]
+    while stack:
+        prefix, states = stack.pop()
+        offered: dict[str | None, set[Progress]] = defaultdict(set)
+        for state in states:
+            for leaf, (p, nxt) in model.outcomes(state).items():
+                assert p > 0
+                if nxt is None:
+                    offered.setdefault(None, set())
+                else:
+                    offered[model.leaves[leaf][0]].add(nxt)
+        assert set(offered) == following[prefix], prefix
+        stack.extend(((*prefix, action), nexts) for action, nexts in offered.items() if action is not None)
+    assert sum(math.exp(model.log_probability(w)) for w in walks) == pytest.approx(1.0, abs=1e-12)
+
+
 def tracker(htn: HTN, form: str, **settings: Any) -> ProgressFilter:
     """A fresh tracker over ``htn`` in the given form of the belief."""
     hmm = ProgressHMM(htn, **FORMS[form], **settings).fit()
@@ -87,10 +246,13 @@ def tracker(htn: HTN, form: str, **settings: Any) -> ProgressFilter:
 
 # ---------------------------------------------------------------------- the oracle
 class Oracle:
-    """Every step's moves, written out from the model and the documented rules."""
+    """Every step's moves, written out from the model and the documented rules (for a partial hierarchy, once
+    the model's moves are checked to follow its top level)."""
 
     def __init__(self, htn: HTN, *, stay: float, slip: float, restart: bool, events: ObservationModel | None) -> None:
         self.model = ProgressModel(htn)
+        if htn.top_level is not None:
+            assert_follows_top_level(self.model)
         self.stay, self.slip, self.restart, self.events = stay, slip, restart, events
         states = self.model.states(10**6)
         assert states is not None
@@ -240,10 +402,10 @@ def assert_agrees(running: ProgressFilter, oracle: Oracle, evidence: list[Eviden
 
 
 # ---------------------------------------------------------------------- the tests
+@pytest.mark.parametrize("kind", HIERARCHIES)
 @pytest.mark.parametrize("form", FORMS)
 @settings(max_examples=30, deadline=None)
 @given(
-    shape=repeating,
     seed=st.integers(0, 10_000),
     duration=st.floats(1.0, 6.0),
     slip=st.floats(0.01, 0.5),
@@ -251,9 +413,9 @@ def assert_agrees(running: ProgressFilter, oracle: Oracle, evidence: list[Eviden
     data=st.data(),
 )
 def test_contact_events_agree_with_brute_force(
-    form: str, shape: Shape, seed: int, duration: float, slip: float, restart: bool, data: st.DataObject
+    form: str, kind: str, seed: int, duration: float, slip: float, restart: bool, data: st.DataObject
 ) -> None:
-    htn = HTN("t", (build(shape),))
+    htn = data.draw(HIERARCHIES[kind], label="htn")
     actions = list(dict.fromkeys(a for a, _ in htn.leaves))
     events = random_events(actions, seed)
     moments = data.draw(st.lists(st.frozensets(st.sampled_from(["e0", "e1", "e2", "other"])), min_size=1, max_size=4))
@@ -262,13 +424,14 @@ def test_contact_events_agree_with_brute_force(
     assert_agrees(running, oracle, [("events", m) for m in moments])
 
 
+@pytest.mark.parametrize("kind", HIERARCHIES)
 @pytest.mark.parametrize("form", FORMS)
 @settings(max_examples=30, deadline=None)
-@given(shape=repeating, slip=st.floats(0.001, 0.5), restart=st.booleans(), data=st.data())
+@given(slip=st.floats(0.001, 0.5), restart=st.booleans(), data=st.data())
 def test_known_actions_agree_with_brute_force_slips_included(
-    form: str, shape: Shape, slip: float, restart: bool, data: st.DataObject
+    form: str, kind: str, slip: float, restart: bool, data: st.DataObject
 ) -> None:
-    htn = HTN("t", (build(shape),))
+    htn = data.draw(HIERARCHIES[kind], label="htn")
     actions = list(dict.fromkeys(a for a, _ in htn.leaves))
     steps = data.draw(st.lists(st.sampled_from([*actions, "juggle"]), min_size=1, max_size=5))  # any order
     running = tracker(htn, form, slip=slip, restart=restart)
@@ -276,13 +439,14 @@ def test_known_actions_agree_with_brute_force_slips_included(
     assert_agrees(running, oracle, [("action", a) for a in steps])
 
 
+@pytest.mark.parametrize("kind", HIERARCHIES)
 @pytest.mark.parametrize("form", FORMS)
 @settings(max_examples=20, deadline=None)
-@given(shape=repeating, seed=st.integers(0, 10_000), slip=st.floats(0.01, 0.5), data=st.data())
+@given(seed=st.integers(0, 10_000), slip=st.floats(0.01, 0.5), data=st.data())
 def test_mixed_evidence_agrees_with_brute_force(
-    form: str, shape: Shape, seed: int, slip: float, data: st.DataObject
+    form: str, kind: str, seed: int, slip: float, data: st.DataObject
 ) -> None:
-    htn = HTN("t", (build(shape),))
+    htn = data.draw(HIERARCHIES[kind], label="htn")
     actions = list(dict.fromkeys(a for a, _ in htn.leaves))
     events = random_events(actions, seed)
     piece = st.one_of(
@@ -295,11 +459,72 @@ def test_mixed_evidence_agrees_with_brute_force(
     assert_agrees(running, oracle, evidence)
 
 
+BIGGER: dict[str, st.SearchStrategy[HTN]] = {
+    "partial order": partial_hierarchies(_shapes(["leaf", "optional", "again"]), "partial order", roots=4),
+    "seen orders": partial_hierarchies(_shapes(["leaf", "again"]), "seen orders", roots=4),
+}
+"""Partial hierarchies bigger than the oracle's: up to four roots of up to four leaves."""
+
+
+@pytest.mark.parametrize("kind", BIGGER)
+@settings(max_examples=40, deadline=None)
+@given(data=st.data())
+def test_a_partial_hierarchys_model_follows_its_top_level(kind: str, data: st.DataObject) -> None:
+    """The model's next steps are those of the walks through the top level, and it is a distribution over
+    them (what the oracle checks of each hierarchy it is given, on bigger ones)."""
+    assert_follows_top_level(ProgressModel(data.draw(BIGGER[kind], label="htn"), smoothing=0.5))
+
+
+def test_a_root_begins_after_the_fewest_skips() -> None:
+    """Three required roots that may be performed as nothing, ``A``, ``B`` and ``C``, and ``q``, which needs
+    ``A`` and ``B`` first: ``q c1`` is a walk (``A`` and ``B`` as nothing, ``q``, then ``C``). The top-level
+    states that let ``q`` begin were searched depth first, so ``q`` began where ``C`` had been skipped too,
+    and ``c1`` could not follow; breadth first, ``q`` begins after the fewest skips."""
+
+    def nothing_needed(action: str) -> ChainNode:
+        return ChainNode((ActionNode(f"{action}1", optional=True), ActionNode(f"{action}2", optional=True)))
+
+    roots = (nothing_needed("a"), nothing_needed("b"), nothing_needed("c"), ActionNode("q"))
+    htn = HTN("t", roots, partial_order(4, {(0, 3), (1, 3)}, frozenset(range(4))))
+    assert htn.admits(["q", "c1"])
+    assert_follows_top_level(ProgressModel(htn))
+
+
+@pytest.mark.xfail(strict=True, reason="known gap: the executions commit to the fewest skips at a root's first step")
+def test_a_top_level_of_seen_orders_with_an_optional_root_loses_walks() -> None:
+    """Where skipping an optional root along its edge leads elsewhere than not skipping it, the executions
+    (and so the model and the tracker) admit fewer sequences than the walks through the top level: seen
+    ``x0 [x1 x2]``, ``x0 [x1 x2] [x3 x4]`` and ``[x3 x4] [x1 x2] x0`` with ``x0`` and ``[x3 x4]`` optional,
+    the walk that skips ``[x3 x4]`` first admits ``x1 x2 x0``, but a root is begun from the top-level state
+    reached with the fewest skips, from which ``x0`` cannot follow. The general learner's partial orders
+    (the oracle's) never meet this: from fewer roots passed, at least as much is allowed (``TopLevel.free``);
+    its fallback to the orders seen, beyond 50,000 top-level states or 1,500 roots, can."""
+    roots = (
+        ActionNode("x0", optional=True),
+        ChainNode((ActionNode("x1"), ActionNode("x2"))),
+        ChainNode((ActionNode("x3"), ActionNode("x4")), optional=True),
+    )
+    htn = HTN("t", roots, seen_orders([[0, 1], [0, 1, 2], [2, 1, 0]]))
+    assert ("x1", "x2", "x0") in {tuple(a for a, _ in w) for w in top_level_walks(htn)}
+    assert htn.admits(["x1", "x2", "x0"])
+
+
+ONCE: dict[str, st.SearchStrategy[HTN]] = {
+    "tree": shapes.map(tree),
+    "partial order": partial_hierarchies(_shapes(["leaf", "optional"], max_leaves=3), "partial order"),
+    "seen orders": partial_hierarchies(_shapes(["leaf"], max_leaves=3), "seen orders"),
+}
+"""Hierarchies in which every action is done once (so a leaf sequence is an action sequence)."""
+
+
+@pytest.mark.parametrize("kind", ONCE)
 @pytest.mark.parametrize("form", FORMS)
-@given(shapes, st.integers(0, 2**16))
-def test_next_steps_agree_with_brute_force_over_executions(form: str, shape: Shape, seed: int) -> None:
-    structure = build(shape)
-    htn = HTN("t", (structure,))
+@settings(deadline=None)
+@given(data=st.data(), seed=st.integers(0, 2**16))
+def test_next_steps_agree_with_brute_force_over_executions(
+    form: str, kind: str, data: st.DataObject, seed: int
+) -> None:
+    htn = data.draw(ONCE[kind], label="htn")
     model = ProgressModel(htn, smoothing=1.0)
 
     def probability(sequence: tuple[tuple[str, int], ...]) -> float:  # step by step from the model's choices
@@ -313,7 +538,7 @@ def test_next_steps_agree_with_brute_force_over_executions(form: str, shape: Sha
             state = outcome[1]  # type: ignore[assignment]
         return p * model.outcomes(state).get(END, (0.0, None))[0]
 
-    executions = list(iter_orderings(structure))
+    executions = list(iter_orderings(htn.roots[0])) if htn.top_level is None else top_level_walks(htn)
     masses = {s: probability(s) for s in executions}
     assert sum(masses.values()) == pytest.approx(1.0)  # the model is a distribution over executions
     truth = executions[int(np.random.default_rng(seed).integers(len(executions)))]

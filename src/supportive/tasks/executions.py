@@ -237,13 +237,13 @@ class Executions:
 
     def skip_closure(self, top: int) -> list[int]:
         """``top`` and the top-level states reached from it by skipping roots that may be performed as
-        nothing."""
-        seen, stack = [top], [top]
-        while stack:
-            for root, dst in self.top_out.get(stack.pop(), {}).items():
+        nothing, breadth first: fewer skips first (a root is begun from the first of these that lets it
+        begin, so it skips no more roots than it needs)."""
+        seen = [top]
+        for state in seen:  # grows as it goes: a queue
+            for root, dst in self.top_out.get(state, {}).items():
                 if self.nullables[self.root_nodes[root]] and dst not in seen:
                     seen.append(dst)
-                    stack.append(dst)
         return seen
 
     # ------------------------------------------------------------------ runs
