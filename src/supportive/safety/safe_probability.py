@@ -38,7 +38,7 @@ class SafetyEstimate:
     >>> from supportive.worlds.household import MapDistances, parse_map
     >>> priors = ActionPriors.from_experts(MapDistances(parse_map("#####\\n#B..#\\n#####\\n")), hyperprior=1.0)
     >>> estimate = SafetyEstimate(priors)
-    >>> estimate.update((1, 3), "west")
+    >>> estimate.observe((1, 3), "west")
     0.6153846153846154
     """
 
