@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from supportive.experiments import registry
 from supportive.experiments.plotting import PNG_SIGNATURE
 
 CliRunner = Callable[[list[str]], tuple[int, str, str]]
@@ -45,13 +46,27 @@ def test_small_run_writes_metrics_report_and_plots(
     assert (directory / "edges.png").read_bytes()[:8] == PNG_SIGNATURE
 
 
-def test_all_writes_one_directory_per_experiment_and_the_summary_table(tmp_path: Path, cli: CliRunner) -> None:
+QUICK = ("caregiver", "edge-reduction", "transfer")
+"""Three experiments that run in seconds: the registry ``all`` runs over in the test below."""
+
+
+def test_all_writes_one_directory_per_experiment_and_the_summary_table(
+    tmp_path: Path, cli: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``all`` over a registry of three quick experiments: every experiment's small run is tested in its own
+    module, and every registered experiment's findings in the summary are checked against its recorded full
+    run (tests/test_docs_numbers.py), so running them all again here would test nothing more (it took 50 s)."""
+    assert set(QUICK) < set(registry.names())
+    monkeypatch.setattr(registry, "_registry", {name: registry.get(name) for name in QUICK})
     code, out, _ = cli(["reproduce", "all", "--trials", "2", "-o", str(tmp_path)])
     assert code == 0 and "summary.md" in out
-    assert (tmp_path / "edge-reduction" / "metrics.json").is_file()
+    assert sorted(p.name for p in tmp_path.iterdir() if p.is_dir()) == list(QUICK)
+    for name in QUICK:
+        assert (tmp_path / name / "metrics.json").is_file() and f"{name}: 2 trials" in out
     summary = (tmp_path / "summary.md").read_text()
     document = json.loads((tmp_path / "summary.json").read_text())
-    assert [e["experiment"] for e in document["experiments"]] == sorted(e["experiment"] for e in document["experiments"])
+    assert [e["experiment"] for e in document["experiments"]] == list(QUICK)
+    assert document["trials"] == dict.fromkeys(QUICK, 2)
     for entry in document["experiments"]:
         assert entry["findings"], entry["experiment"]
         assert f"| {entry['experiment']} | {entry['reference']} |" in summary
