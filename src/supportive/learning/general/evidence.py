@@ -7,10 +7,6 @@ Two claims a hierarchy makes need evidence from a few demonstrations:
   when it is seen consistently and either (a) some other step is consistently between the two (it belongs to
   a longer consistently ordered run: ``witnessed``) or (b) at least ``order_support`` demonstrations show
   both (two steps of free relative order come in one order every time with chance ``2^(1-m)``).
-* **x before y despite slips.** When a few demonstrations do y first, the others may still agree on x before
-  y: the order is *agreed* when a pair of free relative order would split so unevenly with chance below
-  ``evidence`` (two-sided binomial test: at most ``r`` of ``n`` the other way round, ``2 P[Bin(n, 1/2) <= r]``).
-  The demonstrations that reverse an agreed order are the candidates for slips (:mod:`.deviations`).
 * **S is one subtask** (its steps are never interleaved with others). Steps outside S that are seen both
   before and after it (*free* steps) could have been performed in the middle of it; that none ever was is
   the evidence. Were free steps placed at random among the gaps of S, a demonstration with ``s`` steps of S
@@ -27,17 +23,14 @@ from collections.abc import Sequence
 
 import numpy as np
 import numpy.typing as npt
-from scipy.stats import binom
 
 __all__ = [
-    "agreed_orders",
     "as_matrix",
     "contiguity_chance",
     "established_precedences",
     "matrix_contiguity_chance",
     "pair_counts",
     "position_pair_counts",
-    "slip_allowance",
     "supported",
 ]
 
@@ -81,29 +74,6 @@ def established_precedences(before: IntMatrix, together: IntMatrix, order_suppor
     witnessed: BoolMatrix = consistent & ((as_float @ as_float) > 0)
     established: BoolMatrix = witnessed | (consistent & (together >= order_support))
     return established
-
-
-def slip_allowance(demonstrations: int, evidence: float) -> npt.NDArray[np.int64]:
-    """``allowance[n]``, for ``n`` up to ``demonstrations``: the most of ``n`` demonstrations that may reverse
-    an order the rest agree on (-1: none, the order is not agreed even when all ``n`` keep it)."""
-    n = np.arange(demonstrations + 1)
-    # binom.ppf(q) is the smallest r with P[Bin(n, 1/2) <= r] >= q: every r below it passes the test.
-    first_failing = binom.ppf(evidence / 2.0, n, 0.5)
-    allowance = np.minimum(np.nan_to_num(first_failing, nan=0.0).astype(np.int64) - 1, (n - 1) // 2)
-    result: npt.NDArray[np.int64] = np.maximum(allowance, -1)
-    return result
-
-
-def agreed_orders(
-    first: npt.NDArray[np.int64], second: npt.NDArray[np.int64], together: npt.NDArray[np.int64],
-    allowance: npt.NDArray[np.int64],
-) -> BoolMatrix:
-    """Elementwise: "x before y" is agreed despite some demonstrations reversing it (see the module
-    docstring), where ``first`` counts the demonstrations doing x first, ``second`` those doing y first and
-    ``together`` those doing both; ``allowance`` from :func:`slip_allowance`. Unanimous orders are not agreed
-    (nothing to set aside). For the whole matrix: ``agreed_orders(before, before.T, together, allowance)``."""
-    agreed: BoolMatrix = (second > 0) & (first > second) & (second <= allowance[together])
-    return agreed
 
 
 def contiguity_chance(arrays: Sequence[npt.NDArray[np.int64]], members: frozenset[int], size: int) -> float:

@@ -15,8 +15,9 @@ are noise):
   ``(1/2) log N`` is charged for each kind whose rate is not zero, as BIC charges a parameter), and where each
   landed (a uniform choice among the demonstration's positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
-  gain exceeds ``margin`` nats. Candidates are the steps that reverse an order the others agree on
-  (:func:`~supportive.learning.general.evidence.agreed_orders`), every performance of a step the others do not do,
+  gain exceeds ``margin`` nats. Candidates are the steps that reverse an order the others agree on (an order
+  that so few demonstrations reverse that the hierarchy learned without them, which predicts how often the pair
+  comes either way, makes it unlikely: a binomial test), every performance of a step the others do not do,
   and every demonstration that skips a step the others do; those the others would have to agree on are
   shown by at least ``support`` demonstrations (no slip can be told from a variant with fewer).
 
@@ -36,7 +37,6 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
-from scipy.stats import binom
 
 from supportive.learning.general.evidence import IntMatrix, as_matrix, pair_counts
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
@@ -366,6 +366,10 @@ class _Search:
         known = where >= 0
         chance = np.full((len(leaves), len(leaves)), 0.5)  # [i, j]: j before i, as the hierarchy predicts
         chance[np.ix_(where[known], where[known])] = predicted[np.ix_(known, known)].T
+        # scipy.stats is imported here, where the first pair is tested: it takes 0.3 s, which every command
+        # that learns paid at start-up, though small tasks never come this far.
+        from scipy.stats import binom
+
         tested = int(reversed_.sum())
         agreed = reversed_ & (
             binom.cdf(before.T, together, chance) < self.structure_settings.evidence / tested
