@@ -58,13 +58,19 @@ def caregiver_collisions() -> str:
     )
 
 
-def caregiver_beside() -> str:
-    """docs/caregiver.md: the reductions beside the thesis's, by novice and reading."""
+def _beside() -> tuple[dict[str, Any], str, str, dict[str, float], list[str], list[str], list[float]]:
+    """What the two beside-the-thesis passages start from: the recorded run, its default and last readings,
+    the thesis's reductions, the novices alike and apart under the readings, and the alike ones' reductions."""
     metrics = read_json(RESULTS / "caregiver.json")
     default, *_, last = metrics["readings"]
-    theirs = _thesis_reductions(metrics)
     alike, differ = _novice_groups(metrics)
     first = [v for n in alike for v in _reductions(metrics, n).values()]
+    return metrics, default, last, _thesis_reductions(metrics), alike, differ, first
+
+
+def caregiver_beside() -> str:
+    """docs/caregiver.md: the reductions beside the thesis's, by novice and reading."""
+    metrics, default, last, theirs, alike, differ, first = _beside()
     inside = [
         n
         for n in differ
@@ -107,11 +113,7 @@ def caregiver_beside() -> str:
 
 def caregiver_summary() -> str:
     """docs/experiments.md: the caregiver section's sentence of numbers."""
-    metrics = read_json(RESULTS / "caregiver.json")
-    default, *_, last = metrics["readings"]
-    theirs = _thesis_reductions(metrics)
-    alike, differ = _novice_groups(metrics)
-    first = [v for n in alike for v in _reductions(metrics, n).values()]
+    metrics, default, last, theirs, alike, differ, first = _beside()
     return (
         f"damage falls by {span(first, 0, ' %')} for the {number(len(alike))} most random novices under every reading (thesis "
         f"{' / '.join(f'{theirs[n]:.0f}' for n in alike)} %); for the more goal-directed ones the reading decides — "
