@@ -110,7 +110,6 @@ docs-results: $(VENV)/.dev
 	cp out/reproduce/generalisation/run.json docs/results/generalisation-run.json
 	cp out/reproduce/learner-settings/metrics.json docs/results/learner-settings.json
 	cp out/reproduce/learner-settings/run.json docs/results/learner-settings-run.json
-	$(BIN)/supportive reproduce mistake-detection --workers 2 --output out/reproduce/mistake-detection
 	cp out/reproduce/mistake-detection/metrics.json docs/results/mistake-detection.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
 	mv out/captaincook.json docs/results/captaincook.json
