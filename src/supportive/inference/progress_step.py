@@ -10,7 +10,7 @@ evidence moves it:
   that comes after next, as the model weighs the two steps (:meth:`ProgressStep.skips`; where nothing comes
   after next, the step is on-script). Finished stays finished (or, with ``restart``, starts again). The
   moment's events are then scored under the action of each state's subgoal (finished and not-yet-started
-  states: the mean over the actions). The off-script mass is kept apart so the belief can say how likely it
+  states: the mean over the leaves, an action done twice counted twice). The off-script mass is kept apart so the belief can say how likely it
   is that the step was off-script.
 * **One completed action** (:meth:`ProgressStep.act`): on-script (``1 - slip``) the belief moves to the states
   that action leads to; off-script (``slip``, spread evenly over the actions and the end) each state
@@ -159,7 +159,7 @@ class ProgressStep:
 
     def slot(self, state: State) -> int:
         """Which entry of a moment's scores weighs ``state``: its subgoal's leaf while one is under way, else
-        :attr:`n_leaves` (the mean over the actions)."""
+        :attr:`n_leaves` (the mean over the leaves, an action done twice counted twice)."""
         return state.last if state is not None and state.last >= 0 else self.n_leaves
 
     def vectors(self) -> VectorMasses | None:
