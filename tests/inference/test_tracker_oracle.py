@@ -45,6 +45,7 @@ from supportive.inference import (
     ProgressHMM,
 )
 from supportive.learning.distribution import END, ProgressModel
+from supportive.learning.general.top_order import seen_top_level
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import (
     HTN,
@@ -123,24 +124,6 @@ def partial_order(n: int, before: set[tuple[int, int]], required: frozenset[int]
     return TopLevel((0,), terminal, tuple(sorted(edges)), free=frozenset(range(n)) - required)
 
 
-def seen_orders(orders: list[list[int]]) -> TopLevel:
-    """The top level of exactly the orders of roots seen (the strict learner's, and the general learner's when
-    a partial order would have too many states): its states are the sets of roots done, each order a path
-    from the empty set to the set it ends in."""
-    number: dict[frozenset[int], int] = {frozenset(): 0}
-    edges: set[tuple[int, int, int]] = set()
-    terminal: set[int] = set()
-    for order in orders:
-        done: frozenset[int] = frozenset()
-        for root in order:
-            after = done | {root}
-            number.setdefault(after, len(number))
-            edges.add((number[done], root, number[after]))
-            done = after
-        terminal.add(number[done])
-    return TopLevel((0,), tuple(sorted(terminal)), tuple(sorted(edges)))
-
-
 @st.composite
 def partial_hierarchies(draw: st.DrawFn, shape: st.SearchStrategy[Shape], top: str, *, roots: int = 3) -> HTN:
     """A partial hierarchy: two to ``roots`` roots, each a drawn shape (numbered on from the previous root's
@@ -150,7 +133,7 @@ def partial_hierarchies(draw: st.DrawFn, shape: st.SearchStrategy[Shape], top: s
 
     ``top="partial order"``: the general learner's (:func:`partial_order`) over a random partial order of the
     roots, some roots optional. ``top="seen orders"``: the top level of one to three random orders of the
-    roots (:func:`seen_orders`), every root required (the strict learner makes no optional nodes; ``shape``
+    roots (:func:`~supportive.learning.general.top_order.seen_top_level`), every root required (the strict learner makes no optional nodes; ``shape``
     should draw none, see :func:`test_a_top_level_of_seen_orders_with_an_optional_root_loses_walks`)."""
     names: itertools.count[int] = itertools.count()
     done: list[ActionNode] = []
@@ -162,7 +145,7 @@ def partial_hierarchies(draw: st.DrawFn, shape: st.SearchStrategy[Shape], top: s
         before = {(order[i], order[j]) for i in range(n) for j in range(i + 1, n) if draw(st.booleans())}
         top_level = partial_order(n, before, frozenset(r for r, node in enumerate(nodes) if not node.optional))
     else:
-        top_level = seen_orders(draw(st.lists(st.permutations(range(n)), min_size=1, max_size=3)))
+        top_level = seen_top_level(range(n), draw(st.lists(st.permutations(range(n)), min_size=1, max_size=3)))
     if draw(st.booleans()):
         counts = st.integers(0, 3)
         first = tuple(draw(st.lists(counts, min_size=n, max_size=n)))
@@ -504,7 +487,7 @@ def test_a_top_level_of_seen_orders_with_an_optional_root_loses_walks() -> None:
         ChainNode((ActionNode("x1"), ActionNode("x2"))),
         ChainNode((ActionNode("x3"), ActionNode("x4")), optional=True),
     )
-    htn = HTN("t", roots, seen_orders([[0, 1], [0, 1, 2], [2, 1, 0]]))
+    htn = HTN("t", roots, seen_top_level(range(3), [[0, 1], [0, 1, 2], [2, 1, 0]]))
     assert ("x1", "x2", "x0") in {tuple(a for a, _ in w) for w in top_level_walks(htn)}
     assert htn.admits(["x1", "x2", "x0"])
 

@@ -10,6 +10,7 @@ import pytest
 
 from supportive.experiments.captaincook.recipes import captaincook_report, compare_recipe
 from supportive.io.captaincook import Recipe, load_captaincook
+from supportive.learning.general.top_order import seen_top_level
 from supportive.learning.learner import learn
 from supportive.learning.precedence import implied_precedences, precedence_scores
 from supportive.tasks.htn import (
@@ -130,16 +131,7 @@ def _random_tree(leaves: Sequence[Leaf], rng: np.random.Generator) -> Node:
 def _random_top_level(n_roots: int, rng: np.random.Generator) -> TopLevel:
     orders = list(itertools.permutations(range(n_roots)))
     chosen = [orders[i] for i in rng.choice(len(orders), size=int(rng.integers(1, 5)), replace=True)]
-    state: dict[frozenset[int], int] = {frozenset(): 0}
-    edges: set[tuple[int, int, int]] = set()
-    for order in chosen:
-        done: frozenset[int] = frozenset()
-        for root in order:
-            after = done | {root}
-            state.setdefault(after, len(state))
-            edges.add((state[done], root, state[after]))
-            done = after
-    return TopLevel((0,), (state[frozenset(range(n_roots))],), tuple(sorted(edges)))
+    return seen_top_level(range(n_roots), chosen)  # every order is of all the roots: one terminal state
 
 
 def test_random_hierarchies_match_brute_force(rng: np.random.Generator) -> None:
