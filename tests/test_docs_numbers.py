@@ -137,7 +137,7 @@ def test_the_recorded_summary_covers_every_experiment_from_its_recording() -> No
 
 def test_the_recorded_run_times_belong_to_the_recorded_runs() -> None:
     """Each ``NAME-run.json`` the docs quote a wall time from is the ``run.json`` of the run recorded beside it."""
-    for name in runs._TIMED:
+    for name in runs.TIMED:
         run, metrics = _recorded(f"{name}-run.json"), _recorded(RECORDED[name])
         assert isinstance(run, dict) and isinstance(metrics, dict)
         assert (run["experiment"], run["trials"], run["seed"]) == (name, metrics["trials"], metrics["seed"])
@@ -164,8 +164,8 @@ def test_the_caregiver_prose_holds_on_the_recorded_run() -> None:
     names less than either shorter memory does (the *Deviation: memory* paragraph's claim)."""
     metrics = _recorded("caregiver.json")
     assert isinstance(metrics, dict)
-    _, differ = caregiver._novice_groups(metrics)
-    reductions = caregiver._reductions(metrics, differ[0])
+    _, differ = caregiver.novice_groups(metrics)
+    reductions = caregiver.reductions(metrics, differ[0])
     assert reductions["trajectory"] < min(reductions["memory"], reductions["per-step"])
 
 

@@ -13,16 +13,16 @@ from .runs import digest
 _CG = "docs/results/caregiver.json (supportive reproduce caregiver)"
 
 
-def _reductions(metrics: Mapping[str, Any], novice: str) -> dict[str, float]:
+def reductions(metrics: Mapping[str, Any], novice: str) -> dict[str, float]:
     return {r: metrics["damage_reduction_percent"][novice][r]["percent"] for r in metrics["readings"]}
 
 
-def _novice_groups(metrics: Mapping[str, Any]) -> tuple[list[str], list[str]]:
+def novice_groups(metrics: Mapping[str, Any]) -> tuple[list[str], list[str]]:
     """The most random novices, for whom the reading changes the reduction by at most 5 points, and the rest."""
     novices = sorted(metrics["novice_types"], key=lambda n: -metrics["novice_types"][n])
     alike = 0
     for novice in novices:
-        values = _reductions(metrics, novice).values()
+        values = reductions(metrics, novice).values()
         if max(values) - min(values) > 5:
             break
         alike += 1
@@ -63,8 +63,8 @@ def _beside() -> tuple[dict[str, Any], str, str, dict[str, float], list[str], li
     the thesis's reductions, the novices alike and apart under the readings, and the alike ones' reductions."""
     metrics = read_json(RESULTS / "caregiver.json")
     default, *_, last = metrics["readings"]
-    alike, differ = _novice_groups(metrics)
-    first = [v for n in alike for v in _reductions(metrics, n).values()]
+    alike, differ = novice_groups(metrics)
+    first = [v for n in alike for v in reductions(metrics, n).values()]
     return metrics, default, last, _thesis_reductions(metrics), alike, differ, first
 
 
@@ -78,9 +78,9 @@ def caregiver_beside() -> str:
         <= theirs[n]
         <= metrics["damage_reduction_percent"][n][last]["high"]
     ]
-    over = [n for n in metrics["novice_types"] if _reductions(metrics, n)[last] > 66]
+    over = [n for n in metrics["novice_types"] if reductions(metrics, n)[last] > 66]
     hardest = min(metrics["novice_types"], key=lambda n: metrics["novice_types"][n])
-    reached = max(_reductions(metrics, hardest).values()) >= theirs[hardest]
+    reached = max(reductions(metrics, hardest).values()) >= theirs[hardest]
     damage = metrics["measures"]["damage_normalized"][hardest]["without"]["mean"] * metrics["max_damage"]
     return (
         f"**Beside the thesis.** For the {number(len(alike))} most random novice{'s' if len(alike) > 1 else ''} the caregiver "
@@ -88,9 +88,9 @@ def caregiver_beside() -> str:
         f"{' / '.join(f'{theirs[n]:.0f}' for n in alike)} %). For the more goal-directed novices the reading decides: "
         f"with P(safe) over the whole trajectory (the default, Eq. 3.2 as printed) the estimate saturates — a novice "
         f"whose moves are mostly expert-like is judged safe almost for good — and damage falls by only "
-        f"{' / '.join(f'{_reductions(metrics, n)[default]:.0f}' for n in differ)} % (thesis "
+        f"{' / '.join(f'{reductions(metrics, n)[default]:.0f}' for n in differ)} % (thesis "
         f"{' / '.join(f'{theirs[n]:.0f}' for n in differ)} %); with the `{last}` reading it falls by "
-        f"{' / '.join(f'{_reductions(metrics, n)[last]:.0f}' for n in differ)} %"
+        f"{' / '.join(f'{reductions(metrics, n)[last]:.0f}' for n in differ)} %"
         + (
             f", the thesis's value inside the CI for the {words([_short(n) for n in inside])} novice"
             + ("s" if len(inside) > 1 else "")
@@ -117,9 +117,9 @@ def caregiver_summary() -> str:
     return (
         f"damage falls by {span(first, 0, ' %')} for the {number(len(alike))} most random novices under every reading (thesis "
         f"{' / '.join(f'{theirs[n]:.0f}' for n in alike)} %); for the more goal-directed ones the reading decides — "
-        f"{' / '.join(f'{_reductions(metrics, n)[default]:.0f}' for n in differ)} % for the "
+        f"{' / '.join(f'{reductions(metrics, n)[default]:.0f}' for n in differ)} % for the "
         f"{words([_short(n) for n in differ])} novices with Eq. 3.2 over the whole trajectory, "
-        f"{' / '.join(f'{_reductions(metrics, n)[last]:.0f}' for n in differ)} % with the `{last}` reading (thesis "
+        f"{' / '.join(f'{reductions(metrics, n)[last]:.0f}' for n in differ)} % with the `{last}` reading (thesis "
         f"{' / '.join(f'{theirs[n]:.0f}' for n in differ)} %).\n"
     )
 
@@ -127,9 +127,9 @@ def caregiver_summary() -> str:
 def caregiver_memory() -> str:
     """docs/caregiver.md (inline): what the reading does to the goal-directed novices in the recorded run."""
     metrics = read_json(RESULTS / "caregiver.json")
-    _, differ = _novice_groups(metrics)
+    _, differ = novice_groups(metrics)
     novice = differ[0]
-    values = _reductions(metrics, novice)
+    values = reductions(metrics, novice)
     return (
         f"in the recorded run, {metrics['episodes']} episodes on the {metrics['map']} map, the "
         f"{_short(novice)} novice's damage fell by {values['trajectory']:.0f} % with Eq. 3.2 over the whole "

@@ -39,13 +39,13 @@ def run_time(name: str) -> Block:
     return Block(f"docs/results/{name}-run.json (supportive reproduce {name}: run.json)", make, inline=True)
 
 
-_TIMED = ("learner-settings", "generalisation", "support-tamp", "active-learning")
+TIMED = ("learner-settings", "generalisation", "support-tamp", "active-learning")
 """The experiments whose recorded run kept its ``run.json`` (``docs/results/NAME-run.json``)."""
 
 
 def recorded_run_times() -> str:
     """docs/experiments.md: the wall time of each recorded run that kept its ``run.json``."""
-    runs = {name: _run(name) for name in _TIMED}
+    runs = {name: _run(name) for name in TIMED}
     backends = sorted({run["backend"] for run in runs.values()})
     parts = [
         f"{name} {_how_long(run['seconds'])} ({run['trials']} trials)"
