@@ -11,7 +11,7 @@ import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from supportive.tasks.executions import Executions
+from supportive.tasks.executions import Executions, Step
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
@@ -119,3 +119,38 @@ def test_partial_hierarchy_follows_its_top_level() -> None:
     assert htn.admits(["a", "b"]) and htn.admits(["a", "b", "c"])
     assert not htn.admits(["b", "a"]) and not htn.admits(["a"])
     assert htn.count_orderings() == 2
+
+
+def moves_by_brute_force(htn: HTN, steps: list[Step]) -> list[int]:
+    """Positions whose step, moved anywhere else, makes ``steps`` admitted: every move tried."""
+    admits = htn.admits_leaves if steps and isinstance(steps[0], tuple) else htn.admits
+    out = []
+    for i, step in enumerate(steps):
+        rest = steps[:i] + steps[i + 1 :]
+        if any(admits([*rest[:j], step, *rest[j:]]) for j in range(len(rest) + 1) if j != i):  # type: ignore[arg-type]
+            out.append(i)
+    return out
+
+
+@given(structures(), st.data())
+def test_single_moves_agree_with_trying_every_move(structure: Node, data: st.DataObject) -> None:
+    htn = HTN("t", (structure,))
+    valid = data.draw(st.sampled_from(list(iter_orderings(structure))))
+    leaves = [*valid, *data.draw(st.lists(st.sampled_from(structure.leaves), max_size=1))]  # maybe one step more
+    for _ in range(data.draw(st.integers(0, 2)) if leaves else 0):  # and zero to two steps moved
+        step = leaves.pop(data.draw(st.integers(0, len(leaves) - 1)))
+        leaves.insert(data.draw(st.integers(0, len(leaves))), step)
+    for steps in (list(leaves), [action for action, _ in leaves]):
+        expected = moves_by_brute_force(htn, steps)
+        assert list(htn.executions.single_moves(steps, range(len(steps)))) == expected
+        assert list(htn.executions.single_moves(steps, reversed(range(len(steps))))) == expected[::-1]
+
+
+def test_single_moves_follow_the_top_level() -> None:
+    from supportive.tasks.htn import TopLevel
+
+    top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 2), (2, 2, 3)))
+    htn = HTN("t", (ActionNode("a"), ActionNode("b"), ActionNode("c")), top)
+    assert list(htn.executions.single_moves(["b", "c", "a"], range(3))) == [2]  # a to the front
+    assert list(htn.executions.single_moves(["b", "a", "c"], range(3))) == [0, 1]  # a swap: either step
+    assert list(htn.executions.single_moves(["c", "b", "a"], range(3))) == []  # two steps out of place

@@ -120,10 +120,9 @@ def _moves_needed(htn: HTN, actions: Sequence[str]) -> int:
     any when the cover is empty — makes it admitted, else at least two."""
     steps = list(actions)
     cover = _cover(htn, steps)
-    for i in cover if len(cover) == 1 else range(len(steps)) if not cover else ():
-        rest = steps[:i] + steps[i + 1 :]
-        if any(htn.admits([*rest[:j], steps[i], *rest[j:]]) for j in range(len(rest) + 1) if j != i):
-            return 1
+    tried = cover if len(cover) == 1 else range(len(steps)) if not cover else ()
+    if next(htn.executions.single_moves(steps, tried), None) is not None:
+        return 1
     return max(len(cover), 2)
 
 

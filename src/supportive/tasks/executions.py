@@ -21,13 +21,16 @@ labellings without changing which action sequences are admitted.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
 from supportive.tasks.nodes import ActionNode, ChainNode, Leaf, Node, TopLevel, nullable, shape
 
-__all__ = ["Executions", "Hierarchy", "Progress", "Table"]
+__all__ = ["Executions", "Hierarchy", "Progress", "Step", "Table"]
+
+Step = str | Leaf
+"""A step of a run: an action id, or a leaf (``("pick_leg", 3)``)."""
 
 
 class Hierarchy(Protocol):
@@ -247,37 +250,95 @@ class Executions:
         return seen
 
     # ------------------------------------------------------------------ runs
-    def run_leaves(self, leaves: Iterable[Leaf]) -> tuple[Progress, ...]:
-        """The states after performing ``leaves`` in order (empty when the sequence is not a valid prefix)."""
-        states = self.initial()
-        for leaf in leaves:
-            index = self.index.get(leaf)
+    def advance(self, states: Iterable[Progress], step: Step) -> tuple[Progress, ...]:
+        """The states after performing ``step`` from any of ``states`` (empty when it is allowed from none):
+        a leaf, or an action id (then any allowed leaf of that action)."""
+        following: dict[Progress, None] = {}
+        if isinstance(step, tuple):
+            index = self.index.get(step)
             if index is None:
                 return ()
-            states = tuple(
-                dict.fromkeys(m[index] for m in (self.moves(s) for s in states) if index in m)
-            )
-            if not states:
-                return ()
-        return states
+            for state in states:
+                nxt = self.moves(state).get(index)
+                if nxt is not None:
+                    following[nxt] = None
+            return tuple(following)
+        candidates = self._by_action.get(step, ())
+        for state in states:
+            allowed = self.moves(state, symmetric=True)
+            for index in candidates:
+                nxt = allowed.get(index)
+                if nxt is not None:
+                    following[nxt] = None
+        return tuple(following)
+
+    def run_leaves(self, leaves: Iterable[Leaf]) -> tuple[Progress, ...]:
+        """The states after performing ``leaves`` in order (empty when the sequence is not a valid prefix)."""
+        return self._run(self.initial(), leaves)
 
     def run(self, actions: Iterable[str]) -> tuple[Progress, ...]:
         """The states after performing ``actions`` (action ids) in order, each step any allowed leaf of its
         action (empty when no execution starts this way)."""
-        states = self.initial()
-        for action in actions:
-            candidates = self._by_action.get(action, ())
-            following: dict[Progress, None] = {}
-            for state in states:
-                allowed = self.moves(state, symmetric=True)
-                for index in candidates:
-                    nxt = allowed.get(index)
-                    if nxt is not None:
-                        following[nxt] = None
-            states = tuple(following)
+        return self._run(self.initial(), actions)
+
+    def _run(self, states: tuple[Progress, ...], steps: Iterable[Step]) -> tuple[Progress, ...]:
+        for step in steps:
+            states = self.advance(states, step)
             if not states:
                 return ()
         return states
+
+    def single_moves(self, steps: Sequence[Step], positions: Iterable[int]) -> Iterator[int]:
+        """The positions among ``positions`` whose step, moved to another place of ``steps``, makes a whole
+        execution the hierarchy admits (lazily, in the order given).
+
+        Exact, and far cheaper than trying every move: the runs after each prefix are shared, and a state found
+        unable to finish what is left of ``steps`` is remembered as such for every later move (a run follows
+        every state it may be in, so when none of them finishes, none can).
+
+        Args:
+            steps: Leaves or action ids.
+            positions: Which steps to try moving.
+        """
+        n = len(steps)
+        dead: set[tuple[Progress, int, int]] = set()  # (state, first step left, step left out or -1)
+        prefixes = [self.initial()]  # runs of steps[:k]
+        for step in steps:
+            prefixes.append(self.advance(prefixes[-1], step) if prefixes[-1] else ())
+
+        def finishes(states: tuple[Progress, ...], start: int, gap: int) -> bool:
+            visited: list[tuple[Progress, int, int]] = []
+            for k in range(start, n + 1):
+                if k == gap:
+                    continue
+                key_gap = gap if k < gap else -1
+                states = tuple(s for s in states if (s, k, key_gap) not in dead)
+                visited.extend((s, k, key_gap) for s in states)
+                if not states:
+                    break
+                if k == n:
+                    if any(self.can_finish(s) for s in states):
+                        return True
+                    break
+                states = self.advance(states, steps[k])
+            dead.update(visited)
+            return False
+
+        for i in positions:
+            moved = steps[i]
+            for j in range(i):  # to before steps[j]
+                if finishes(self.advance(prefixes[j], moved), j, i):
+                    yield i
+                    break
+            else:
+                states = prefixes[i]
+                for j in range(i + 1, n):  # to after steps[j]
+                    states = self.advance(states, steps[j])
+                    if not states:
+                        break
+                    if finishes(self.advance(states, moved), j + 1, -1):
+                        yield i
+                        break
 
     def accepts_leaves(self, leaves: Iterable[Leaf]) -> bool:
         """True when ``leaves`` is a whole execution the hierarchy admits."""

@@ -332,12 +332,9 @@ class _Search:
             leaves = [leaf for _, leaf in cleaned[d]]
             if htn.admits_leaves(leaves):
                 continue
-            for i, (position, leaf) in enumerate(cleaned[d]):
-                rest = leaves[:i] + leaves[i + 1 :]
-                if any(
-                    htn.admits_leaves([*rest[:j], leaf, *rest[j:]]) for j in range(len(rest) + 1) if j != i
-                ):
-                    out.append(frozenset({Deviation(d, position, leaf, "out of order")}))
+            for i in htn.executions.single_moves(leaves, range(len(leaves))):
+                position, leaf = cleaned[d][i]
+                out.append(frozenset({Deviation(d, position, leaf, "out of order")}))
         return out
 
     def _moved(
