@@ -274,14 +274,15 @@ class Executions:
 
     def run_leaves(self, leaves: Iterable[Leaf]) -> tuple[Progress, ...]:
         """The states after performing ``leaves`` in order (empty when the sequence is not a valid prefix)."""
-        return self._run(self.initial(), leaves)
+        return self._run(leaves)
 
     def run(self, actions: Iterable[str]) -> tuple[Progress, ...]:
         """The states after performing ``actions`` (action ids) in order, each step any allowed leaf of its
         action (empty when no execution starts this way)."""
-        return self._run(self.initial(), actions)
+        return self._run(actions)
 
-    def _run(self, states: tuple[Progress, ...], steps: Iterable[Step]) -> tuple[Progress, ...]:
+    def _run(self, steps: Iterable[Step]) -> tuple[Progress, ...]:
+        states = self.initial()
         for step in steps:
             states = self.advance(states, step)
             if not states:

@@ -38,7 +38,7 @@ from typing import Literal
 
 import numpy as np
 
-from supportive.learning.general.evidence import IntMatrix, as_matrix, pair_counts
+from supportive.learning.general.evidence import IntMatrix, as_matrix, position_pair_counts
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
@@ -49,6 +49,9 @@ __all__ = ["KINDS", "Deviation", "NoiseEstimate", "NoiseSettings", "SlipResult",
 Kind = Literal["out of order", "repeated", "missing", "unknown"]
 KINDS: tuple[Kind, ...] = ("out of order", "repeated", "missing", "unknown")
 """The kinds of slip, in the order reports list them."""
+
+_Closure = tuple[frozenset[int], list[tuple[int, int]]]
+"""A robust closure's members and the ``(demonstration, step)`` found inside it once (:func:`_robust_closure`)."""
 
 _TAKEN_OUT = frozenset({"out of order", "repeated", "unknown"})
 _PUT_BACK = frozenset({"out of order", "missing"})
@@ -152,6 +155,29 @@ def find_slips(
     return _Search(labelled, structure, settings, modules).run()
 
 
+@dataclass(frozen=True)
+class _Steps:
+    """Demonstrations (positions and leaves) encoded once for the candidate searches: ``leaves`` sorted,
+    ``index`` of each, ``matrix[d, k]`` the id of demonstration ``d``'s k-th step (-1 after its end) and
+    ``at[d, i]`` where ``d`` does leaf ``i`` (-1: not at all; a leaf is done once in a demonstration)."""
+
+    leaves: list[Leaf]
+    index: dict[Leaf, int]
+    matrix: IntMatrix
+    at: IntMatrix
+
+    @classmethod
+    def of(cls, demos: Sequence[Sequence[tuple[int, Leaf]]]) -> _Steps:
+        """The encoding of ``demos``."""
+        leaves = sorted({leaf for demo in demos for _, leaf in demo})
+        index = {leaf: i for i, leaf in enumerate(leaves)}
+        matrix = as_matrix([[index[leaf] for _, leaf in demo] for demo in demos])
+        at = np.full((len(demos), len(leaves)), -1, dtype=np.int64)
+        rows, places = np.nonzero(matrix >= 0)
+        at[rows, matrix[rows, places]] = places
+        return cls(leaves, index, matrix, at)
+
+
 class _Search:
     """Greedy search over sets of slips, scoring each set by refitting (see the module docstring)."""
 
@@ -170,6 +196,7 @@ class _Search:
         self._scores: dict[frozenset[Deviation], float] = {}
         self._fits: dict[frozenset[Deviation], FittedStructure] = {}
         self._found: dict[frozenset[Deviation], list[frozenset[Deviation]]] = {}
+        self._cleaned_by: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = {}
         self._orders: dict[object, int] = {}  # counted orders of top levels, shared by the readings scored
 
     # ------------------------------------------------------------------ search
@@ -277,16 +304,21 @@ class _Search:
         cleaned = self._cleaned_positions(slips)
         n = len(cleaned)
         need = self.structure_settings.support_needed
-        performers: dict[Leaf, list[tuple[int, int]]] = {}
-        for d, demo in enumerate(cleaned):
+        steps = _Steps.of(cleaned)
+        doers = dict(zip(steps.leaves, (steps.at >= 0).sum(axis=0).tolist(), strict=True))
+        rare = {leaf for leaf, k in doers.items() if n - k >= need and k < n - k}  # done by few
+        skipped = {leaf for leaf, k in doers.items() if k >= need and 0 < n - k < k}  # not done by few
+        performers: dict[Leaf, list[tuple[int, int]]] = {leaf: [] for leaf in rare | skipped}
+        for d, demo in enumerate(cleaned if performers else ()):
             for position, leaf in demo:
-                performers.setdefault(leaf, []).append((d, position))
+                if leaf in performers:
+                    performers[leaf].append((d, position))
         excused = {(d.demonstration, d.leaf) for d in slips if d.kind == "missing"}
         out: list[frozenset[Deviation]] = []
-        for leaf, where in sorted(performers.items()):
-            k = len({d for d, _ in where})
+        for leaf in sorted(performers):
             kind: Kind = "repeated" if leaf[1] > 1 else "unknown"
-            if n - k >= need and k < n - k:
+            if leaf in rare:
+                where = performers[leaf]
                 out.append(frozenset(Deviation(d, p, leaf, kind) for d, p in where))
                 if kind == "repeated":  # or another performance of it was the one done again
                     out.extend(
@@ -295,18 +327,18 @@ class _Search:
                         for p, other in cleaned[d]
                         if other[0] == leaf[0] and other != leaf
                     )
-            if k >= need and 0 < n - k < k:
-                doing = {d for d, _ in where}
+            if leaf in skipped:
+                doing = {d for d, _ in performers[leaf]}
                 skippers = [d for d in range(n) if d not in doing and (d, leaf) not in excused]
                 if skippers:
                     out.append(frozenset(Deviation(d, -1, leaf, "missing") for d in skippers))
-        reversing = self._moved(cleaned, slips)
+        reversing = self._moved(cleaned, steps, slips)
         reversal = [0.0] * n
         for rank, candidate in enumerate(reversing):  # the most telling step of each demonstration first
             (slip,) = candidate
             reversal[slip.demonstration] = max(reversal[slip.demonstration], float(len(reversing) - rank))
-        repairs = self._repairs(cleaned, _outliers(reversal) | _surprising(cleaned))
-        moved = list(dict.fromkeys(_interleave(repairs, reversing, self._inserted(cleaned))))
+        repairs = self._repairs(cleaned, _outliers(reversal) | _surprising(steps))
+        moved = list(dict.fromkeys(_interleave(repairs, reversing, self._inserted(cleaned, steps))))
         out.extend(moved[: self.settings.max_candidates])
         by_leaf: dict[Leaf, set[Deviation]] = {}  # the same step out of order in several demonstrations
         for candidate in repairs:
@@ -323,9 +355,9 @@ class _Search:
         follow one another unusually, :func:`_surprising`) an execution of the hierarchy learned from the
         others (when there are enough of those): a step moved into a subtask breaks it without reversing any
         order, and the hierarchy learned with it is loosened where the others' is not."""
-        core = [tuple(leaf for _, leaf in demo) for d, demo in enumerate(cleaned) if d not in odd]
-        if len(core) <= self.structure_settings.support_needed or not odd:
+        if not odd or len(cleaned) - len(odd) <= self.structure_settings.support_needed:
             return []
+        core = [tuple(leaf for _, leaf in demo) for d, demo in enumerate(cleaned) if d not in odd]
         htn = fit_structure(core, (), self.structure_settings, modules=self.modules).htn()
         out: list[frozenset[Deviation]] = []
         for d in sorted(odd):
@@ -338,7 +370,7 @@ class _Search:
         return out
 
     def _moved(
-        self, cleaned: list[list[tuple[int, Leaf]]], slips: frozenset[Deviation]
+        self, cleaned: list[list[tuple[int, Leaf]]], steps: _Steps, slips: frozenset[Deviation]
     ) -> list[frozenset[Deviation]]:
         """Single steps that reverse orders the other demonstrations agree on, the most telling first: each
         reversed order weighs one over the number of demonstrations reversing it (a step moved alone
@@ -351,10 +383,8 @@ class _Search:
         ``P[Bin(m, q) <= r]`` is below ``evidence`` over the number of orders so tested (Bonferroni: the
         chance that any free order of the task looks agreed is below ``evidence``). A free pair of a partial order is not a coin: two steps far apart in two
         interleaved chains come in the unusual order rarely, and as rarely as predicted is no evidence."""
-        leaves = sorted({leaf for demo in cleaned for _, leaf in demo})
-        index = {leaf: i for i, leaf in enumerate(leaves)}
-        sequences = [[index[leaf] for _, leaf in demo] for demo in cleaned]
-        before, together = pair_counts(sequences, list(range(len(leaves))))
+        leaves, index = steps.leaves, steps.index
+        before, together = position_pair_counts(steps.at)
         reversed_ = (before.T > 0) & (before > before.T) & (before >= self.structure_settings.support_needed)
         if not reversed_.any():
             return []
@@ -377,8 +407,8 @@ class _Search:
             agreed.T, 1.0 / np.maximum(before.T, 1), 0.0
         )  # [i, j]: j before i agreed, i first here
         ranked: list[tuple[float, int, int, Leaf]] = []
-        for d, sequence in enumerate(sequences):
-            order = np.asarray(sequence, dtype=np.int64)
+        for d, demo in enumerate(cleaned):
+            order = steps.matrix[d, : len(demo)]
             later = np.triu(np.ones((len(order), len(order)), dtype=bool), 1)
             reversed_here = np.where(later, weight[np.ix_(order, order)], 0.0)
             scores = reversed_here.sum(axis=0) + reversed_here.sum(axis=1)
@@ -388,7 +418,7 @@ class _Search:
         ranked.sort()
         return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
 
-    def _inserted(self, cleaned: list[list[tuple[int, Leaf]]]) -> list[frozenset[Deviation]]:
+    def _inserted(self, cleaned: list[list[tuple[int, Leaf]]], steps: _Steps) -> list[frozenset[Deviation]]:
         """Single steps that break a subtask the other demonstrations keep together (a step moved into a
         subtask reverses no order but breaks it), largest subtask first.
 
@@ -398,24 +428,20 @@ class _Search:
         step is the candidate, when the subtask is then kept together by at least that support of the
         others and the step is done outside it by as many."""
         need = self.structure_settings.support_needed
-        leaves = sorted({leaf for demo in cleaned for _, leaf in demo})
-        index = {leaf: i for i, leaf in enumerate(leaves)}
-        matrix = as_matrix([[index[leaf] for _, leaf in demo] for demo in cleaned])
-        performed = np.zeros((len(cleaned), len(leaves) + 1), dtype=bool)  # [d, i]: demonstration d does i
-        performed[np.arange(len(cleaned))[:, None], matrix] = True  # padding (-1) lands in the last column
-        doers = performed[:, :-1].sum(axis=0)
+        leaves, matrix, at = steps.leaves, steps.matrix, steps.at
+        performed = at >= 0
+        doers = performed.sum(axis=0)
         followed = matrix[:, 1:] >= 0
-        adjacent = Counter(
-            zip(matrix[:, :-1][followed].tolist(), matrix[:, 1:][followed].tolist(), strict=True)
-        )
+        codes, counts = np.unique(matrix[:, :-1][followed] * len(leaves) + matrix[:, 1:][followed], return_counts=True)
         found: dict[tuple[int, int], tuple[int, Leaf]] = {}
-        for pair in (p for p, count in adjacent.items() if count >= need):
-            members, intruders = _robust_closure(frozenset(pair), matrix)
+        closures: dict[frozenset[int], _Closure] = {}
+        for code in codes[counts >= need].tolist():
+            pair = divmod(code, len(leaves))
+            members, intruders = _robust_closure(frozenset(pair), at, closures)
             kept = int((performed[:, sorted(members)].sum(axis=1) >= 2).sum())
             for d, i in intruders:
                 if kept - 1 >= need and doers[i] - 1 >= need:
-                    where = int(np.flatnonzero(matrix[d] == i)[0])
-                    position = cleaned[d][where][0]
+                    position = cleaned[d][at[d, i]][0]
                     found[(d, position)] = max(
                         found.get((d, position), (0, leaves[i])), (len(members), leaves[i])
                     )
@@ -425,14 +451,25 @@ class _Search:
     # ------------------------------------------------------------------ scoring
     def _cleaned_positions(self, slips: frozenset[Deviation]) -> list[list[tuple[int, Leaf]]]:
         out_at = {(d.demonstration, d.position) for d in slips if d.kind in _TAKEN_OUT}
+        touched = {d for d, _ in out_at}
         return [
             [(p, leaf) for p, leaf in enumerate(demo) if (d, p) not in out_at]
+            if d in touched
+            else list(enumerate(demo))
             for d, demo in enumerate(self.labelled)
         ]
 
     def _cleaned(self, slips: frozenset[Deviation]) -> list[tuple[Leaf, ...]]:
         """The demonstrations with the slips taken out; where a repeated performance was, the performances
         left of that action are numbered again in order (the one done again may have been the first)."""
+        cleaned = self._cleaned_by.get(slips)
+        if cleaned is None:
+            cleaned = self._cleaned_by[slips] = self._clean(slips)
+        return cleaned
+
+    def _clean(self, slips: frozenset[Deviation]) -> list[tuple[Leaf, ...]]:
+        if not slips:
+            return list(self.labelled)
         renumber: dict[int, set[str]] = {}
         for slip in slips:
             if slip.kind == "repeated":
@@ -536,14 +573,17 @@ class _Search:
         return self.settings.rate * self.settings.weight, (1.0 - self.settings.rate) * self.settings.weight
 
 
-def _surprising(demos: Sequence[Sequence[tuple[int, Leaf]]]) -> set[int]:
+def _surprising(steps: _Steps) -> set[int]:
     """The demonstrations whose steps follow one another unusually: the mean surprisal of their transitions
     (``-log`` of how often the others go from each step to the next, add-one smoothed) is an outlier
     (:func:`_outliers`) among all demonstrations'."""
-    leaves = sorted({leaf for demo in demos for _, leaf in demo})
-    index = {leaf: i for i, leaf in enumerate(leaves)}
+    leaves = steps.leaves
     start, end = len(leaves), len(leaves) + 1  # the ends of every demonstration, as two more steps
-    matrix = as_matrix([[start, *(index[leaf] for _, leaf in demo), end] for demo in demos])
+    n, longest = steps.matrix.shape
+    matrix = np.full((n, longest + 2), -1, dtype=np.int64)
+    matrix[:, 0] = start
+    matrix[:, 1:-1] = steps.matrix
+    matrix[np.arange(n), (steps.matrix >= 0).sum(axis=1) + 1] = end
     before, after = matrix[:, :-1], matrix[:, 1:]
     done = after >= 0  # a transition, not padding
     width = len(leaves) + 2
@@ -571,26 +611,39 @@ def _outliers(scores: Sequence[float]) -> set[int]:
     return {d for d, score in enumerate(scores) if score > fence}
 
 
-def _robust_closure(start: frozenset[int], matrix: IntMatrix) -> tuple[frozenset[int], list[tuple[int, int]]]:
-    """The smallest set of step ids holding ``start`` whose members are contiguous in every demonstration (a
-    row of ``matrix``, :func:`~supportive.learning.general.evidence.as_matrix`) but for steps found inside its span in
-    one demonstration only; those ``(demonstration, step)`` are returned apart."""
+def _robust_closure(
+    start: frozenset[int], at: IntMatrix, known: dict[frozenset[int], _Closure]
+) -> _Closure:
+    """The smallest set of step ids holding ``start`` whose members are contiguous in every demonstration but
+    for steps found inside its span in one demonstration only; those ``(demonstration, step)`` are returned
+    apart, by step. ``at[d, i]``: where demonstration ``d`` does step ``i`` (-1: not at all); ``known``: the
+    closures of sets met before (the closure of every set met on the way is the same)."""
     members = set(start)
-    columns = np.arange(matrix.shape[1])
+    met: list[frozenset[int]] = []
+    member = np.zeros(at.shape[1], dtype=bool)
+    beyond = np.iinfo(np.int64).max
     while True:
-        member = np.isin(matrix, list(members))
-        spanned = member.sum(axis=1) >= 2
-        first = member.argmax(axis=1)
-        last = matrix.shape[1] - 1 - member[:, ::-1].argmax(axis=1)
-        inside = (columns >= first[:, None]) & (columns <= last[:, None]) & ~member & spanned[:, None]
-        rows, places = np.nonzero(inside)
-        steps = matrix[rows, places]
-        counts = np.bincount(steps)
-        joining = set(np.flatnonzero(counts > 1).tolist())
-        if not joining:
-            found = sorted(zip(steps.tolist(), rows.tolist(), strict=True))  # by step, as the leaves sort
-            return frozenset(members), [(d, i) for i, d in found]
-        members |= joining
+        key = frozenset(members)
+        found = known.get(key)
+        if found is not None:
+            break
+        met.append(key)
+        member[list(members)] = True
+        where = at[:, member]
+        done = where >= 0
+        spanned = done.sum(axis=1) >= 2
+        first = np.where(done, where, beyond).min(axis=1)
+        last = where.max(axis=1)
+        inside = (at > first[:, None]) & (at < last[:, None]) & spanned[:, None] & ~member
+        joining = np.flatnonzero(inside.sum(axis=0) > 1)
+        if not len(joining):
+            steps, rows = np.nonzero(inside.T)
+            found = (key, list(zip(rows.tolist(), steps.tolist(), strict=True)))
+            break
+        members.update(joining.tolist())
+    for key in met:
+        known[key] = found
+    return found
 
 
 def _interleave(*ranked: list[frozenset[Deviation]]) -> list[frozenset[Deviation]]:
