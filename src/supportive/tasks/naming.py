@@ -37,7 +37,7 @@ def named(node: Node, known: Mapping[frozenset[Leaf], str] | None = None) -> Nod
     if isinstance(node, ChainNode) and known:
         node = _nest_known_runs(node, known)
     children = tuple(named(child, known) for child in node.children)
-    name = node.name or known.get(frozenset(node.leaves)) or _describe(node.kind, children)
+    name = node.name or (known.get(frozenset(node.leaves)) if known else None) or _describe(node.kind, children)
     return with_children(node, children, name=name)
 
 
