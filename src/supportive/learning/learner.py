@@ -349,9 +349,11 @@ class HTNLearner(Estimator):
         structure = self._structure_settings(name)
         return refit(found, indices, structure, modules=not name.startswith("partial order")).htn()
 
-    def _selected(self, found: GeneralResult, general: FittedStructure) -> tuple[Selection, HTN]:
+    def _selected(
+        self, sequences: Sequence[Sequence[str]], found: GeneralResult, general: FittedStructure
+    ) -> tuple[Selection, HTN]:
         """Why a reading was chosen by the held-out likelihood, and that reading learned from the
-        demonstrations with the slips ``found`` taken out."""
+        demonstrations (``sequences``) with the slips ``found`` taken out."""
         fits: dict[tuple[str, tuple[int, ...]], HTN] = {}
 
         def fit(name: str, indices: Sequence[int]) -> HTN:
@@ -363,7 +365,7 @@ class HTNLearner(Estimator):
         everything = tuple(range(len(found.cleaned)))
         fits[("general", everything)] = general.htn()
         selection = select_reading(
-            [[action for action, _ in demo] for demo in found.cleaned],
+            _actions(found, everything) if found.deviations else sequences,
             fit,
             general.htn(),
             folds=self.selection_folds,
@@ -389,7 +391,7 @@ class HTNLearner(Estimator):
         fitted = FittedStructure(found.roots, found.top_level)
         reading: str = self.mode
         if self.mode == "auto":
-            self.selection_, chosen = self._selected(found, fitted)
+            self.selection_, chosen = self._selected(sequences, found, fitted)
             reading = self.selection_.chosen
             fitted = FittedStructure(chosen.roots, chosen.top_level)  # its alternative too: one admitting all
         return reading, fitted.roots, fitted.top_level, alternatives_of(fitted, limit=limit, max_roots=most)

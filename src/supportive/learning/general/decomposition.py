@@ -378,7 +378,16 @@ def decompose(
     level = _level([list(map(order.__getitem__, demo)) for demo in labelled], len(order), many)
     result.leaf_nodes = level.nodes
     presence = level.performers()
+    formed: dict[int, tuple[_Level, tuple[int, ...]]] = {}  # clique -> the level it was formed at, its members
     chance: dict[int, float] = {}
+
+    def chance_of(node: int) -> float:
+        """The contiguity chance of a clique, at the level it was formed at (computed when first asked)."""
+        if node not in chance:
+            at, members = formed[node]
+            chance[node] = matrix_contiguity_chance(at.nodes, members, at.size)
+        return chance[node]
+
     closures: dict[frozenset[int], frozenset[int] | None] = {}  # pair -> closure, kept while no member merges
     while modules and len(level.present) > 1:
         chosen = _choose(level, rank, order_support, max_module, closures)
@@ -388,11 +397,11 @@ def decompose(
         for group in chosen:
             node = len(rank)
             whole = len(group.children) == len(level.present)
-            if not group.chain:
-                chance[node] = 1.0 if whole else matrix_contiguity_chance(level.nodes, group.children, level.size)
+            if not group.chain and not whole:  # a clique of the whole level is contiguous by itself
+                formed[node] = (level, group.children)
             weak = set()
             if not group.chain and not group.seen_in_full:
-                weak = {m for m in group.children if not supported(chance.get(m, 1.0), evidence)}
+                weak = {m for m in group.children if m in formed and not supported(chance_of(m), evidence)}
             presence[node] = set().union(*(presence[m] for m in group.children))
             result.groups[node] = _spliced(group, result.groups, presence, weak, presence[node])
             rank.append(min(map(rank.__getitem__, group.children)))

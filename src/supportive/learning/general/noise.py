@@ -38,7 +38,7 @@ from typing import Literal
 
 import numpy as np
 
-from supportive.learning.general.evidence import IntMatrix, as_matrix, position_pair_counts
+from supportive.learning.general.evidence import IntMatrix, position_pair_counts
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
@@ -169,12 +169,16 @@ class _Steps:
     @classmethod
     def of(cls, demos: Sequence[Sequence[tuple[int, Leaf]]]) -> _Steps:
         """The encoding of ``demos``."""
-        leaves = sorted({leaf for demo in demos for _, leaf in demo})
+        flat = [leaf for demo in demos for _, leaf in demo]
+        leaves = sorted(set(flat))
         index = {leaf: i for i, leaf in enumerate(leaves)}
-        matrix = as_matrix([[index[leaf] for _, leaf in demo] for demo in demos])
+        lengths = np.fromiter(map(len, demos), dtype=np.int64, count=len(demos))
+        matrix = np.full((len(demos), int(lengths.max(initial=0))), -1, dtype=np.int64)
+        valid = np.arange(matrix.shape[1]) < lengths[:, None]
+        matrix[valid] = np.fromiter(map(index.__getitem__, flat), dtype=np.int64, count=len(flat))
         at = np.full((len(demos), len(leaves)), -1, dtype=np.int64)
-        rows, places = np.nonzero(matrix >= 0)
-        at[rows, matrix[rows, places]] = places
+        rows, places = np.nonzero(valid)
+        at[rows, matrix[valid]] = places
         return cls(leaves, index, matrix, at)
 
 
