@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from supportive.learning.general.decomposition import Decomposition, Shapes
-from supportive.learning.general.evidence import IntMatrix
+from supportive.learning.general.evidence import IntMatrix, positions_of
 from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
@@ -307,9 +307,7 @@ def _first_positions(decomposition: Decomposition, below: Mapping[int, Sequence[
     does), for the leaves and the nodes of ``below`` (node -> the children it is the parent of)."""
     size = max([*decomposition.groups, len(decomposition.leaves) - 1]) + 1
     nodes = decomposition.leaf_nodes
-    first = np.full((len(nodes), size), _ABSENT, dtype=np.int64)
-    rows, columns = np.nonzero(nodes >= 0)
-    first[rows, nodes[rows, columns]] = columns
+    first = positions_of(nodes, size, _ABSENT)
     height: dict[int, int] = {}
 
     def visit(node: int) -> int:

@@ -43,6 +43,7 @@ from supportive.learning.general.evidence import (
     established_precedences,
     matrix_contiguity_chance,
     position_pair_counts,
+    positions_of,
     supported,
 )
 from supportive.tasks.htn import Leaf
@@ -306,10 +307,7 @@ class _Matrix(_Level):
     @cached_property
     def at(self) -> IntMatrix:
         """``at[d, n]``: the position of node ``n`` in demonstration ``d`` (-1 when it does not perform it)."""
-        at = np.full((len(self.nodes), self.size), -1, dtype=np.int64)
-        rows, columns = np.nonzero(self.nodes >= 0)
-        at[rows, self.nodes[rows, columns]] = columns
-        return at
+        return positions_of(self.nodes, self.size)
 
     def positions(self, members: Sequence[int]) -> IntMatrix:
         """See :meth:`_Level.positions`."""

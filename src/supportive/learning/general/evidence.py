@@ -31,6 +31,7 @@ __all__ = [
     "matrix_contiguity_chance",
     "pair_counts",
     "position_pair_counts",
+    "positions_of",
     "supported",
 ]
 
@@ -96,6 +97,15 @@ def as_matrix(sequences: Sequence[Sequence[int]] | Sequence[npt.NDArray[np.int64
         itertools.chain.from_iterable(sequences), dtype=np.int64, count=int(lengths.sum())
     )
     return matrix
+
+
+def positions_of(nodes: IntMatrix, size: int, absent: int = -1) -> IntMatrix:
+    """``at[d, n]``: where row ``d`` of ``nodes`` (:func:`as_matrix`) holds node ``n`` (``absent`` when it does
+    not), for the nodes ``0 … size-1``; a node is at most once in a row."""
+    at = np.full((len(nodes), size), absent, dtype=np.int64)
+    rows, columns = np.nonzero(nodes >= 0)
+    at[rows, nodes[rows, columns]] = columns
+    return at
 
 
 def matrix_contiguity_chance(nodes: IntMatrix, members: Sequence[int], size: int) -> float:

@@ -34,11 +34,12 @@ import math
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
 
-from supportive.learning.general.evidence import IntMatrix, position_pair_counts
+from supportive.learning.general.evidence import IntMatrix, as_matrix, position_pair_counts, positions_of
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
@@ -169,17 +170,16 @@ class _Steps:
     @classmethod
     def of(cls, demos: Sequence[Sequence[tuple[int, Leaf]]]) -> _Steps:
         """The encoding of ``demos``."""
-        flat = [leaf for demo in demos for _, leaf in demo]
-        leaves = sorted(set(flat))
+        leaves = sorted({leaf for demo in demos for _, leaf in demo})
         index = {leaf: i for i, leaf in enumerate(leaves)}
-        lengths = np.fromiter(map(len, demos), dtype=np.int64, count=len(demos))
-        matrix = np.full((len(demos), int(lengths.max(initial=0))), -1, dtype=np.int64)
-        valid = np.arange(matrix.shape[1]) < lengths[:, None]
-        matrix[valid] = np.fromiter(map(index.__getitem__, flat), dtype=np.int64, count=len(flat))
-        at = np.full((len(demos), len(leaves)), -1, dtype=np.int64)
-        rows, places = np.nonzero(valid)
-        at[rows, matrix[valid]] = places
-        return cls(leaves, index, matrix, at)
+        matrix = as_matrix([[index[leaf] for _, leaf in demo] for demo in demos])
+        return cls(leaves, index, matrix, positions_of(matrix, len(leaves)))
+
+    @cached_property
+    def doers(self) -> IntMatrix:
+        """How many demonstrations do each leaf."""
+        doers: IntMatrix = (self.at >= 0).sum(axis=0)
+        return doers
 
 
 class _Search:
@@ -309,7 +309,7 @@ class _Search:
         n = len(cleaned)
         need = self.structure_settings.support_needed
         steps = _Steps.of(cleaned)
-        doers = dict(zip(steps.leaves, (steps.at >= 0).sum(axis=0).tolist(), strict=True))
+        doers = dict(zip(steps.leaves, steps.doers.tolist(), strict=True))
         rare = {leaf for leaf, k in doers.items() if n - k >= need and k < n - k}  # done by few
         skipped = {leaf for leaf, k in doers.items() if k >= need and 0 < n - k < k}  # not done by few
         performers: dict[Leaf, list[tuple[int, int]]] = {leaf: [] for leaf in rare | skipped}
@@ -434,7 +434,7 @@ class _Search:
         need = self.structure_settings.support_needed
         leaves, matrix, at = steps.leaves, steps.matrix, steps.at
         performed = at >= 0
-        doers = performed.sum(axis=0)
+        doers = steps.doers
         followed = matrix[:, 1:] >= 0
         codes, counts = np.unique(matrix[:, :-1][followed] * len(leaves) + matrix[:, 1:][followed], return_counts=True)
         found: dict[tuple[int, int], tuple[int, Leaf]] = {}
