@@ -195,6 +195,26 @@ def test_top_level_admits_exactly_the_linear_extensions(orders: list[list[str]],
         assert HTN("t", tuple(ActionNode(str(r)) for r in roots), top).admits([str(r) for r in s])
 
 
+@given(
+    st.lists(st.permutations(list("abcdefg")), min_size=1, max_size=7),
+    st.sets(st.sampled_from("abcdefg")),
+    st.integers(-2, 2),
+)
+def test_top_level_falls_back_to_the_orders_seen_exactly_beyond_its_state_limit(
+    orders: list[list[str]], optional: set[str], offset: int
+) -> None:
+    # the limit is checked by counting the states in arrays before they are built: the same answer as building
+    # them all (no limit) and counting
+    sequences = [[ord(x) - 97 for x in o if not (x in optional and i % 2)] for i, o in enumerate(orders)]
+    roots = sorted({x for s in sequences for x in s})
+    required = frozenset(r for r in roots if all(r in s for s in sequences))
+    unlimited = precedence_top_level(roots, sequences, required, order_support=3, max_states=10**9)
+    states = len({state for edge in unlimited.edges for state in (edge[0], edge[2])} | {0})
+    limit = max(1, states + offset)  # about as many states as there are: the boundary
+    limited = precedence_top_level(roots, sequences, required, order_support=3, max_states=limit)
+    assert limited == (seen_top_level(roots, sequences) if states > limit else unlimited)
+
+
 def test_evidence_for_orders_and_subtasks() -> None:
     before, together = pair_counts([[0, 1, 2], [0, 1, 2]], [0, 1, 2])
     established = established_precedences(before, together, order_support=5)

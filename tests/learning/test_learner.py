@@ -6,6 +6,7 @@ from supportive import examples
 from supportive.errors import LearningError
 from supportive.learning import HTNLearner, learn
 from supportive.learning.learner import Mode
+from supportive.learning.selection import CANDIDATES
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, canonical, count_orderings, iter_orderings
 
 BLOCKS = {
@@ -116,6 +117,23 @@ def test_structure_names_label_learned_nodes(mode: Mode) -> None:
     htn = learn(examples.load("ikea-chair"), mode=mode).htn_
     names = set().union(*(_names(r) for r in htn.roots))
     assert {"Build frame", "Attach seat", "Fasten front left bolt"} <= names
+
+
+@pytest.mark.parametrize("reading", CANDIDATES)
+def test_every_reading_auto_may_keep_can_be_pinned(reading: str) -> None:
+    # a learner fitted with ``auto`` names the reading it kept in ``reading_``; that name fits another learner
+    # in the same reading (the next-step predictor's calibration folds do)
+    demos = [list(o) for o in ("abcdef", "bacdfe", "abdcef", "badcfe", "abcdfe", "bacdef", "abdcfe")]
+    learner = HTNLearner(mode=reading).fit(demos)  # type: ignore[arg-type]
+    assert learner.reading_ == reading
+    assert all(learner.htn_.admits(d) for d in demos)
+    chosen = HTNLearner().fit(demos)
+    assert repr(HTNLearner(mode=chosen.reading_).fit(demos).htn_) == repr(chosen.htn_)  # type: ignore[arg-type]
+
+
+def test_an_unknown_mode_is_an_error_naming_the_readings() -> None:
+    with pytest.raises(LearningError, match=r"'partial order \(consistent orders\)'.*got 'partial'"):
+        HTNLearner(mode="partial")  # type: ignore[arg-type]
 
 
 def test_no_demonstrations_is_an_error() -> None:

@@ -18,8 +18,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from supportive.generate import inject, random_known_task, random_partial_order, random_structure
+from supportive.generate.mistakes import KnownTask
+from supportive.generate.partial_orders import PartialOrderTask
 from supportive.learning import HTNLearner
 from supportive.tasks.htn import sample_ordering
+from supportive.tasks.nodes import ActionNode, ChainNode, CliqueNode
 
 CLEAN = settings(max_examples=20, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
@@ -87,3 +90,46 @@ def test_mistakes_put_in_are_found_as_their_kind(kind: str) -> None:
         cleaned = [d for i, d in enumerate(demos) if i not in {s.demonstration for s in learner.deviations_}]
         assert all(learner.htn_.admits(d) for d in cleaned)
     assert found >= 0.7 * put_in, (found, put_in)
+
+
+
+def _put_right(task: KnownTask, slipped: list[str], seed: int, n: int = 50) -> tuple[set[int], set[int]]:
+    """Learn ``n - len(slipped)`` valid executions of ``task`` followed by the ``slipped`` ones (each one step
+    moved); return the demonstrations with a slip reported and those put right (a step out of order whose
+    move back makes the demonstration valid)."""
+    rng = np.random.default_rng(seed)
+    demos = [task.sample(rng) for _ in range(n - len(slipped))] + [s.split() for s in slipped]
+    assert not any(task.admits(d) for d in demos[n - len(slipped) :])
+    learner = HTNLearner().fit(demos)
+    right = set()
+    for slip in learner.deviations_:
+        demo = demos[slip.demonstration]
+        rest = demo[: slip.position] + demo[slip.position + 1 :]
+        if slip.kind == "out of order" and any(
+            task.admits([*rest[:j], slip.leaf[0], *rest[j:]]) for j in range(len(rest) + 1)
+        ):
+            right.add(slip.demonstration)
+    return {slip.demonstration for slip in learner.deviations_}, right
+
+
+def test_subtasks_broken_by_steps_moved_in_several_demonstrations() -> None:
+    # (1, {2, 3}, {4, 5}) in any order, then 6: five demonstrations each break a subtask with one step moved,
+    # the same steps inside the same span in more than one of them; no single slip set aside tightens the
+    # hierarchy, all of them together do.
+    def pair(a: str, b: str) -> CliqueNode:
+        return CliqueNode((ActionNode(a), ActionNode(b)))
+
+    structure = ChainNode((CliqueNode((ActionNode("s1"), pair("s2", "s3"), pair("s4", "s5"))), ActionNode("s6")))
+    slipped = ["s1 s5 s2 s3 s4 s6", "s1 s2 s5 s3 s4 s6", "s2 s3 s5 s1 s4 s6", "s5 s1 s4 s2 s3 s6", "s1 s2 s5 s4 s3 s6"]
+    reported, right = _put_right(KnownTask("uniform", structure=structure), slipped, seed=93)
+    assert reported == right == set(range(45, 50))
+
+
+def test_an_order_several_demonstrations_reverse_by_slips() -> None:
+    # s4 < s5 is reversed by three slipped demonstrations (s5 moved in one, s4 in two): only together do they
+    # show the order, and the search must not stop at the slips that pay alone.
+    chains = (("s1", "s2", "s3"), ("s4", "s5"), ("s6",))
+    task = KnownTask("partial order", partial=PartialOrderTask(chains, (("s1", "s4"),)))
+    slipped = ["s6 s1 s2 s5 s4 s3", "s1 s5 s2 s4 s3 s6", "s6 s4 s2 s1 s3 s5", "s1 s2 s6 s5 s3 s4", "s5 s1 s2 s4 s6 s3"]
+    reported, right = _put_right(task, slipped, seed=75)
+    assert reported == right == set(range(45, 50))

@@ -156,6 +156,22 @@ def test_single_moves_agree_with_trying_every_move(structure: Node, data: st.Dat
         assert list(htn.executions.single_moves(steps, reversed(range(len(steps))))) == expected[::-1]
 
 
+@given(structures(), st.data())
+def test_first_insertion_agrees_with_trying_every_place(structure: Node, data: st.DataObject) -> None:
+    htn = HTN("t", (structure,))
+    leaves = list(data.draw(st.sampled_from(list(iter_orderings(structure)))))
+    assume(leaves)
+    left_out = leaves.pop(data.draw(st.integers(0, len(leaves) - 1)))
+    if data.draw(st.booleans()) and len(leaves) > 1:  # sometimes no place will do
+        leaves.insert(data.draw(st.integers(0, len(leaves) - 1)), leaves.pop())
+    inserted = data.draw(st.sampled_from([left_out, *structure.leaves]))
+    places = [k for k in range(len(leaves) + 1) if htn.admits_leaves([*leaves[:k], inserted, *leaves[k:]])]
+    assert htn.executions.first_insertion(leaves, inserted) == (places[0] if places else None)
+    actions = [action for action, _ in leaves]
+    places = [k for k in range(len(actions) + 1) if htn.admits([*actions[:k], inserted[0], *actions[k:]])]
+    assert htn.executions.first_insertion(actions, inserted[0]) == (places[0] if places else None)
+
+
 def test_single_moves_follow_the_top_level() -> None:
     from supportive.tasks.htn import TopLevel
 

@@ -36,7 +36,7 @@ from supportive.learning.general import (
     learn_general,
     refit,
 )
-from supportive.learning.selection import CONSISTENT, READINGS, Selection, select_reading
+from supportive.learning.selection import CANDIDATES, CONSISTENT, Selection, select_reading
 from supportive.learning.strict import StrictLearner
 from supportive.tasks.conjugate import ConjugateTaskGraph
 from supportive.tasks.htn import HTN, Leaf, Node, TopLevel
@@ -47,7 +47,9 @@ from supportive.tasks.task_graph import TaskGraph
 __all__ = ["HTNLearner", "LearningStats", "learn"]
 
 DemonstrationLike = Demonstration | Sequence[str]
-Mode = Literal["auto", "general", "strict", "partial order"]
+Mode = Literal[
+    "auto", "general", "strict", "partial order", "general (consistent orders)", "partial order (consistent orders)"
+]
 
 
 @dataclass(frozen=True)
@@ -79,13 +81,15 @@ class HTNLearner(Estimator):
     Args:
         mode: ``"auto"`` (default): learn the ``general``, ``strict`` and ``partial order`` readings (the
             first and last also with every consistent order established) and keep the one that best predicts
-            held-out demonstrations (:mod:`~supportive.learning.selection`); or one of the three by name.
+            held-out demonstrations (:mod:`~supportive.learning.selection`); or one of the three by name, or
+            any reading ``auto`` may keep (``"general (consistent orders)"``, ``"partial order (consistent
+            orders)"``: ``reading_`` of a learner fitted with ``auto`` pins its choice for another fit).
             Demonstrations with explicit states are always learned strictly.
         slips: ``general``: look for slips (steps out of order, repeated, missing or unknown) and learn
             without them (:mod:`~supportive.learning.general.noise`); False learns from every step as it is.
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
-            the noise it claims has been paid for); 0 or more. Default 2, with ``slip_rate`` 0.2: the setting
+            the noise it claims has been paid for); 0 or more. Default 1, with ``slip_rate`` 0.1: the setting
             ``supportive reproduce learner-settings`` picks on generated tasks (docs/learning.md).
         slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
             (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
@@ -157,8 +161,8 @@ class HTNLearner(Estimator):
         *,
         mode: Mode = "auto",
         slips: bool = True,
-        slip_margin: float = 2.0,
-        slip_rate: float = 0.2,
+        slip_margin: float = 1.0,
+        slip_rate: float = 0.1,
         slip_rate_weight: float = 1000.0,
         max_slip_candidates: int = 48,
         evidence: float = 0.05,
@@ -170,8 +174,8 @@ class HTNLearner(Estimator):
         max_alternative_roots: int = 64,
         names: dict[frozenset[Leaf], str] | None = None,
     ) -> None:
-        if mode not in ("auto", *READINGS):
-            raise LearningError(f"mode must be 'auto', 'general', 'strict' or 'partial order', got {mode!r}")
+        if mode not in ("auto", *CANDIDATES):
+            raise LearningError(f"mode must be 'auto' or a reading ({', '.join(map(repr, CANDIDATES))}), got {mode!r}")
         if selection_folds < 2 or selection_demonstrations < 2:
             raise LearningError("selection_folds and selection_demonstrations must be at least 2")
         if alternatives < 0 or max_alternative_roots < 1:

@@ -21,7 +21,7 @@ labellings without changing which action sequences are admitted.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -302,10 +302,49 @@ class Executions:
             positions: Which steps to try moving.
         """
         n = len(steps)
-        dead: set[tuple[Progress, int, int]] = set()  # (state, first step left, step left out or -1)
+        finishes = self._finisher(steps)
         prefixes = [self.initial()]  # runs of steps[:k]
         for step in steps:
             prefixes.append(self.advance(prefixes[-1], step) if prefixes[-1] else ())
+        for i in positions:
+            moved = steps[i]
+            for j in range(i):  # to before steps[j]
+                if finishes(self.advance(prefixes[j], moved), j, i):
+                    yield i
+                    break
+            else:
+                states = prefixes[i]
+                for j in range(i + 1, n):  # to after steps[j]
+                    states = self.advance(states, steps[j])
+                    if not states:
+                        break
+                    if finishes(self.advance(states, moved), j + 1, -1):
+                        yield i
+                        break
+
+    def first_insertion(self, steps: Sequence[Step], step: Step) -> int | None:
+        """The first place ``k`` (before ``steps[k]``; ``len(steps)``: at the end) where doing ``step`` makes
+        ``steps`` a whole execution the hierarchy admits; None when there is none. Exact, in about one run of
+        ``steps`` (the runs of the prefixes are shared, and states unable to finish are remembered, as in
+        :meth:`single_moves`)."""
+        finishes = self._finisher(steps)
+        states = self.initial()
+        for k in range(len(steps) + 1):
+            if finishes(self.advance(states, step), k, -1):
+                return k
+            if k == len(steps):
+                break
+            states = self.advance(states, steps[k])
+            if not states:
+                break
+        return None
+
+    def _finisher(self, steps: Sequence[Step]) -> Callable[[tuple[Progress, ...], int, int], bool]:
+        """``finishes(states, start, gap)``: whether a run in ``states`` can finish with ``steps[start:]``
+        less ``steps[gap]`` (-1: none left out) as a whole execution. A state found unable to is remembered
+        with where it stood, for every later question about the same ``steps``."""
+        n = len(steps)
+        dead: set[tuple[Progress, int, int]] = set()  # (state, first step left, step left out or -1)
 
         def finishes(states: tuple[Progress, ...], start: int, gap: int) -> bool:
             visited: list[tuple[Progress, int, int]] = []
@@ -325,21 +364,7 @@ class Executions:
             dead.update(visited)
             return False
 
-        for i in positions:
-            moved = steps[i]
-            for j in range(i):  # to before steps[j]
-                if finishes(self.advance(prefixes[j], moved), j, i):
-                    yield i
-                    break
-            else:
-                states = prefixes[i]
-                for j in range(i + 1, n):  # to after steps[j]
-                    states = self.advance(states, steps[j])
-                    if not states:
-                        break
-                    if finishes(self.advance(states, moved), j + 1, -1):
-                        yield i
-                        break
+        return finishes
 
     def accepts_leaves(self, leaves: Iterable[Leaf]) -> bool:
         """True when ``leaves`` is a whole execution the hierarchy admits."""

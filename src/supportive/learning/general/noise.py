@@ -15,11 +15,16 @@ are noise):
   ``(1/2) log N`` is charged for each kind whose rate is not zero, as BIC charges a parameter), and where each
   landed (a uniform choice among the demonstration's positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
-  gain exceeds ``margin`` nats. Candidates are the steps that reverse an order the others agree on (an order
-  that so few demonstrations reverse that the hierarchy learned without them, which predicts how often the pair
-  comes either way, makes it unlikely: a binomial test), every performance of a step the others do not do,
-  and every demonstration that skips a step the others do; those the others would have to agree on are
-  shown by at least ``support`` demonstrations (no slip can be told from a variant with fewer).
+  gain exceeds ``margin`` nats; then takes back the slips not worth ``margin`` nats each; and repeats the two
+  until a pass changes nothing (slips that only pay together can be missed by a pass that took a few that pay
+  alone). Candidates are the steps that reverse an order the others agree on (an order that so few
+  demonstrations reverse that the hierarchy learned without them, which predicts how often the pair comes
+  either way, makes it unlikely: a binomial test), alone and, for an order several demonstrations reverse,
+  together; steps found inside a subtask the others keep together, in fewer demonstrations than establish an
+  order; the steps whose move makes an odd demonstration an execution of the hierarchy of the others; every
+  performance of a step the others do not do, and every demonstration that skips a step the others do; those
+  the others would have to agree on are shown by at least ``support`` demonstrations (no slip can be told from
+  a variant with fewer).
 
 So on clean data nothing is set aside: a tighter hierarchy gains less than the noise costs, whatever the
 pair frequencies a partial order implies (a free pair in a partial order is not a coin: the hierarchy's own
@@ -52,7 +57,7 @@ KINDS: tuple[Kind, ...] = ("out of order", "repeated", "missing", "unknown")
 """The kinds of slip, in the order reports list them."""
 
 _Closure = tuple[frozenset[int], list[tuple[int, int]]]
-"""A robust closure's members and the ``(demonstration, step)`` found inside it once (:func:`_robust_closure`)."""
+"""A robust closure's members and the ``(demonstration, step)`` found inside it by few (:func:`_robust_closure`)."""
 
 _TAKEN_OUT = frozenset({"out of order", "repeated", "unknown"})
 _PUT_BACK = frozenset({"out of order", "missing"})
@@ -211,10 +216,12 @@ class _Search:
             start = self._joint()
             if start and self._total(start) - self._total(slips) > self.settings.margin * len(start):
                 slips, gain = start, self._total(start) - self._total(slips)
-            slips, added = self._forward(slips)
-            gain += added
-            slips, dropped = self._backward(slips)
-            gain += dropped
+            seen: set[frozenset[Deviation]] = set()
+            while slips not in seen:  # forward then backward, until a pass changes nothing
+                seen.add(slips)
+                slips, added = self._forward(slips)
+                slips, dropped = self._backward(slips)
+                gain += added + dropped
         fitted = self._fit(slips)
         deviations = tuple(sorted(slips, key=_order))
         counts = Counter(d.kind for d in deviations)
@@ -336,27 +343,31 @@ class _Search:
                 skippers = [d for d in range(n) if d not in doing and (d, leaf) not in excused]
                 if skippers:
                     out.append(frozenset(Deviation(d, -1, leaf, "missing") for d in skippers))
-        reversing = self._moved(cleaned, steps, slips)
+        reversing, reversed_together = self._moved(cleaned, steps, slips)
         reversal = [0.0] * n
         for rank, candidate in enumerate(reversing):  # the most telling step of each demonstration first
             (slip,) = candidate
             reversal[slip.demonstration] = max(reversal[slip.demonstration], float(len(reversing) - rank))
-        repairs = self._repairs(cleaned, _outliers(reversal) | _surprising(steps))
-        moved = list(dict.fromkeys(_interleave(repairs, reversing, self._inserted(cleaned, steps))))
+        inserted = self._inserted(cleaned, steps)
+        intruded = {next(iter(candidate)).demonstration for candidate in inserted}
+        repairs = self._repairs(cleaned, _outliers(reversal) | _surprising(steps) | intruded)
+        moved = list(dict.fromkeys(_interleave(repairs, reversing, inserted)))
         out.extend(moved[: self.settings.max_candidates])
         by_leaf: dict[Leaf, set[Deviation]] = {}  # the same step out of order in several demonstrations
         for candidate in repairs:
             (slip,) = candidate
             by_leaf.setdefault(slip.leaf, set()).add(slip)
         out.extend(frozenset(group) for _, group in sorted(by_leaf.items()) if len(group) > 1)
+        out.extend(reversed_together)
         best = {next(iter(c)).demonstration: c for c in reversed(moved)}  # the most telling per demonstration
         if len(best) > 1:
             out.append(frozenset().union(*best.values()))
         return out
 
     def _repairs(self, cleaned: list[list[tuple[int, Leaf]]], odd: set[int]) -> list[frozenset[Deviation]]:
-        """Steps whose move would make an odd demonstration (one that reverses agreed orders, or whose steps
-        follow one another unusually, :func:`_surprising`) an execution of the hierarchy learned from the
+        """Steps whose move would make an odd demonstration (one that reverses agreed orders, whose steps
+        follow one another unusually, :func:`_surprising`, or that breaks a subtask the others keep together,
+        :meth:`_inserted`) an execution of the hierarchy learned from the
         others (when there are enough of those): a step moved into a subtask breaks it without reversing any
         order, and the hierarchy learned with it is loosened where the others' is not."""
         if not odd or len(cleaned) - len(odd) <= self.structure_settings.support_needed:
@@ -375,10 +386,11 @@ class _Search:
 
     def _moved(
         self, cleaned: list[list[tuple[int, Leaf]]], steps: _Steps, slips: frozenset[Deviation]
-    ) -> list[frozenset[Deviation]]:
+    ) -> tuple[list[frozenset[Deviation]], list[frozenset[Deviation]]]:
         """Single steps that reverse orders the other demonstrations agree on, the most telling first: each
-        reversed order weighs one over the number of demonstrations reversing it (a step moved alone
-        reverses orders nobody else does).
+        reversed order weighs one over the number of demonstrations keeping it (an order few demonstrations
+        show, kept by all but this one, tells more); and for each agreed order that several demonstrations reverse,
+        the group of their most telling steps of the two (slips that only together show the order).
 
         An order is *agreed* when the demonstrations reverse it far less often than the hierarchy learned so
         far, which admits the reversals, predicts (:func:`~supportive.learning.pair_orders.order_probabilities`):
@@ -391,7 +403,7 @@ class _Search:
         before, together = position_pair_counts(steps.at)
         reversed_ = (before.T > 0) & (before > before.T) & (before >= self.structure_settings.support_needed)
         if not reversed_.any():
-            return []
+            return [], []
         model_leaves, predicted = order_probabilities(self._fit(slips).htn())
         where = np.array([index.get(leaf, -1) for leaf in model_leaves])
         known = where >= 0
@@ -406,21 +418,32 @@ class _Search:
             binom.cdf(before.T, together, chance) < self.structure_settings.evidence / tested
         )
         if not agreed.any():
-            return []
-        weight = np.where(
-            agreed.T, 1.0 / np.maximum(before.T, 1), 0.0
-        )  # [i, j]: j before i agreed, i first here
+            return [], []
+        weight = np.where(agreed.T, 1.0 / np.maximum(before.T, 1), 0.0)  # [i, j]: j before i agreed, i first here
+        telling = np.zeros(steps.at.shape, dtype=np.float64)  # [d, i]: how telling demonstration d's step i is
         ranked: list[tuple[float, int, int, Leaf]] = []
         for d, demo in enumerate(cleaned):
             order = steps.matrix[d, : len(demo)]
             later = np.triu(np.ones((len(order), len(order)), dtype=bool), 1)
             reversed_here = np.where(later, weight[np.ix_(order, order)], 0.0)
             scores = reversed_here.sum(axis=0) + reversed_here.sum(axis=1)
+            telling[d, order] = scores
             for i in np.flatnonzero(scores):
                 position, leaf = cleaned[d][int(i)]
                 ranked.append((-float(scores[i]), d, position, leaf))
         ranked.sort()
-        return [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
+        singles = [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
+        groups: dict[frozenset[Deviation], None] = {}
+        for first, then in zip(*np.nonzero(agreed & (before.T >= 2)), strict=True):  # "first before then" agreed
+            reversing = np.flatnonzero((steps.at[:, then] >= 0) & (steps.at[:, then] < steps.at[:, first]))
+            chosen = np.where(telling[reversing, first] >= telling[reversing, then], first, then)
+            groups.setdefault(
+                frozenset(
+                    Deviation(int(d), cleaned[d][steps.at[d, i]][0], leaves[i], "out of order")
+                    for d, i in zip(reversing.tolist(), chosen.tolist(), strict=True)
+                )
+            )
+        return singles, list(groups)
 
     def _inserted(self, cleaned: list[list[tuple[int, Leaf]]], steps: _Steps) -> list[frozenset[Deviation]]:
         """Single steps that break a subtask the other demonstrations keep together (a step moved into a
@@ -428,9 +451,9 @@ class _Search:
 
         From each pair of steps done one right after the other by at least the support an order needs, a
         would-be subtask grows as the decomposition's closures do (every step done inside its span joins it),
-        except that a step found inside it in one demonstration only does not join: that demonstration's
-        step is the candidate, when the subtask is then kept together by at least that support of the
-        others and the step is done outside it by as many."""
+        except that a step found inside it in fewer demonstrations than that support does not join (so few
+        cannot establish it as a variant): those demonstrations' steps are the candidates, when the subtask is
+        then kept together by at least that support of the others and the step is done outside it by as many."""
         need = self.structure_settings.support_needed
         leaves, matrix, at = steps.leaves, steps.matrix, steps.at
         performed = at >= 0
@@ -441,7 +464,7 @@ class _Search:
         closures: dict[frozenset[int], _Closure] = {}
         for code in codes[counts >= need].tolist():
             pair = divmod(code, len(leaves))
-            members, intruders = _robust_closure(frozenset(pair), at, closures)
+            members, intruders = _robust_closure(frozenset(pair), at, need, closures)
             kept = int((performed[:, sorted(members)].sum(axis=1) >= 2).sum())
             for d, i in intruders:
                 if kept - 1 >= need and doers[i] - 1 >= need:
@@ -545,13 +568,10 @@ class _Search:
         placed = 0.0
         for slip in sorted(slips, key=_order):
             if slip.kind in _PUT_BACK:
-                for position in range(len(leaves) + 1):
-                    trial = [*leaves[:position], slip.leaf, *leaves[position:]]
-                    if reading.htn.admits_leaves(trial):
-                        leaves = trial
-                        break
-                else:
+                position = reading.htn.executions.first_insertion(leaves, slip.leaf)
+                if position is None:
                     return -math.inf
+                leaves = [*leaves[:position], slip.leaf, *leaves[position:]]
             if slip.kind == "repeated":
                 first = next((i for i, (a, _) in enumerate(leaves) if a == slip.leaf[0]), -1)
                 placed -= math.log(max(length - 1 - first, 1))
@@ -616,11 +636,11 @@ def _outliers(scores: Sequence[float]) -> set[int]:
 
 
 def _robust_closure(
-    start: frozenset[int], at: IntMatrix, known: dict[frozenset[int], _Closure]
+    start: frozenset[int], at: IntMatrix, need: int, known: dict[frozenset[int], _Closure]
 ) -> _Closure:
     """The smallest set of step ids holding ``start`` whose members are contiguous in every demonstration but
-    for steps found inside its span in one demonstration only; those ``(demonstration, step)`` are returned
-    apart, by step. ``at[d, i]``: where demonstration ``d`` does step ``i`` (-1: not at all); ``known``: the
+    for steps found inside its span in fewer than ``need`` demonstrations; those ``(demonstration, step)`` are
+    returned apart, by step. ``at[d, i]``: where demonstration ``d`` does step ``i`` (-1: not at all); ``known``: the
     closures of sets met before (the closure of every set met on the way is the same)."""
     members = set(start)
     met: list[frozenset[int]] = []
@@ -639,7 +659,7 @@ def _robust_closure(
         first = np.where(done, where, beyond).min(axis=1)
         last = where.max(axis=1)
         inside = (at > first[:, None]) & (at < last[:, None]) & spanned[:, None] & ~member
-        joining = np.flatnonzero(inside.sum(axis=0) > 1)
+        joining = np.flatnonzero(inside.sum(axis=0) >= need)
         if not len(joining):
             steps, rows = np.nonzero(inside.T)
             found = (key, list(zip(rows.tolist(), steps.tolist(), strict=True)))

@@ -54,35 +54,79 @@ def precedence_top_level(
         if len(component) > 1:  # orders established over different demonstrations that contradict: drop
             graph.remove_edges_from([(u, v) for u in component for v in component if graph.has_edge(u, v)])
     # no transitive closure: through a root that may be skipped, an order is only as established as it is
-    preds = [0] * len(roots)
-    succs = [0] * len(roots)
+    preds = [0] * len(roots)  # the required roots that must come before each root
+    earlier = [0] * len(roots)  # the roots that must come before each root (none may come after it)
+    unlocks = [0] * len(roots)  # the roots each required root comes before
     need = 0
     for i, root in enumerate(roots):
         if root in required:
             need |= 1 << i
     for u, v in graph.edges():
-        succs[u] |= 1 << v
+        earlier[v] |= 1 << u
         if roots[u] in required:
             preds[v] |= 1 << u
+            unlocks[u] |= 1 << v
+    if _more_states_than(max_states, preds, earlier):
+        return seen_top_level(roots, sequences)
+    everything = (1 << len(roots)) - 1
+    # a state carries the roots whose required predecessors are done and the roots that may no longer come
+    # (one that must come before a done root): both follow from the roots done, so they grow with each step
+    ready = sum(1 << i for i in range(len(roots)) if not preds[i])
     edges: list[tuple[int, int, int]] = []
     number = {0: 0}
-    frontier = [0]
+    frontier = [(0, ready, 0)]
     while frontier:
-        done = frontier.pop()
-        for i in range(len(roots)):
-            bit = 1 << i
-            if done & bit or done & succs[i] or (preds[i] & ~done):
-                continue
+        done, ready, barred = frontier.pop()
+        allowed = ready & ~done & ~barred & everything
+        while allowed:
+            bit = allowed & -allowed
+            allowed ^= bit
+            i = bit.bit_length() - 1
             after = done | bit
             if after not in number:
                 if len(number) >= max_states:
                     return seen_top_level(roots, sequences)
                 number[after] = len(number)
-                frontier.append(after)
+                now_ready = ready
+                unlocked = unlocks[i]
+                while unlocked:
+                    low = unlocked & -unlocked
+                    unlocked ^= low
+                    k = low.bit_length() - 1
+                    if preds[k] & ~after == 0:
+                        now_ready |= low
+                frontier.append((after, now_ready, barred | earlier[i]))
             edges.append((number[done], i, number[after]))
     terminal = tuple(sorted(n for done, n in number.items() if done & need == need))
     free = frozenset(i for i, root in enumerate(roots) if root not in required)  # in no one's preds, nor needed
     return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free)
+
+
+def _more_states_than(limit: int, preds: Sequence[int], earlier: Sequence[int]) -> bool:
+    """Whether the top level of :func:`precedence_top_level` would have more than ``limit`` states (roots
+    ``i`` with required predecessors ``preds[i]`` and predecessors ``earlier[i]``, as bit masks), counted
+    level by level (a state's level: how many roots are done) in arrays; False, without counting, for more
+    roots than an array's 63 bits hold (the enumeration then finds out as it goes). The enumeration would
+    find the same, only after building as many states as the limit, in Python."""
+    n = len(preds)
+    if n > 63:
+        return False
+    bits = np.left_shift(np.int64(1), np.arange(n, dtype=np.int64))
+    preds_array = np.array(preds, dtype=np.int64)
+    earlier_array = np.array(earlier, dtype=np.int64)
+    level = np.zeros(1, dtype=np.int64)
+    count = 1
+    while len(level):
+        done = (level[:, None] & bits[None, :]) != 0  # [state, root]
+        barred = np.bitwise_or.reduce(np.where(done, earlier_array[None, :], 0), axis=1)
+        ready = (preds_array[None, :] & ~level[:, None]) == 0
+        allowed = ready & ~done & ((barred[:, None] & bits[None, :]) == 0)
+        states, roots = np.nonzero(allowed)
+        level = np.unique(level[states] | bits[roots])
+        count += len(level)
+        if count > limit:
+            return True
+    return False
 
 
 def seen_top_level(roots: Sequence[int], sequences: Sequence[Sequence[int]]) -> TopLevel:
