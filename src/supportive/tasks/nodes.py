@@ -244,10 +244,14 @@ class TopLevel:
     a partial order of roots; a hint for counting orders, not part of the language)."""
 
     def successors(self) -> dict[int, dict[int, int]]:
-        """``state -> {root index -> next state}``."""
-        out: dict[int, dict[int, int]] = {}
-        for src, root, dst in self.edges:
-            out.setdefault(src, {})[root] = dst
+        """``state -> {root index -> next state}``: built once per top level and shared by every caller (the
+        executions, the likelihood readings and the counts all walk it), so callers must not change it."""
+        out: dict[int, dict[int, int]] | None = self.__dict__.get("_successors")
+        if out is None:
+            out = {}
+            for src, root, dst in self.edges:
+                out.setdefault(src, {})[root] = dst
+            object.__setattr__(self, "_successors", out)
         return out
 
     def count_orderings(self, weights: Sequence[int] | None = None) -> int:
