@@ -38,6 +38,9 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
+import numpy as np
+import numpy.typing as npt
+
 from supportive.learning.pair_orders import order_probabilities
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, CliqueNode, Leaf, Node, shape, to_leaves
@@ -47,7 +50,7 @@ __all__ = [
     "CONSISTENT",
     "READINGS",
     "Selection",
-    "held_out_log_likelihood",
+    "held_out_log_likelihoods",
     "same_executions",
     "select_reading",
 ]
@@ -61,6 +64,8 @@ established (``order_support=2``), however likely by chance."""
 
 CANDIDATES = ("general", f"general{CONSISTENT}", "strict", "partial order", f"partial order{CONSISTENT}")
 """The readings ``auto`` chooses between, the default first."""
+
+BoolMatrix = npt.NDArray[np.bool_]
 
 Fitter = Callable[[str, Sequence[int]], HTN]
 """Learns one reading (by name) from the demonstrations of the given indices."""
@@ -103,39 +108,48 @@ class Selection:
         return f"reading: {self.chosen} (held-out log-likelihood per demonstration, {self.folds} folds: {scores})"
 
 
-def held_out_log_likelihood(htn: HTN, actions: Sequence[str], slip_rate: float) -> tuple[float, bool]:
-    """The log-likelihood of a held-out demonstration under ``htn`` and whether it admits it (see the module
-    docstring for how a refused one is explained)."""
+def held_out_log_likelihoods(
+    htn: HTN, held_out: Sequence[Sequence[str]], slip_rate: float
+) -> list[tuple[float, bool]]:
+    """For each held-out demonstration, its log-likelihood under ``htn`` and whether ``htn`` admits it (see
+    the module docstring for how a refused one is explained)."""
     uniform = _log_symmetry(htn) - math.log(max(htn.count_orderings(), 1))
-    if htn.admits(actions):
-        return uniform, True
-    moved = _moves_needed(htn, actions)
-    return uniform + moved * (math.log(slip_rate) - math.log(max(len(actions), 1))), False
+    required: BoolMatrix | None = None  # the orders ``htn`` requires, found once for all it refuses
+    out = []
+    for actions in held_out:
+        if htn.admits(actions):
+            out.append((uniform, True))
+            continue
+        if required is None:
+            required = order_probabilities(htn)[1] == 1.0
+        moved = _moves_needed(htn, actions, required)
+        out.append((uniform + moved * (math.log(slip_rate) - math.log(max(len(actions), 1))), False))
+    return out
 
 
-def _moves_needed(htn: HTN, actions: Sequence[str]) -> int:
+def _moves_needed(htn: HTN, actions: Sequence[str], required: BoolMatrix) -> int:
     """How many steps of ``actions`` were done out of place, for a demonstration ``htn`` refuses: the steps a
     greedy cover takes out so that no order ``htn`` requires is reversed and no subtask is interleaved (an
     upper bound on the fewest), and at least one; exactly one when moving a single step — the cover's, or
     any when the cover is empty — makes it admitted, else at least two."""
     steps = list(actions)
-    cover = _cover(htn, steps)
+    cover = _cover(htn, steps, required)
     tried = cover if len(cover) == 1 else range(len(steps)) if not cover else ()
     if next(htn.executions.single_moves(steps, tried), None) is not None:
         return 1
     return max(len(cover), 2)
 
 
-def _cover(htn: HTN, steps: Sequence[str]) -> list[int]:
-    """Positions a greedy cover takes out of ``steps`` so that no order ``htn`` requires is reversed and no
-    subtask is interleaved (a step the reading lacks conflicts with every other)."""
+def _cover(htn: HTN, steps: Sequence[str], required: BoolMatrix) -> list[int]:
+    """Positions a greedy cover takes out of ``steps`` so that no order ``htn`` requires is reversed
+    (``required[i, j]``: ``htn.leaves[i]`` comes before ``htn.leaves[j]`` in every execution performing both)
+    and no subtask is interleaved (a step the reading lacks conflicts with every other)."""
     leaves = to_leaves(steps)
-    model_leaves, before = order_probabilities(htn)
-    index = {leaf: i for i, leaf in enumerate(model_leaves)}
+    index = {leaf: i for i, leaf in enumerate(htn.leaves)}
     conflicts: dict[int, set[int]] = {p: set() for p in range(len(leaves))}
     for p, q in itertools.combinations(range(len(leaves)), 2):  # p done before q: reversed when q must precede
         first, second = index.get(leaves[p]), index.get(leaves[q])
-        if first is None or second is None or before[second, first] == 1.0:
+        if first is None or second is None or required[second, first]:
             conflicts[p].add(q)
             conflicts[q].add(p)
     for node_leaves in _module_leaves(htn):  # a step inside a subtask's span that is not of it
@@ -220,8 +234,7 @@ def select_reading(
         held = [i for i in range(len(actions)) if i % k == fold]
         for name in full:
             htn = fit(name, train)
-            for i in held:
-                value, ok = held_out_log_likelihood(htn, actions[i], slip_rate)
+            for value, ok in held_out_log_likelihoods(htn, [actions[i] for i in held], slip_rate):
                 totals[name] += value
                 admitted[name] += ok
     scores = {name: total / len(actions) for name, total in totals.items()}
