@@ -24,8 +24,6 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass
 
-import networkx as nx
-
 from supportive.errors import SafetyError
 from supportive.safety.danger import HORIZON, DangerModel
 from supportive.safety.priors import ActionPriors
@@ -140,6 +138,8 @@ class Caregiver:
         self.danger = DangerModel(distances, horizon)
         self.safety = SafetyEstimate(priors, memory=memory)
         self.rng = rng_from(seed)
+        import networkx as nx  # here: networkx is a fifth of every command's start-up
+
         graph = distances.novice
         floor = nx.Graph()
         floor.add_nodes_from(graph.cells)

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Literal, TypeAlias
-
-import networkx as nx
+from typing import TYPE_CHECKING, Literal, TypeAlias
 
 from supportive.tasks.task_graph import TaskGraph
+
+if TYPE_CHECKING:  # imported where used: networkx is a fifth of every command's start-up
+    import networkx as nx
 
 __all__ = ["ORIGIN", "TERMINAL", "CTGEdge", "ConjugateTaskGraph", "Vertex"]
 
@@ -108,6 +109,8 @@ class ConjugateTaskGraph:
 
     def to_networkx(self) -> nx.MultiDiGraph:
         """A networkx multigraph with vertex labels and ``prerequisites`` on each edge."""
+        import networkx as nx
+
         graph = nx.MultiDiGraph()
         for vertex in self.vertices:
             graph.add_node(vertex, label=self.label(vertex))
