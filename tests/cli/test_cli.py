@@ -34,6 +34,19 @@ def test_learn_json_to_stdout_and_file(tmp_path: Path, cli: CliRunner) -> None:
     assert len(htn_from_dict(json.loads(target.read_text())).alternatives) == 2
 
 
+@pytest.mark.parametrize("mode", ["general-consistent", "partial-order-consistent"])
+def test_learn_offers_every_reading_auto_may_keep(mode: str, cli: CliRunner) -> None:
+    """`--mode` lacked the consistent-orders readings, which `HTNLearner(mode=...)` and `auto` know."""
+    from supportive.cli.learn import LearnMode
+    from supportive.learning.selection import CANDIDATES
+
+    assert {m.learner_mode for m in LearnMode} == {"auto", *CANDIDATES}
+    code, out, _ = cli(["learn", str(examples.path("ikea-chair")), "-f", "json", "--mode", mode])
+    assert code == 0
+    reading = mode.removesuffix("-consistent").replace("-", " ") + " (consistent orders)"
+    assert json.loads(out)["reading"] == reading
+
+
 def test_learn_dot_and_hddl(tmp_path: Path, cli: CliRunner) -> None:
     code, out, _ = cli(["learn", str(examples.path("blocks-towers")), "--format", "dot"])
     assert code == 0 and out.startswith("digraph htn {")

@@ -37,11 +37,16 @@ class LearnMode(StrEnum):
     general = "general"
     strict = "strict"
     partial_order = "partial-order"
+    general_consistent = "general-consistent"
+    partial_order_consistent = "partial-order-consistent"
 
     @property
     def learner_mode(self) -> str:
-        """The learner's name for it (``partial order``)."""
-        return self.value.replace("-", " ")
+        """The learner's name for it (``partial order``, ``general (consistent orders)``)."""
+        from supportive.learning.selection import CONSISTENT
+
+        reading = self.value.removesuffix("-consistent").replace("-", " ")
+        return f"{reading}{CONSISTENT}" if self.value.endswith("-consistent") else reading
 
 
 class Profile(StrEnum):
@@ -72,7 +77,9 @@ def learn(
             "--mode",
             help="auto: the reading that best predicts held-out demonstrations; general: what the evidence "
             "supports (optional steps, repeats, subtasks, slips); strict: only what was seen in full (the "
-            "thesis's reading); partial-order: no subtasks, the orders the evidence establishes.",
+            "thesis's reading); partial-order: no subtasks, the orders the evidence establishes; "
+            "general-consistent, partial-order-consistent: as those, every order two or more demonstrations "
+            "keep without exception taken as established.",
         ),
     ] = LearnMode.auto,
 ) -> None:
