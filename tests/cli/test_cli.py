@@ -34,8 +34,14 @@ def test_learn_json_to_stdout_and_file(tmp_path: Path, cli: CliRunner) -> None:
     assert len(htn_from_dict(json.loads(target.read_text())).alternatives) == 2
 
 
-@pytest.mark.parametrize("mode", ["general-consistent", "partial-order-consistent"])
-def test_learn_offers_every_reading_auto_may_keep(mode: str, cli: CliRunner) -> None:
+@pytest.mark.parametrize(
+    ("mode", "reading"),
+    [
+        ("general-consistent", "general (consistent orders)"),
+        ("partial-order-consistent", "partial order (consistent orders)"),
+    ],
+)
+def test_learn_offers_every_reading_auto_may_keep(mode: str, reading: str, cli: CliRunner) -> None:
     """`--mode` lacked the consistent-orders readings, which `HTNLearner(mode=...)` and `auto` know."""
     from supportive.cli.learn import LearnMode
     from supportive.learning.selection import CANDIDATES
@@ -43,7 +49,6 @@ def test_learn_offers_every_reading_auto_may_keep(mode: str, cli: CliRunner) -> 
     assert {m.learner_mode for m in LearnMode} == {"auto", *CANDIDATES}
     code, out, _ = cli(["learn", str(examples.path("ikea-chair")), "-f", "json", "--mode", mode])
     assert code == 0
-    reading = mode.removesuffix("-consistent").replace("-", " ") + " (consistent orders)"
     assert json.loads(out)["reading"] == reading
 
 

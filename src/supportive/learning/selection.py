@@ -38,9 +38,7 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
-import numpy as np
-import numpy.typing as npt
-
+from supportive.learning.general.evidence import BoolMatrix
 from supportive.learning.pair_orders import order_probabilities
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, CliqueNode, Leaf, Node, shape, to_leaves
@@ -64,8 +62,6 @@ established (``order_support=2``), however likely by chance."""
 
 CANDIDATES = ("general", f"general{CONSISTENT}", "strict", "partial order", f"partial order{CONSISTENT}")
 """The readings ``auto`` chooses between, the default first."""
-
-BoolMatrix = npt.NDArray[np.bool_]
 
 Fitter = Callable[[str, Sequence[int]], HTN]
 """Learns one reading (by name) from the demonstrations of the given indices."""

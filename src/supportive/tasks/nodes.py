@@ -246,12 +246,13 @@ class TopLevel:
     def successors(self) -> dict[int, dict[int, int]]:
         """``state -> {root index -> next state}``: built once per top level and shared by every caller (the
         executions, the likelihood readings and the counts all walk it), so callers must not change it."""
-        out: dict[int, dict[int, int]] | None = self.__dict__.get("_successors")
-        if out is None:
-            out = {}
-            for src, root, dst in self.edges:
-                out.setdefault(src, {})[root] = dst
-            object.__setattr__(self, "_successors", out)
+        return self._successors
+
+    @cached_property
+    def _successors(self) -> dict[int, dict[int, int]]:
+        out: dict[int, dict[int, int]] = {}
+        for src, root, dst in self.edges:
+            out.setdefault(src, {})[root] = dst
         return out
 
     def count_orderings(self, weights: Sequence[int] | None = None) -> int:
