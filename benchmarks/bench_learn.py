@@ -27,7 +27,7 @@ from supportive.learning import HTNLearner
 from supportive.tasks.htn import iter_orderings
 
 GOALS_SECONDS = {10: None, 100: 0.010, 1000: 0.1, 5000: 1.0, "blocks-tower-720": 0.010}
-REPEATS = {10: 50, 100: 30, 1000: 7, 5000: 3, "blocks-tower-720": 30}
+REPEATS = {10: 200, 100: 40, 1000: 15, 5000: 5, "blocks-tower-720": 40}
 SLIP_ACTIONS, SLIP_DEMOS = 200, 20
 
 
@@ -42,13 +42,24 @@ def slipped_demonstrations(seed: int) -> list[list[str]]:
     return demos
 
 
-def measure(fit: Callable[[], HTNLearner], repeats: int) -> dict[str, float | int | bool]:
-    fit()  # warm up imports and caches
-    times = []
+def measure(
+    fit: Callable[[], HTNLearner], peer: Callable[[], HTNLearner], repeats: int
+) -> tuple[dict[str, float | int | bool], dict[str, float | int | bool]]:
+    """``fit`` and its ``peer`` timed in turns (one run of each, ``repeats`` times: a slower spell of the
+    machine falls on both alike), then each one's peak memory."""
+    fit(), peer()  # warm up imports and caches
+    times: tuple[list[float], list[float]] = ([], [])
+    learners: list[HTNLearner] = [fit(), peer()]
     for _ in range(repeats):
-        started = time.perf_counter()
-        learner = fit()
-        times.append(time.perf_counter() - started)
+        for k, run in enumerate((fit, peer)):
+            started = time.perf_counter()
+            learners[k] = run()
+            times[k].append(time.perf_counter() - started)
+    first, second = (_summary(run, learner, spent) for run, learner, spent in zip((fit, peer), learners, times, strict=True))
+    return first, second
+
+
+def _summary(fit: Callable[[], HTNLearner], learner: HTNLearner, times: list[float]) -> dict[str, float | int | bool]:
     tracemalloc.start()
     fit()
     _, peak = tracemalloc.get_traced_memory()
@@ -56,7 +67,7 @@ def measure(fit: Callable[[], HTNLearner], repeats: int) -> dict[str, float | in
     return {
         "median_seconds": statistics.median(times),
         "min_seconds": min(times),
-        "runs": repeats,
+        "runs": len(times),
         "peak_memory_mib": peak / 2**20,
         "complete": learner.htn_.complete,
         "roots": len(learner.htn_.roots),
@@ -74,27 +85,27 @@ def main() -> None:
     for size in (10, 100, 1000, 5000):
         spec = generate_task(size, args.seed, demonstrations=4)
         demos = list(spec.demonstrations)
-        cases[f"ikea-{size}-actions-4-demos"] = {
-            "actions": size,
-            "goal_seconds": GOALS_SECONDS[size],
-            **measure(lambda demos=demos: HTNLearner().fit(demos), REPEATS[size]),
-            "strict": measure(lambda demos=demos: HTNLearner(mode="strict").fit(demos), REPEATS[size]),
-        }
+        general, strict = measure(
+            lambda demos=demos: HTNLearner().fit(demos),
+            lambda demos=demos: HTNLearner(mode="strict").fit(demos),
+            REPEATS[size],
+        )
+        cases[f"ikea-{size}-actions-4-demos"] = {"actions": size, "goal_seconds": GOALS_SECONDS[size], **general, "strict": strict}
     structure = examples.load("blocks-tower").structure
     assert structure is not None
     orderings = [[a for a, _ in o] for o in iter_orderings(structure)]
-    cases["blocks-tower-720-orderings"] = {
-        "actions": 8,
-        "goal_seconds": GOALS_SECONDS["blocks-tower-720"],
-        **measure(lambda: HTNLearner().fit(orderings), REPEATS["blocks-tower-720"]),
-        "strict": measure(lambda: HTNLearner(mode="strict").fit(orderings), REPEATS["blocks-tower-720"]),
-    }
+    general, strict = measure(
+        lambda: HTNLearner().fit(orderings), lambda: HTNLearner(mode="strict").fit(orderings), REPEATS["blocks-tower-720"]
+    )
+    goal = GOALS_SECONDS["blocks-tower-720"]
+    cases["blocks-tower-720-orderings"] = {"actions": 8, "goal_seconds": goal, **general, "strict": strict}
     slipped = slipped_demonstrations(args.seed)
+    general, strict = measure(lambda: HTNLearner().fit(slipped), lambda: HTNLearner(mode="strict").fit(slipped), 5)
     cases[f"slips-{SLIP_ACTIONS}-actions-{SLIP_DEMOS}-demos"] = {
         "actions": SLIP_ACTIONS,
         "goal_seconds": None,
-        **measure(lambda: HTNLearner().fit(slipped), 5),
-        "strict": measure(lambda: HTNLearner(mode="strict").fit(slipped), 5),
+        **general,
+        "strict": strict,
         "slips": len(HTNLearner().fit(slipped).deviations_),
     }
     for case in cases.values():

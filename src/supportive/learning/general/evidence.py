@@ -29,6 +29,7 @@ __all__ = [
     "contiguity_chance",
     "established_precedences",
     "matrix_contiguity_chance",
+    "padded",
     "pair_counts",
     "position_pair_counts",
     "positions_of",
@@ -91,11 +92,15 @@ def contiguity_chance(arrays: Sequence[npt.NDArray[np.int64]], members: frozense
 
 def as_matrix(sequences: Sequence[Sequence[int]] | Sequence[npt.NDArray[np.int64]]) -> IntMatrix:
     """Sequences of node ids as the rows of one matrix, each row padded with -1 after its sequence ends."""
-    lengths = np.array(list(map(len, sequences)), dtype=np.int64)
-    matrix = np.full((len(sequences), int(lengths.max(initial=0))), -1, dtype=np.int64)
-    matrix[np.arange(matrix.shape[1]) < lengths[:, None]] = np.fromiter(
-        itertools.chain.from_iterable(sequences), dtype=np.int64, count=int(lengths.sum())
-    )
+    lengths = list(map(len, sequences))
+    return padded(np.fromiter(itertools.chain.from_iterable(sequences), dtype=np.int64, count=sum(lengths)), lengths)
+
+
+def padded(values: npt.NDArray[np.int64], lengths: Sequence[int]) -> IntMatrix:
+    """:func:`as_matrix` of the sequences that ``values`` holds one after the other, of ``lengths``."""
+    sizes = np.array(lengths, dtype=np.int64)
+    matrix = np.full((len(sizes), int(sizes.max(initial=0))), -1, dtype=np.int64)
+    matrix[np.arange(matrix.shape[1]) < sizes[:, None]] = values
     return matrix
 
 

@@ -44,7 +44,7 @@ from typing import Literal
 
 import numpy as np
 
-from supportive.learning.general.evidence import IntMatrix, as_matrix, position_pair_counts, positions_of
+from supportive.learning.general.evidence import IntMatrix, padded, position_pair_counts, positions_of
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
@@ -173,11 +173,12 @@ class _Steps:
     at: IntMatrix
 
     @classmethod
-    def of(cls, demos: Sequence[Sequence[tuple[int, Leaf]]]) -> _Steps:
+    def of(cls, demos: Sequence[Sequence[Leaf]]) -> _Steps:
         """The encoding of ``demos``."""
-        leaves = sorted({leaf for demo in demos for _, leaf in demo})
+        flat = list(itertools.chain.from_iterable(demos))
+        leaves = sorted(set(flat))
         index = {leaf: i for i, leaf in enumerate(leaves)}
-        matrix = as_matrix([[index[leaf] for _, leaf in demo] for demo in demos])
+        matrix = padded(np.fromiter(map(index.__getitem__, flat), dtype=np.int64, count=len(flat)), list(map(len, demos)))
         return cls(leaves, index, matrix, positions_of(matrix, len(leaves)))
 
     @cached_property
@@ -185,6 +186,29 @@ class _Steps:
         """How many demonstrations do each leaf."""
         doers: IntMatrix = (self.at >= 0).sum(axis=0)
         return doers
+
+
+@dataclass(frozen=True)
+class _Kept:
+    """The demonstrations with the steps that slips take out removed (leaves not numbered again):
+    ``demos[d]`` the leaves kept, ``where[d]`` the place each had in the demonstration as given (only for the
+    demonstrations a slip touched: elsewhere the k-th step kept is the k-th). ``kept[d]`` lists the
+    ``(place, leaf)`` of demonstration ``d``'s steps."""
+
+    demos: list[tuple[Leaf, ...]]
+    where: dict[int, list[int]]
+
+    def __len__(self) -> int:
+        return len(self.demos)
+
+    def __getitem__(self, d: int) -> list[tuple[int, Leaf]]:
+        where = self.where.get(d)
+        return list(enumerate(self.demos[d]) if where is None else zip(where, self.demos[d], strict=True))
+
+    def position(self, d: int, k: int) -> int:
+        """The place in the demonstration as given of demonstration ``d``'s k-th step kept."""
+        where = self.where.get(d)
+        return k if where is None else where[k]
 
 
 class _Search:
@@ -312,16 +336,16 @@ class _Search:
         return found
 
     def _find_candidates(self, slips: frozenset[Deviation]) -> list[frozenset[Deviation]]:
-        cleaned = self._cleaned_positions(slips)
+        cleaned = self._kept(slips)
         n = len(cleaned)
         need = self.structure_settings.support_needed
-        steps = _Steps.of(cleaned)
+        steps = _Steps.of(cleaned.demos)
         doers = dict(zip(steps.leaves, steps.doers.tolist(), strict=True))
         rare = {leaf for leaf, k in doers.items() if n - k >= need and k < n - k}  # done by few
         skipped = {leaf for leaf, k in doers.items() if k >= need and 0 < n - k < k}  # not done by few
         performers: dict[Leaf, list[tuple[int, int]]] = {leaf: [] for leaf in rare | skipped}
-        for d, demo in enumerate(cleaned if performers else ()):
-            for position, leaf in demo:
+        for d in range(n) if performers else ():
+            for position, leaf in cleaned[d]:
                 if leaf in performers:
                     performers[leaf].append((d, position))
         excused = {(d.demonstration, d.leaf) for d in slips if d.kind == "missing"}
@@ -364,7 +388,7 @@ class _Search:
             out.append(frozenset().union(*best.values()))
         return out
 
-    def _repairs(self, cleaned: list[list[tuple[int, Leaf]]], odd: set[int]) -> list[frozenset[Deviation]]:
+    def _repairs(self, cleaned: _Kept, odd: set[int]) -> list[frozenset[Deviation]]:
         """Steps whose move would make an odd demonstration (one that reverses agreed orders, whose steps
         follow one another unusually, :func:`_surprising`, or that breaks a subtask the others keep together,
         :meth:`_inserted`) an execution of the hierarchy learned from the
@@ -372,20 +396,19 @@ class _Search:
         order, and the hierarchy learned with it is loosened where the others' is not."""
         if not odd or len(cleaned) - len(odd) <= self.structure_settings.support_needed:
             return []
-        core = [tuple(leaf for _, leaf in demo) for d, demo in enumerate(cleaned) if d not in odd]
+        core = [demo for d, demo in enumerate(cleaned.demos) if d not in odd]
         htn = fit_structure(core, (), self.structure_settings, modules=self.modules).htn()
         out: list[frozenset[Deviation]] = []
         for d in sorted(odd):
-            leaves = [leaf for _, leaf in cleaned[d]]
+            leaves = list(cleaned.demos[d])
             if htn.admits_leaves(leaves):
                 continue
             for i in htn.executions.single_moves(leaves, range(len(leaves))):
-                position, leaf = cleaned[d][i]
-                out.append(frozenset({Deviation(d, position, leaf, "out of order")}))
+                out.append(frozenset({Deviation(d, cleaned.position(d, i), leaves[i], "out of order")}))
         return out
 
     def _moved(
-        self, cleaned: list[list[tuple[int, Leaf]]], steps: _Steps, slips: frozenset[Deviation]
+        self, cleaned: _Kept, steps: _Steps, slips: frozenset[Deviation]
     ) -> tuple[list[frozenset[Deviation]], list[frozenset[Deviation]]]:
         """Single steps that reverse orders the other demonstrations agree on, the most telling first: each
         reversed order weighs one over the number of demonstrations keeping it (an order few demonstrations
@@ -422,15 +445,14 @@ class _Search:
         weight = np.where(agreed.T, 1.0 / np.maximum(before.T, 1), 0.0)  # [i, j]: j before i agreed, i first here
         telling = np.zeros(steps.at.shape, dtype=np.float64)  # [d, i]: how telling demonstration d's step i is
         ranked: list[tuple[float, int, int, Leaf]] = []
-        for d, demo in enumerate(cleaned):
+        for d, demo in enumerate(cleaned.demos):
             order = steps.matrix[d, : len(demo)]
             later = np.triu(np.ones((len(order), len(order)), dtype=bool), 1)
             reversed_here = np.where(later, weight[np.ix_(order, order)], 0.0)
             scores = reversed_here.sum(axis=0) + reversed_here.sum(axis=1)
             telling[d, order] = scores
-            for i in np.flatnonzero(scores):
-                position, leaf = cleaned[d][int(i)]
-                ranked.append((-float(scores[i]), d, position, leaf))
+            for i in np.flatnonzero(scores).tolist():
+                ranked.append((-float(scores[i]), d, cleaned.position(d, i), demo[i]))
         ranked.sort()
         singles = [frozenset({Deviation(d, p, leaf, "out of order")}) for _, d, p, leaf in ranked]
         groups: dict[frozenset[Deviation], None] = {}
@@ -439,13 +461,13 @@ class _Search:
             chosen = np.where(telling[reversing, first] >= telling[reversing, then], first, then)
             groups.setdefault(
                 frozenset(
-                    Deviation(int(d), cleaned[d][steps.at[d, i]][0], leaves[i], "out of order")
+                    Deviation(int(d), cleaned.position(d, int(steps.at[d, i])), leaves[i], "out of order")
                     for d, i in zip(reversing.tolist(), chosen.tolist(), strict=True)
                 )
             )
         return singles, list(groups)
 
-    def _inserted(self, cleaned: list[list[tuple[int, Leaf]]], steps: _Steps) -> list[frozenset[Deviation]]:
+    def _inserted(self, cleaned: _Kept, steps: _Steps) -> list[frozenset[Deviation]]:
         """Single steps that break a subtask the other demonstrations keep together (a step moved into a
         subtask reverses no order but breaks it), largest subtask first.
 
@@ -465,10 +487,12 @@ class _Search:
         for code in codes[counts >= need].tolist():
             pair = divmod(code, len(leaves))
             members, intruders = _robust_closure(frozenset(pair), at, need, closures)
+            if not intruders:
+                continue
             kept = int((performed[:, sorted(members)].sum(axis=1) >= 2).sum())
             for d, i in intruders:
                 if kept - 1 >= need and doers[i] - 1 >= need:
-                    position = cleaned[d][at[d, i]][0]
+                    position = cleaned.position(d, int(at[d, i]))
                     found[(d, position)] = max(
                         found.get((d, position), (0, leaves[i])), (len(members), leaves[i])
                     )
@@ -476,15 +500,14 @@ class _Search:
         return [frozenset({Deviation(d, p, leaf, "out of order")}) for (d, p), (_, leaf) in ranked]
 
     # ------------------------------------------------------------------ scoring
-    def _cleaned_positions(self, slips: frozenset[Deviation]) -> list[list[tuple[int, Leaf]]]:
+    def _kept(self, slips: frozenset[Deviation]) -> _Kept:
         out_at = {(d.demonstration, d.position) for d in slips if d.kind in _TAKEN_OUT}
-        touched = {d for d, _ in out_at}
-        return [
-            [(p, leaf) for p, leaf in enumerate(demo) if (d, p) not in out_at]
-            if d in touched
-            else list(enumerate(demo))
-            for d, demo in enumerate(self.labelled)
-        ]
+        demos = list(self.labelled)
+        where: dict[int, list[int]] = {}
+        for d in sorted({d for d, _ in out_at}):
+            where[d] = [p for p in range(len(demos[d])) if (d, p) not in out_at]
+            demos[d] = tuple(demos[d][p] for p in where[d])
+        return _Kept(demos, where)
 
     def _cleaned(self, slips: frozenset[Deviation]) -> list[tuple[Leaf, ...]]:
         """The demonstrations with the slips taken out; where a repeated performance was, the performances
@@ -502,14 +525,14 @@ class _Search:
             if slip.kind == "repeated":
                 renumber.setdefault(slip.demonstration, set()).add(slip.leaf[0])
         out = []
-        for d, demo in enumerate(self._cleaned_positions(slips)):
+        for d, demo in enumerate(self._kept(slips).demos):
             actions = renumber.get(d)
             if not actions:
-                out.append(tuple(leaf for _, leaf in demo))
+                out.append(demo)
                 continue
             seen: Counter[str] = Counter()
             labels = []
-            for _, (action, instance) in demo:
+            for action, instance in demo:
                 if action in actions:
                     seen[action] += 1
                     instance = seen[action]

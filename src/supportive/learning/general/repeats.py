@@ -24,6 +24,9 @@ _CANDIDATE_PERIODS = 8
 
 def fold_repeats(decomposition: Decomposition) -> Decomposition:
     """``decomposition`` with every run of repeated segments in a chain made a clique of instances."""
+    actions = [action for action, _ in decomposition.leaves]
+    if len(set(actions)) == len(actions):  # no action in two leaves: no two nodes share a shape
+        return decomposition
     shape = Shapes(decomposition.leaves, decomposition.groups)  # the shapes before any folding
     groups = dict(decomposition.groups)
     presence = dict(decomposition.presence)
