@@ -188,8 +188,11 @@ def learner_settings_chosen() -> str:
 def learner_settings_clean() -> str:
     """docs/learning.md (inline): what the chosen setting reported on clean data."""
     row = _ls()["settings"][_ls()["chosen"]]
-    quiet = row["clean_tasks"] - row["clean_tasks_flagged"]
-    return f"reported no slip in {quiet} of the {row['clean_tasks']} clean tasks ({row['clean_flagged']:.4f} of steps)"
+    tasks, flagged = row["clean_tasks"], row["clean_tasks_flagged"]
+    return (
+        f"reported a slip in {flagged} of the {tasks:,} clean tasks ({flagged / tasks:.2%} of them; "
+        f"{row['clean_flagged']:.4%} of their steps)"
+    )
 
 
 BLOCKS: dict[str, Block] = {

@@ -46,7 +46,7 @@ SIZES = (6, 12)
 """Steps per task (inclusive range)."""
 TASKS = 6
 """Generated tasks per profile, number of demonstrations and kind of mistake (a full run)."""
-CLEAN_TASKS = 300
+CLEAN_TASKS = 3000
 """Generated tasks without mistakes (a full run), each with 1–200 demonstrations: how often a setting reports
 a slip where there is none."""
 CLEAN_DEMONSTRATIONS = (1, 200)

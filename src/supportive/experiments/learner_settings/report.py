@@ -41,7 +41,7 @@ def report(metrics: Mapping[str, Any]) -> str:
                 [
                     f"**{name}**" if name == chosen else name,
                     *(f"{row['kinds'][c]['precision']:.2f} / {row['kinds'][c]['recall']:.2f}" for c in cells),
-                    f"{row['clean_flagged']:.4f} ({row['clean_tasks_flagged']}/{row['clean_tasks']})",
+                    f"{row['clean_tasks_flagged']}/{row['clean_tasks']} ({row['clean_flagged']:.4%})",
                     f"{row['worst_f1']:.3f}",
                 ]
                 for name, row in metrics["settings"].items()
@@ -66,7 +66,12 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     if chosen is None:
         return [("slip settings", "none qualifies", "–")]
     row = metrics["settings"][chosen]
-    return [("slip settings chosen", chosen, f"worst F1 {row['worst_f1']:.3f}, clean {row['clean_flagged']:.4f}")]
+    return [("slip settings chosen", chosen, f"worst F1 {row['worst_f1']:.3f}, {_clean(row)}")]
+
+
+def _clean(row: Mapping[str, Any]) -> str:
+    """How many clean tasks a setting reported a slip in."""
+    return f"a slip in {row['clean_tasks_flagged']}/{row['clean_tasks']} clean tasks"
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
@@ -77,6 +82,6 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     row = metrics["settings"][chosen]
     precision = min(k["precision"] for k in row["kinds"].values() if k["mistakes"])
     recall = min(k["recall"] for k in row["kinds"].values() if k["mistakes"])
-    value = f"{chosen}: worst P {precision:.2f}, worst R {recall:.2f}, clean {row['clean_flagged']:.4f}"
+    value = f"{chosen}: worst P {precision:.2f}, worst R {recall:.2f}, {_clean(row)}"
     verdict = "meets P ≥ 0.9, R ≥ 0.7" if precision >= 0.9 and recall >= 0.7 else "below P ≥ 0.9 or R ≥ 0.7"
     return [Finding("slip search defaults on generated tasks (issue #23)", "– (not in the thesis)", (("", value),), verdict)]

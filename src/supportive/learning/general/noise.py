@@ -163,7 +163,7 @@ def find_slips(
 
 @dataclass(frozen=True)
 class _Steps:
-    """Demonstrations (positions and leaves) encoded once for the candidate searches: ``leaves`` sorted,
+    """Demonstrations (their leaves) encoded once for the candidate searches: ``leaves`` sorted,
     ``index`` of each, ``matrix[d, k]`` the id of demonstration ``d``'s k-th step (-1 after its end) and
     ``at[d, i]`` where ``d`` does leaf ``i`` (-1: not at all; a leaf is done once in a demonstration)."""
 
@@ -192,8 +192,8 @@ class _Steps:
 class _Kept:
     """The demonstrations with the steps that slips take out removed (leaves not numbered again):
     ``demos[d]`` the leaves kept, ``where[d]`` the place each had in the demonstration as given (only for the
-    demonstrations a slip touched: elsewhere the k-th step kept is the k-th). ``kept[d]`` lists the
-    ``(place, leaf)`` of demonstration ``d``'s steps."""
+    demonstrations a slip touched: elsewhere the k-th step kept is the k-th). Indexed by a demonstration, it
+    lists the ``(place, leaf)`` of that demonstration's steps kept."""
 
     demos: list[tuple[Leaf, ...]]
     where: dict[int, list[int]]
