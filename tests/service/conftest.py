@@ -161,36 +161,39 @@ class Server:
                 self.kill()
 
 
-def start_server(database: str, port: int | None = None, extra: tuple[str, ...] = ()) -> Server:
-    port = port or free_port()
-    command = [
-        sys.executable,
-        "-m",
-        "supportive.cli",
-        "serve",
-        "--db",
-        database,
-        "--port",
-        str(port),
-        "--host",
-        "127.0.0.1",
-        *(x for a in AGENTS for x in ("--agent", a)),
-        *(x for name in LEAD_ONLY for x in ("--lead-only", name)),
-        *extra,
-    ]
-    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    url = f"http://127.0.0.1:{port}"
-    deadline = time.monotonic() + 30
+def serve_command(database: str, port: int, *args: str) -> list[str]:
+    """``supportive serve`` of the board in ``database`` on ``port``, with ``args``."""
+    return [sys.executable, "-m", "supportive.cli", "serve", "--db", database, "--port", str(port), *args]
+
+
+def wait_until_answers(
+    url: str, process: subprocess.Popen[Any], headers: dict[str, str] | None = None, seconds: float = 30
+) -> None:
+    """Poll ``url`` until it answers 200; fail when the process exits first (with what it wrote on stderr) or
+    after ``seconds`` (the process killed)."""
+    deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
         if process.poll() is not None:
-            raise RuntimeError(f"server exited: {process.stderr.read().decode() if process.stderr else ''}")
+            log = process.stderr.read() if process.stderr else ""
+            raise RuntimeError(f"server exited: {log.decode() if isinstance(log, bytes) else log}")
         try:
-            if httpx.get(f"{url}/api/me", headers=auth("screen"), timeout=1).status_code == 200:
-                return Server(url, database, port, process)
+            if httpx.get(url, headers=headers, timeout=1).status_code == 200:
+                return
         except httpx.HTTPError:
-            time.sleep(0.1)
+            time.sleep(0.05)
     process.kill()
-    raise RuntimeError("server did not start within 30 s")
+    raise RuntimeError(f"server did not answer {url} within {seconds:g} s")
+
+
+def start_server(database: str, port: int | None = None, extra: tuple[str, ...] = ()) -> Server:
+    port = port or free_port()
+    agents = [x for a in AGENTS for x in ("--agent", a)]
+    lead_only = [x for name in LEAD_ONLY for x in ("--lead-only", name)]
+    command = serve_command(database, port, "--host", "127.0.0.1", *agents, *lead_only, *extra)
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    url = f"http://127.0.0.1:{port}"
+    wait_until_answers(f"{url}/api/me", process, auth("screen"))
+    return Server(url, database, port, process)
 
 
 BANNER_END = "  API docs at "
@@ -214,7 +217,7 @@ class ServeProcess:
 
     def start(self, *args: str) -> dict[str, str]:
         """Start it with ``args``; the tokens its banner shows, by agent (none when every agent has one)."""
-        command = [sys.executable, "-m", "supportive.cli", "serve", "--db", self.database, "--port", str(self.port), *args]
+        command = serve_command(self.database, self.port, *args)
         self.process = subprocess.Popen(command, cwd=self.cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         assert self.process.stdout is not None
         self.banner = []
@@ -222,13 +225,7 @@ class ServeProcess:
             line = self.process.stdout.readline()
             assert line, self.process.communicate()
             self.banner.append(line.rstrip("\n"))
-        deadline = time.monotonic() + 30
-        while time.monotonic() < deadline:
-            try:
-                if httpx.get(f"{self.url}/", timeout=1).status_code == 200:
-                    break
-            except httpx.HTTPError:
-                time.sleep(0.05)
+        wait_until_answers(f"{self.url}/", self.process)
         return dict(re.findall(r"new token for (\w+) \([^)]*\): (\S+)$", "\n".join(self.banner), re.MULTILINE))
 
     def stop(self) -> None:
