@@ -228,9 +228,13 @@ def select_reading(
     for fold in range(k):
         train = [i for i in range(len(actions)) if i % k != fold]
         held = [i for i in range(len(actions)) if i % k == fold]
+        scored: dict[tuple[object, object], list[tuple[float, bool]]] = {}  # readings learning one hierarchy
         for name in full:
             htn = fit(name, train)
-            for value, ok in held_out_log_likelihoods(htn, [actions[i] for i in held], slip_rate):
+            key = (htn.roots, htn.top_level)
+            if key not in scored:
+                scored[key] = held_out_log_likelihoods(htn, [actions[i] for i in held], slip_rate)
+            for value, ok in scored[key]:
                 totals[name] += value
                 admitted[name] += ok
     scores = {name: total / len(actions) for name, total in totals.items()}
