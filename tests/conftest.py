@@ -23,7 +23,7 @@ settings.load_profile("supportive")
 
 
 def _without_local_constants() -> None:
-    """Hypothesis (since 6.131) now and then draws a constant it found in the project's imported modules; which
+    """Hypothesis (recent versions) now and then draws a constant it found in the project's imported modules; which
     of them a run has imported depends on the tests collected, so the derandomized examples were not the same in
     every run (a subset of the suite drew a clean sample that the whole suite never did). Keep that set empty:
     derandomized then means the same examples in every run, whatever else is collected."""

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import logging
+import signal
+import subprocess
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -131,3 +133,26 @@ def test_one_worker_needs_no_dask(monkeypatch: pytest.MonkeyPatch) -> None:
         import_distributed()
     with pytest.raises(MissingExtraError, match=r"supportive\[distributed\]"):
         run_experiment("edge-reduction", trials=1, workers=2, progress=False)
+
+
+SIGNAL_MASKS = """
+import psutil
+from supportive.experiments.execution import open_executor
+with open_executor(workers=2):
+    server = next(p for p in psutil.Process().children() if "forkserver" in " ".join(p.cmdline()))
+    status = dict(line.split(":", 1) for line in open(f"/proc/{server.pid}/status").read().splitlines())
+    print(status["SigBlk"].strip(), status["SigIgn"].strip())
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads the fork server's /proc/PID/status")
+def test_the_fork_server_holds_ctrl_c_back_from_its_start() -> None:
+    # The local cluster's fork server starts as a new interpreter; a terminal's Ctrl-C that reached it while
+    # Python itself started (before it could ignore the signal) printed "Fatal Python error: init_import_site"
+    # beside the run's one line. It is born with SIGINT blocked (inherited from the thread that started it),
+    # and ignores it once started; the workers it forks inherit both.
+    done = subprocess.run([sys.executable, "-c", SIGNAL_MASKS], capture_output=True, text=True, timeout=120, check=True)
+    blocked, ignored = (int(mask, 16) for mask in done.stdout.split()[-2:])
+    sigint = 1 << (signal.SIGINT - 1)
+    assert blocked & sigint, done.stdout
+    assert ignored & sigint, done.stdout

@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 import queue
 import re
+import signal
 import socket
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -206,8 +207,8 @@ def open_executor(workers: int = 1, scheduler: str | None = None) -> Iterator[Ex
             client.close()
         return
     with _quiet_workers(distributed):
-        with uninterrupted():  # a Ctrl-C while the cluster starts takes effect once it has: none is half made
-            cluster = _new_cluster(distributed, workers)
+        with uninterrupted(), _held_back_from_new_processes():  # a Ctrl-C while the cluster starts takes
+            cluster = _new_cluster(distributed, workers)  # effect once it has: none is half made
         try:
             client = distributed.Client(cluster, set_as_default=False)
             try:
@@ -236,6 +237,27 @@ def _quiet_workers(distributed: ModuleType) -> Iterator[None]:
         context = distributed.utils.get_mp_context()  # dask sets its preloads once, on the first call
         context.set_forkserver_preload(["supportive.quiet_fork", "distributed"])
         yield
+
+
+@contextmanager
+def _held_back_from_new_processes() -> Iterator[None]:
+    """While the block runs, this thread blocks Ctrl-C (SIGINT); the threads it starts, and the programs they
+    start, inherit the block. The fork server is a new interpreter: a terminal's Ctrl-C that reached it while
+    Python itself was starting, before :mod:`supportive.quiet_fork` could make it ignore the signal, printed
+    "Fatal Python error" beside the run's one line; born with SIGINT blocked, it never sees one. A Ctrl-C
+    this thread held back is delivered when the block ends.
+
+    Python's resource tracker is started first, outside the block: starting it guards its own birth the same
+    way (bpo-33613) but then unblocks SIGINT in the thread that started it, which would be the cluster's
+    event loop, the thread that goes on to start the fork server."""
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _new_cluster(distributed: ModuleType, workers: int) -> Any:
