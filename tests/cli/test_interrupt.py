@@ -330,3 +330,35 @@ def test_an_error_a_library_raises_from_a_ctrl_c_is_an_interruption(
     code, out, err = cli(["learn", "blocks-v"])
     assert code == 130 and out == ""
     assert err.strip().splitlines() == ["supportive: interrupted (Ctrl-C): nothing written"]
+
+
+LOADING = """
+import importlib.abc, sys, time
+class Held(importlib.abc.MetaPathFinder):  # the command's module waits as it is found: the middle of loading
+    def find_spec(self, name, path, target=None):
+        if name == "supportive.cli":
+            sys.stderr.write("LOADING\\n"); sys.stderr.flush(); time.sleep(120)
+        return None
+sys.meta_path.insert(0, Held())
+sys.argv = ["supportive", "--help"]
+from supportive.launch import main
+main()
+"""
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_while_the_command_loads_stops_it_with_one_line(tmp_path: Path, sig: int) -> None:
+    # The command's modules take some tenths of a second to import; a Ctrl-C in that time ends it as one later
+    # does, not with a traceback from the middle of an import (the `supportive` program starts in
+    # supportive.launch, which takes care of the signals before it loads them).
+    process = subprocess.Popen(
+        [sys.executable, "-c", LOADING], cwd=tmp_path, stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    )
+    assert process.stderr is not None
+    assert process.stderr.readline() == "LOADING\n"
+    process.send_signal(sig)
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == 128 + sig
+    assert out == ""
+    how = "interrupted (Ctrl-C)" if sig == signal.SIGINT else "stopped (SIGTERM)"
+    assert err.splitlines() == [f"supportive: {how}: nothing written"]
