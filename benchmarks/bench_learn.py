@@ -47,9 +47,8 @@ def measure(
 ) -> tuple[dict[str, float | int | bool], dict[str, float | int | bool]]:
     """``fit`` and its ``peer`` timed in turns (one run of each, ``repeats`` times: a slower spell of the
     machine falls on both alike), then each one's peak memory."""
-    fit(), peer()  # warm up imports and caches
+    learners: list[HTNLearner] = [fit(), peer()]  # warm up imports and caches
     times: tuple[list[float], list[float]] = ([], [])
-    learners: list[HTNLearner] = [fit(), peer()]
     for _ in range(repeats):
         for k, run in enumerate((fit, peer)):
             started = time.perf_counter()
