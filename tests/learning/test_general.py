@@ -129,11 +129,14 @@ def test_a_slip_is_set_aside_and_reported() -> None:
 
 
 def test_a_slip_is_kept_only_when_it_gains_more_than_the_margin() -> None:
-    # b before c in 12 of 13: set aside by the default margin (the log-likelihood gain of calling the swap a
-    # slip exceeds 2 nats), kept as a variant when the margin asks for more than that gain.
-    demos = [*[list("abcdef")] * 6, *[list("abdcef")] * 6, list("acbdef")]
+    # b before c in 20 of 21: set aside by the default margin (the log-likelihood gain of calling the swap a
+    # slip exceeds 2 nats), kept as a variant when the margin asks for more than that gain. With 6 of each
+    # and the swap once, the search gains too, but c before b once in 13 where a third of the orders put it
+    # there is what a sample of valid executions shows one time in 26: no slip.
+    demos = [*[list("abcdef")] * 10, *[list("abdcef")] * 10, list("acbdef")]
     learner = HTNLearner().fit(demos)
-    assert [(d.demonstration, d.kind) for d in learner.deviations_] == [(12, "out of order")]
+    assert [(d.demonstration, d.kind) for d in learner.deviations_] == [(20, "out of order")]
+    assert HTNLearner().fit([*demos[:6], *demos[10:16], demos[-1]]).deviations_ == ()
     assert learner.noise_ is not None
     gain = learner.noise_.gain
     assert gain > learner.slip_margin

@@ -74,6 +74,13 @@ class OrderLikelihood:
             orders = self._orders[done] = max(self._count(done), 1)
         return -math.log(orders)
 
+    def orders(self, done: frozenset[Leaf]) -> int:
+        """How many orders of exactly the leaves ``done`` the hierarchy admits."""
+        orders = self._orders.get(done)
+        if orders is None:
+            orders = self._orders[done] = self._count(done)
+        return orders
+
     def parameters(self) -> int:
         """The take-or-skip frequencies the demonstrations fix: optional nodes both performed and skipped."""
         return sum(
