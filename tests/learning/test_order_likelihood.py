@@ -27,5 +27,5 @@ def test_the_orders_of_each_set_of_steps_are_counted_once(seed: int, kind: str, 
     orders = Counter(frozenset(e) for e in executions)
     reading = OrderLikelihood(htn)
     for done, count in orders.items():
-        assert reading._count(done) == count
+        assert reading.orders(done) == count
     assert all(reading.log_probability(e) > -np.inf for e in executions)

@@ -102,7 +102,9 @@ class HTNLearner(Estimator):
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
             this (:func:`~supportive.learning.general.evidence.contiguity_chance`, a likelihood-ratio test), and take
             an order the demonstrations reverse far less often than the hierarchy predicts as agreed (the
-            slip search's candidates, :mod:`~supportive.learning.general.noise`). The conventional 5 % level.
+            slip search's candidates, :mod:`~supportive.learning.general.noise`); a step out of order stands
+            only when a sample of valid executions shows what the demonstrations show with a chance below
+            this over the number of pairs of steps. The conventional 5 % level.
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
             even when no step is between them (:func:`~supportive.learning.general.evidence.established_precedences`);
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).

@@ -52,12 +52,9 @@ class OrderLikelihood:
         if not self.htn.admits_leaves(leaves):
             return -math.inf
         done = frozenset(leaves)
-        orders = self._orders.get(done)
-        if orders is None:
-            orders = self._orders[done] = self._count(done)
         return sum(
             _choice(node, done) for root in self.htn.roots for node in _performed_parents(root, done)
-        ) - math.log(orders)
+        ) - math.log(self.orders(done))
 
     def log_probability_of_actions(self, actions: Sequence[str]) -> float:
         """:meth:`log_probability` of an execution given as action ids (the k-th performance of an action
@@ -69,10 +66,7 @@ class OrderLikelihood:
         if self.htn.admits_leaves(leaves):
             return self.log_probability(leaves)
         done = frozenset(leaves)  # a repeated subtask's instances, matched by the hierarchy, not by count
-        orders = self._orders.get(done)
-        if orders is None:
-            orders = self._orders[done] = max(self._count(done), 1)
-        return -math.log(orders)
+        return -math.log(max(self.orders(done), 1))
 
     def orders(self, done: frozenset[Leaf]) -> int:
         """How many orders of exactly the leaves ``done`` the hierarchy admits."""
