@@ -177,14 +177,11 @@ class LayoutSearch:
         level = count % 2
         kinds = sorted({kind for kind, left in inventory.items() if left > 0} | {kind for kind, _ in fixed})
         turns = [0, 1] if count and walk.length and walk.side < 3 else [0]
-        candidates = sorted(
-            (rank(kind, BoardPose(walk.point[0], walk.point[1], walk.side + turn, level)), turn, kind)
-            for turn in turns
-            for kind in kinds
-        )
+        poses = [BoardPose(walk.point[0], walk.point[1], walk.side + turn, level) for turn in turns]
+        candidates = sorted((rank(kind, poses[turn]), turn, kind) for turn in turns for kind in kinds)
         for _, turn, kind in candidates:
             side = walk.side + turn
-            pose = BoardPose(walk.point[0], walk.point[1], side, level)
+            pose = poses[turn]
             is_fixed = (kind, pose) in fixed
             if inventory.get(kind, 0) <= 0 and not is_fixed:
                 continue
@@ -194,12 +191,11 @@ class LayoutSearch:
             self.nodes += 1
             if self.nodes > self.node_limit:
                 raise SearchLimitError(f"the circuit search tried {self.node_limit:,} pieces, its limit")
-            end, length, sides, closed = step
+            end, length, sides, closed, footprint = step
             if not is_fixed:
                 inventory[kind] -= 1
             walk.pieces.append(Segment(kind, pose))
             walk.used[kind] += 1
-            footprint = pose.footprint(kind)
             new_points = [pt for pt in footprint[1:] if pt != self.start or not closed]
             walk.visited.update(new_points)
             saved = (walk.point, walk.side, walk.length, walk.sides, walk.reused)
@@ -226,8 +222,9 @@ class LayoutSearch:
         pose: BoardPose,
         placed: Mapping[tuple[int, Point], object],
         is_fixed: bool,
-    ) -> tuple[Point, int, list[int], bool] | None:
-        """Where laying ``kind`` at ``pose`` ends the walk, or None when it cannot go there."""
+    ) -> tuple[Point, int, list[int], bool, tuple[Point, ...]] | None:
+        """Where laying ``kind`` at ``pose`` ends the walk (and the points the piece covers), or None when it
+        cannot go there."""
         span = piece_type(kind).span
         side = pose.rotation
         sides = [*walk.sides, walk.length] if turn else list(walk.sides)
@@ -247,7 +244,7 @@ class LayoutSearch:
                 return None
         if not is_fixed and any((pose.level, point) in placed for point in footprint):
             return None
-        return end, length, sides, closed
+        return end, length, sides, closed, footprint
 
     def _finish(self, walk: _Walk, fixed: set[tuple[str, BoardPose]]) -> Loop | None:
         """The walk as a loop, if it holds every placed piece, has what the goal needs and meets it."""
