@@ -355,8 +355,11 @@ class _Search:
                 rest = slips - group
                 loose = OrderLikelihood(self._fit(rest).htn(), shared=self._orders)
                 tight = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)
+                others = {slip.demonstration for slip in rest}  # explained by their own slips
                 outside, chance_outside = 0, []
-                for demo in self._cleaned(rest):
+                for d, demo in enumerate(self._cleaned(rest)):
+                    if d in others:
+                        continue
                     done = frozenset(demo)
                     outside += not tight.htn.admits_leaves(demo)
                     chance_outside.append(1.0 - min(1.0, tight.orders(done) / max(loose.orders(done), 1)))
