@@ -330,44 +330,46 @@ class _Search:
         return slips, gain
 
     def _by_chance(self, slips: frozenset[Deviation]) -> frozenset[Deviation]:
-        """``slips`` without the steps out of order that a sample of valid executions shows as readily.
-
-        For each step out of order (all its slips together), the hierarchy learned with them kept in, read as
-        every admitted order equally likely (:class:`OrderLikelihood`), says how likely each demonstration
-        was to fall outside the tighter hierarchy learned without them; the slips stand when as few
-        demonstrations as did fall outside it is below ``evidence`` over the pairs of steps (Bonferroni over
-        the arrangements a tighter hierarchy may forbid). The likelihood comparison of the search gains
-        from any arrangement a sample happens to avoid, and among the many a task has, some come up far
-        less often than due in samples of clean executions. Least likely by chance first, one step at a
-        time, until every step left stands."""
-        from scipy.stats import poisson_binom
-
+        """``slips`` without the steps out of order that a sample of valid executions shows as readily: the
+        step whose slips are likeliest by chance (:meth:`_chance`) is taken back while that chance is not
+        below ``evidence`` over the pairs of steps (Bonferroni over the arrangements a tighter hierarchy may
+        forbid). The likelihood comparison of the search gains from any arrangement a sample happens to
+        avoid, and among the many a task has, some come up far less often than due in clean samples."""
         steps = len({leaf for demo in self.labelled for leaf in demo})
-        pairs = max(steps * (steps - 1) // 2, 1)
-        level = self.structure_settings.evidence / pairs
+        level = self.structure_settings.evidence / max(steps * (steps - 1) // 2, 1)
         while True:
             groups: dict[Leaf, frozenset[Deviation]] = {}
             for slip in slips:
                 if slip.kind == "out of order":
                     groups[slip.leaf] = groups.get(slip.leaf, frozenset()) | {slip}
-            chances = []
-            for leaf, group in sorted(groups.items()):
-                rest = slips - group
-                loose = OrderLikelihood(self._fit(rest).htn(), shared=self._orders)
-                tight = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)
-                others = {slip.demonstration for slip in rest}  # explained by their own slips
-                outside, chance_outside = 0, []
-                for d, demo in enumerate(self._cleaned(rest)):
-                    if d in others:
-                        continue
-                    done = frozenset(demo)
-                    outside += not tight.htn.admits_leaves(demo)
-                    chance_outside.append(1.0 - min(1.0, tight.orders(done) / max(loose.orders(done), 1)))
-                chances.append((float(poisson_binom.cdf(outside, chance_outside)), leaf))
-            worst = max(chances, default=None)
-            if worst is None or worst[0] < level:
+            if not groups:
                 return slips
-            slips = slips - groups[worst[1]]
+            chance, leaf = max((self._chance(slips, group), leaf) for leaf, group in sorted(groups.items()))
+            if chance < level:
+                return slips
+            slips = slips - groups[leaf]
+
+    def _chance(self, slips: frozenset[Deviation], group: frozenset[Deviation]) -> float:
+        """The chance that as few demonstrations as do fall outside the hierarchy learned with ``slips`` taken
+        out, were they drawn from the one learned with ``group`` (one step's slips) kept in, every order it
+        admits equally likely (:class:`OrderLikelihood`): each demonstration falls outside with chance
+        ``1 - tight / loose``, the two hierarchies' numbers of orders of the steps it performs (0 when the
+        tighter has as many), and how many do is Poisson-binomial. The demonstrations other slips touch are left out:
+        their own slips explain them."""
+        from scipy.stats import poisson_binom
+
+        rest = slips - group
+        loose = OrderLikelihood(self._fit(rest).htn(), shared=self._orders)
+        tight = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)
+        others = {slip.demonstration for slip in rest}
+        outside, chances = 0, []
+        for d, demo in enumerate(self._cleaned(rest)):
+            if d in others:
+                continue
+            done = frozenset(demo)
+            outside += not tight.htn.admits_leaves(demo)
+            chances.append(1.0 - min(1.0, tight.orders(done) / max(loose.orders(done), 1)))
+        return float(poisson_binom.cdf(outside, chances))
 
     def _searchable(self) -> bool:
         """With no more demonstrations than the support an agreement needs, no slip can be told from a
