@@ -25,9 +25,10 @@ def test_a_finished_action_keeps_only_its_share_of_the_slip_probability() -> Non
 
 
 def test_the_hierarchy_may_refuse_a_demonstration_with_a_step_set_aside_as_a_slip() -> None:
-    demos = [["a", "b", "c", "d", "e"]] * 6 + [["a", "b", "d", "c", "e"]] + [["a", "c", "b", "d", "e"]] * 6
+    # d before c once in 21 (with 6 of each, once in 13 could be chance: no slip)
+    demos = [["a", "b", "c", "d", "e"]] * 10 + [["a", "b", "d", "c", "e"]] + [["a", "c", "b", "d", "e"]] * 10
     learner = HTNLearner().fit(demos)
     slipped = {d.demonstration for d in learner.deviations_}
-    assert slipped == {6}
-    assert not learner.htn_.admits(demos[6])
+    assert slipped == {10}
+    assert not learner.htn_.admits(demos[10])
     assert all(learner.htn_.admits(d) for i, d in enumerate(demos) if i not in slipped)

@@ -105,7 +105,11 @@ def test_json_names_are_never_cut(name: str) -> None:
         own = [str(node["name"])] if node.get("name") else []
         return own + [n for child in node.get("children", []) for n in names(child)]  # type: ignore[attr-defined]
 
-    learner = learn(examples.load(name))
+    spec = examples.load(name)
+    if name == "tea-mistakes":  # without the two steps done too early (each could be chance in 13), a subtask
+        # made up of a step sequence and a named subtask, whose name is long
+        spec = spec.with_demonstrations([d for d in spec.demonstrations if all(s.mistake != "order" for s in d.entries)])
+    learner = learn(spec)
     data = htn_to_dict(learner.htn_, learner.stats_.as_dict())
     written = [n for root in data["roots"] for n in names(root)]
     assert not any("…" in n for n in written), written
