@@ -3,7 +3,8 @@
 The command's modules (:mod:`supportive.cli` and what it draws on) take some tenths of a second to import. A
 signal in that time used to end the program with a traceback from the middle of an import; here it ends it
 as one that comes later does (:mod:`supportive.cli.interrupt`): one line, status 130 (143 for SIGTERM),
-nothing written. This module imports nothing of the package before the signals are taken care of.
+nothing written. Before the signals are taken care of it imports nothing of the package but the words of that
+line (:mod:`supportive.stop_line`; with it the package loads its error classes, nothing more).
 """
 
 from __future__ import annotations
@@ -12,6 +13,8 @@ import signal
 import sys
 import threading
 from types import FrameType
+
+from supportive.stop_line import stop_line  # as light as this module: it imports nothing of the package
 
 __all__ = ["main"]
 
@@ -31,7 +34,6 @@ def main() -> None:
 
 def _while_loading(signum: int, frame: FrameType | None) -> None:
     """Stop at once, in the words the command uses for a stop before it wrote anything."""
-    how = "interrupted (Ctrl-C)" if signum == signal.SIGINT else f"stopped ({signal.Signals(signum).name})"
-    sys.stderr.write(f"supportive: {how}: nothing written\n")
+    sys.stderr.write(stop_line(signum) + "\n")
     sys.stderr.flush()
     raise SystemExit(128 + signum)

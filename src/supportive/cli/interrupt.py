@@ -22,10 +22,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import FrameType
 
-__all__ = ["NOTHING_WRITTEN", "Interruption", "changes", "explained", "handling", "interruption", "writing"]
+from supportive.stop_line import NOTHING_WRITTEN, stop_line
 
-NOTHING_WRITTEN = "nothing written"
-"""The statement of a command that wrote nothing before it was interrupted."""
+__all__ = ["NOTHING_WRITTEN", "Interruption", "changes", "explained", "handling", "interruption", "writing"]
 
 
 @dataclass
@@ -47,9 +46,7 @@ class Interruption:
 
     def line(self) -> str:
         """The one line to print."""
-        how = "interrupted (Ctrl-C)" if self.signal == signal.SIGINT else f"stopped ({signal.Signals(self.signal).name})"
-        said = "; ".join(dict.fromkeys(s for s in self.statements if s)) or NOTHING_WRITTEN
-        return f"supportive: {how}: {said}"
+        return stop_line(self.signal, "; ".join(dict.fromkeys(s for s in self.statements if s)) or NOTHING_WRITTEN)
 
 
 _current = Interruption()
