@@ -11,9 +11,9 @@ from hypothesis import strategies as st
 
 from supportive.generate import random_partial_order, random_structure
 from supportive.learning import HTNLearner
-from supportive.learning.pair_orders import order_probabilities
+from supportive.learning.pair_orders import order_probabilities, required_orders
 from supportive.tasks.executions import Executions, Progress
-from supportive.tasks.htn import HTN, Leaf, sample_ordering
+from supportive.tasks.htn import HTN, ActionNode, Leaf, TopLevel, sample_ordering
 
 
 def _executions(htn: HTN) -> list[tuple[Leaf, ...]]:
@@ -83,3 +83,31 @@ def test_a_free_pair_of_a_partial_order_is_not_a_coin() -> None:
     index = {leaf[0]: i for i, leaf in enumerate(leaves)}
     assert before[index["b3"], index["a1"]] == pytest.approx(1 / 20)
     assert before[index["a1"], index["b1"]] == pytest.approx(1 / 2)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    seed=st.integers(0, 10_000),
+    kind=st.sampled_from(["ikea", "uniform", "partial order"]),
+    mode=st.sampled_from(["general", "strict", "partial order"]),
+    skips=st.booleans(),
+)
+def test_required_orders_are_the_pairs_every_execution_performing_both_orders_alike(
+    seed: int, kind: str, mode: str, skips: bool
+) -> None:
+    demos = sampled_demonstrations(np.random.default_rng(seed), kind, skips)
+    htn = HTNLearner(mode=mode, alternatives=0).fit(demos).htn_  # type: ignore[arg-type]
+    leaves, always = required_orders(htn)
+    assert leaves == htn.leaves
+    assert (always == (_brute_force(htn) == 1.0)).all()
+    assert (always == (order_probabilities(htn)[1] == 1.0)).all()
+
+
+def test_required_orders_between_roots_come_from_the_paths_that_perform_both() -> None:
+    # Two paths through the top level: a, b, c and c, a. Only the first performs b: a and b come before c
+    # there, but c also comes before a.
+    roots = (ActionNode("a"), ActionNode("b"), ActionNode("c"))
+    top = TopLevel(initial=(0,), terminal=(3, 5), edges=((0, 0, 1), (1, 1, 2), (2, 2, 3), (0, 2, 4), (4, 0, 5)))
+    leaves, always = required_orders(HTN("t", roots, top))
+    assert [leaf[0] for leaf in leaves] == ["a", "b", "c"]
+    assert {(leaves[i][0], leaves[j][0]) for i, j in zip(*np.nonzero(always), strict=True)} == {("a", "b"), ("b", "c")}

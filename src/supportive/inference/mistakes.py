@@ -19,7 +19,7 @@ A step the tracker finds unlikely but that misses nothing it needs (an order nob
 may come in any order) is not a mistake: a robot that names no reason would only nag.
 
 A step's prerequisites are the steps that come before it in every execution the hierarchy admits and that
-every execution performs (:func:`~supportive.learning.pair_orders.order_probabilities`). Decisions use only
+every execution performs (:func:`~supportive.learning.pair_orders.required_orders`). Decisions use only
 the past. A step already named as skipped or as a prerequisite is not flagged again when it is done late (the
 robot has said it once). :meth:`MistakeDetector.finish` names the required steps never done when the task
 ends (``missing``, raised at the end).
@@ -46,7 +46,7 @@ import numpy as np
 from supportive.errors import LearningError
 from supportive.inference.tracker import ProgressFilter, ProgressHMM
 from supportive.learning.distribution import END
-from supportive.learning.pair_orders import order_probabilities
+from supportive.learning.pair_orders import required_orders
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, Leaf, Node
 
@@ -115,11 +115,10 @@ class _Requirements:
 
     @classmethod
     def of(cls, htn: HTN) -> _Requirements:
-        leaves, before = order_probabilities(htn)
+        leaves, always = required_orders(htn)
         index = {leaf: i for i, leaf in enumerate(leaves)}
         required = _required_leaves(htn)
         need = [bool(required.get(leaf, False)) for leaf in leaves]
-        always = before >= 1.0
         prerequisites = [[int(i) for i in np.flatnonzero(always[:, j]) if need[int(i)]] for j in range(len(leaves))]
         subtasks = sorted(
             (frozenset(index[leaf] for leaf in node.leaves) for node in _subtasks(htn)), key=len

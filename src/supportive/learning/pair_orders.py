@@ -25,22 +25,40 @@ demonstrations reverse far less often than the structure without it predicts
 from __future__ import annotations
 
 import math
-from graphlib import TopologicalSorter
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
 
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, count_performed
 
-__all__ = ["order_probabilities"]
+__all__ = ["order_probabilities", "required_orders"]
 
 FloatMatrix = npt.NDArray[np.float64]
+BoolMatrix = npt.NDArray[np.bool_]
+RootOrders = Callable[[TopLevel, list[int]], FloatMatrix]
+"""What relates the roots of a top level (root ``r`` weighing ``weights[r]`` executions): ``[x, y]`` for
+root ``x`` before root ``y``."""
 
 
 def order_probabilities(htn: HTN) -> tuple[tuple[Leaf, ...], FloatMatrix]:
     """``(leaves, before)``: ``before[i, j]`` is the probability that ``leaves[i]`` comes before
     ``leaves[j]`` in an execution drawn uniformly among those ``htn`` admits that perform both (0 where no
     execution performs both). ``before + before.T`` is 1 wherever both may be performed."""
+    return _by_leaves(htn, _root_orders)
+
+
+def required_orders(htn: HTN) -> tuple[tuple[Leaf, ...], BoolMatrix]:
+    """``(leaves, always)``: ``always[i, j]`` when some execution ``htn`` admits performs both ``leaves[i]``
+    and ``leaves[j]`` and every one that does performs ``leaves[i]`` first — where :func:`order_probabilities`
+    is 1, found from which orders of the roots the top level admits at all, with no probability summed."""
+    leaves, before = _by_leaves(htn, _root_precedences)
+    return leaves, before == 1.0
+
+
+def _by_leaves(htn: HTN, root_orders: RootOrders) -> tuple[tuple[Leaf, ...], FloatMatrix]:
+    """``htn``'s leaves and, for each two, the chance that the one comes first as the structure below the
+    roots gives it, and between two roots as ``root_orders`` gives it."""
     leaves = htn.leaves
     index = {leaf: i for i, leaf in enumerate(leaves)}
     before = np.zeros((len(leaves), len(leaves)))
@@ -48,7 +66,7 @@ def order_probabilities(htn: HTN) -> tuple[tuple[Leaf, ...], FloatMatrix]:
     for root in htn.roots:
         _within(root, index, before)
     if htn.top_level is not None and len(htn.roots) > 1:
-        roots = _root_orders(htn.top_level, [count_performed(root) for root in htn.roots])
+        roots = root_orders(htn.top_level, [count_performed(root) for root in htn.roots])
         for x, y in zip(*np.nonzero(roots), strict=True):
             before[np.ix_(spans[x], spans[y])] = roots[x, y]
     return leaves, before
@@ -68,13 +86,39 @@ def _within(node: Node, index: dict[Leaf, int], before: FloatMatrix) -> None:
         _within(child, index, before)
 
 
+def _root_precedences(top: TopLevel, weights: list[int]) -> FloatMatrix:
+    """``[x, y]``: 1 when some path through ``top`` performs root ``x`` before root ``y`` and none performs
+    ``y`` before ``x`` (a path through a root of weight 0 carries no execution), else 0. Any path to a state,
+    the move from it and any path on to the end make a path: ``x`` can come before ``y`` when ``x`` is on a
+    path to a state a move by ``y`` leaves from."""
+    out, order = top.successors(), top.successors_first()
+    terminal = set(top.terminal)
+    ends: set[int] = set()  # the states some path leads from to the end
+    for state in order:  # successors first
+        if state in terminal or any(weights[root] > 0 and dst in ends for root, dst in out.get(state, {}).items()):
+            ends.add(state)
+    done = {s: 0 for s in top.initial if s in ends}  # reached: the roots on some path to it, as bits
+    earlier = [0] * len(weights)  # the roots that can come before each root, as bits
+    for state in reversed(order):  # predecessors first
+        if state not in done:
+            continue
+        for root, dst in out.get(state, {}).items():
+            if weights[root] > 0 and dst in ends:
+                earlier[root] |= done[state]
+                done[dst] = done.get(dst, 0) | done[state] | 1 << root
+    can = np.zeros((len(weights), len(weights)), dtype=bool)  # [x, y]: x can come before y
+    for y, bits in enumerate(earlier):
+        lowest_first = np.frombuffer(bin(bits)[:1:-1].encode(), dtype=np.uint8) == ord("1")
+        can[: len(lowest_first), y] = lowest_first
+    result: FloatMatrix = (can & ~can.T).astype(np.float64)
+    return result
+
+
 def _root_orders(top: TopLevel, weights: list[int]) -> FloatMatrix:
     """``P[x, y]``: the probability that root ``x`` comes before root ``y`` on a path through ``top`` drawn
     with the executions it carries (root ``r`` weighing ``weights[r]``), among the paths performing both."""
-    out = top.successors()
+    out, order = top.successors(), top.successors_first()
     terminal = set(top.terminal)
-    states = set(out) | terminal | set(top.initial) | {dst for moves in out.values() for dst in moves.values()}
-    order = list(TopologicalSorter({s: set(out.get(s, {}).values()) for s in states}).static_order())
     log_weight = [math.log(w) if w > 0 else -math.inf for w in weights]
     log_paths: dict[int, float] = {}  # executions from a state to the end, in log space
     for state in order:  # successors first
@@ -93,7 +137,7 @@ def _root_orders(top: TopLevel, weights: list[int]) -> FloatMatrix:
         later[state] = chance
     starts = [s for s in top.initial if log_paths.get(s, -math.inf) > -math.inf]
     total = _log_sum([log_paths[s] for s in starts])
-    reach = dict.fromkeys(states, 0.0)
+    reach = dict.fromkeys(order, 0.0)
     for s in starts:
         reach[s] += math.exp(log_paths[s] - total)
     first_before = np.zeros((size, size))

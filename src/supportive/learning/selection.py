@@ -39,7 +39,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from supportive.learning.general.evidence import BoolMatrix
-from supportive.learning.pair_orders import order_probabilities
+from supportive.learning.pair_orders import required_orders
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, CliqueNode, Leaf, Node, shape, to_leaves
 
@@ -117,7 +117,7 @@ def held_out_log_likelihoods(
             out.append((uniform, True))
             continue
         if required is None:
-            required = order_probabilities(htn)[1] == 1.0
+            required = required_orders(htn)[1]
         moved = _moves_needed(htn, actions, required)
         out.append((uniform + moved * (math.log(slip_rate) - math.log(max(len(actions), 1))), False))
     return out

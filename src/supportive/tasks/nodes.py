@@ -255,14 +255,24 @@ class TopLevel:
             out.setdefault(src, {})[root] = dst
         return out
 
+    def successors_first(self) -> list[int]:
+        """Every state, each after all the states it leads to: built once per top level and shared, so callers
+        must not change it."""
+        return self._successors_first
+
+    @cached_property
+    def _successors_first(self) -> list[int]:
+        out = self.successors()
+        states = out.keys() | set(self.terminal) | set(self.initial) | {d for e in out.values() for d in e.values()}
+        return _reverse_topological(sorted(states), out)
+
     def count_orderings(self, weights: Sequence[int] | None = None) -> int:
         """How many root orders this top level allows (exact, by dynamic programming); with ``weights``, each
         root performed on a path counts ``weights[root]`` times (its own orderings, say)."""
         out = self.successors()
         terminal = set(self.terminal)
         memo: dict[int, int] = {}
-        order = sorted(out.keys() | terminal | {d for e in out.values() for d in e.values()})
-        for state in _reverse_topological(order, out):
+        for state in self.successors_first():
             memo[state] = int(state in terminal) + sum(
                 (weights[root] if weights is not None else 1) * memo[dst]
                 for root, dst in out.get(state, {}).items()

@@ -62,9 +62,8 @@ def may_precede(top_level: TopLevel, n_roots: int) -> list[set[int]]:
     """For each root ``s``, the roots ``r != s`` some execution of ``top_level`` performs after ``s``
     (a root performed after ``s`` on some path from a state an ``s``-edge enters)."""
     out = top_level.successors()
-    states = set(out) | {dst for moves in out.values() for dst in moves.values()} | set(top_level.terminal)
     ahead: dict[int, int] = {}  # state -> roots (bits) on some path from it
-    for state in _reverse_topological(states, out):
+    for state in top_level.successors_first():
         bits = 0
         for root, dst in out.get(state, {}).items():
             bits |= 1 << root | ahead[dst]
@@ -81,10 +80,9 @@ def required_roots(top_level: TopLevel, n_roots: int) -> set[int]:
     state to a terminal one."""
     out = top_level.successors()
     terminal = set(top_level.terminal)
-    states = set(out) | {dst for moves in out.values() for dst in moves.values()} | terminal
     every = -1  # all roots, as bits
     on_all: dict[int, int] = {}  # state -> roots (bits) on every path from it to a terminal state
-    for state in _reverse_topological(states, out):
+    for state in top_level.successors_first():
         bits = 0 if state in terminal else every
         for root, dst in out.get(state, {}).items():
             bits &= 1 << root | on_all[dst]
@@ -93,22 +91,3 @@ def required_roots(top_level: TopLevel, n_roots: int) -> set[int]:
     for state in top_level.initial:
         found &= on_all.get(state, 0)
     return {r for r in range(n_roots) if found >> r & 1}
-
-
-def _reverse_topological(states: set[int], out: dict[int, dict[int, int]]) -> list[int]:
-    """``states`` with every state after all the states it leads to (the top level is acyclic)."""
-    pending = {state: len(set(out.get(state, {}).values())) for state in states}
-    into: dict[int, set[int]] = {}
-    for src, moves in out.items():
-        for dst in moves.values():
-            into.setdefault(dst, set()).add(src)
-    ready = [state for state, waiting in pending.items() if waiting == 0]
-    order: list[int] = []
-    while ready:
-        state = ready.pop()
-        order.append(state)
-        for src in into.get(state, ()):
-            pending[src] -= 1
-            if pending[src] == 0:
-                ready.append(src)
-    return order
