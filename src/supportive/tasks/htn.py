@@ -279,7 +279,7 @@ def allowed_next(node: Node, done: Iterable[Leaf]) -> frozenset[Leaf]:
 
 def _progress(node: Node, done: frozenset[Leaf]) -> int:
     """0: not started, 1: under way, 2: finished."""
-    count = sum(leaf in done for leaf in node.leaves)
+    count = len(done.intersection(node.leaves))
     return 0 if count == 0 else 2 if count == len(node.leaves) else 1
 
 
