@@ -275,7 +275,7 @@ class SimulatedInstructor:
         Raises:
             LearningError: when ``done`` is not a valid prefix of the task.
         """
-        leaves = self._check(done)
+        leaves, _ = self._check(done)
         target = self._next_leaf(leaves, action)
         if target is None:
             return None
@@ -295,11 +295,10 @@ class SimulatedInstructor:
         Raises:
             LearningError: when ``done`` is not a valid prefix of the task.
         """
-        leaves = self._check(done)
+        leaves, every = self._check(done)
         if not leaves:
             self.begin_demonstration()
         done_set = frozenset(leaves)
-        every = _allowed_next(self.structure, leaves)
         if not every:
             self._target = None
             return None
@@ -325,7 +324,9 @@ class SimulatedInstructor:
             self._target = None  # unreachable for a valid prefix; fall back to the preference
         return min(allowed, key=self._rank.__getitem__)[0]
 
-    def _check(self, done: Sequence[str]) -> tuple[Leaf, ...]:
+    def _check(self, done: Sequence[str]) -> tuple[tuple[Leaf, ...], frozenset[Leaf]]:
+        """``done`` as leaves, and the leaves allowed next after them; a clear error when it is not a valid
+        prefix of the task."""
         if isinstance(done, str):
             raise LearningError("done is a sequence of action ids, not a string")
         leaves = to_leaves(done)
@@ -335,10 +336,9 @@ class SimulatedInstructor:
                 f"done {list(done)}: {unknown[0][0]!r} (performance {unknown[0][1]}) is not in the task"
             )
         try:
-            _allowed_next(self.structure, leaves)
+            return leaves, _allowed_next(self.structure, leaves)
         except ValueError as exc:
             raise LearningError(f"done {list(done)} is not a valid prefix of the task: {exc}") from exc
-        return leaves
 
     def _next_leaf(self, leaves: Sequence[Leaf], action: str) -> Leaf | None:
         leaf = (action, sum(a == action for a, _ in leaves) + 1)

@@ -279,8 +279,11 @@ def allowed_next(node: Node, done: Iterable[Leaf]) -> frozenset[Leaf]:
 
 def _progress(node: Node, done: frozenset[Leaf]) -> int:
     """0: not started, 1: under way, 2: finished."""
-    count = len(done.intersection(node.leaves))
-    return 0 if count == 0 else 2 if count == len(node.leaves) else 1
+    if isinstance(node, ActionNode):
+        return 2 if node.leaf in done else 0
+    if done.isdisjoint(node.leaves):
+        return 0
+    return 2 if done.issuperset(node.leaves) else 1
 
 
 def _allowed(node: Node, done: frozenset[Leaf]) -> frozenset[Leaf]:
