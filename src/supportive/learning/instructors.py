@@ -26,6 +26,7 @@ in a published task graph: a leaf may come next when all its predecessors are do
 
 from __future__ import annotations
 
+import copy
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from typing import Any
@@ -251,6 +252,13 @@ class SimulatedInstructor:
             {} if isinstance(structure, PartialOrder) else _ancestry(structure)
         )
         self._target: Leaf | None = None
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> SimulatedInstructor:
+        """A twin who draws from here on what this instructor would draw: her random generator is copied; the
+        task, her paths and what she derived from them, which she never changes in place, are shared."""
+        twin = copy.copy(self)
+        twin._rng = copy.deepcopy(self._rng, memo)
+        return twin
 
     def begin_demonstration(self) -> None:
         """Start a new demonstration: forget any plan a query made in the previous one and, with a

@@ -58,11 +58,10 @@ def reachable_demonstrations(
     instructor.begin_demonstration()  # as run_session does; the first next_action begins again
     memo: dict[tuple[object, ...], frozenset[tuple[str, ...]]] = {}
     found: set[tuple[str, ...]] = set()
-    shared = {id(node): node for node in _nodes(instructor.structure)}  # the task itself is never changed
     for query in _queries(instructor, schedule, demonstration, (), 0, actions):
         # At the start she draws her path for the day, so each branch gets a full copy of her (the same
         # draws in each); later steps draw nothing, and a shallow copy is a snapshot.
-        person = copy.deepcopy(instructor, dict(shared))
+        person = copy.deepcopy(instructor)
         first = person.next_action((), query)
         if first is None:
             found.add(())
@@ -109,13 +108,6 @@ def _rest(
         out.update((action, *tail) for tail in tails)
     memo[key] = result = frozenset(out)
     return result
-
-
-def _nodes(structure: object) -> Iterable[object]:
-    """Every node of a chain/clique structure (a partial order has none to share)."""
-    yield structure
-    for child in getattr(structure, "children", ()):
-        yield from _nodes(child)
 
 
 def _target_after(query: str | None, done: tuple[str, ...], action: str) -> tuple[str, int] | None:
