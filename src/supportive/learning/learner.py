@@ -427,11 +427,13 @@ def _actions(found: GeneralResult, indices: Iterable[int]) -> list[list[str]]:
 def _check_steps(demo: DemonstrationLike, index: int) -> None:
     """The task graph's checks of a demonstration, for a fit without explicit states that builds none: it
     has a step and gives no explicit state."""
-    name = (demo.id if isinstance(demo, Demonstration) else f"d{index + 1}") or "?"
-    if isinstance(demo, Demonstration) and demo.has_states:
-        raise TaskGraphError(f"demonstration {name}: all demonstrations must give explicit states, or none")
-    if not (demo.actions if isinstance(demo, Demonstration) else demo):
-        raise TaskGraphError(f"demonstration {name} has no steps")
+    if isinstance(demo, Demonstration):
+        if demo.has_states:
+            raise TaskGraphError(f"demonstration {demo.id or '?'}: all demonstrations must give explicit states, or none")
+        if not demo.actions:
+            raise TaskGraphError(f"demonstration {demo.id or '?'} has no steps")
+    elif not demo:
+        raise TaskGraphError(f"demonstration d{index + 1} has no steps")
 
 
 def learn(spec: TaskSpec, **options: Any) -> HTNLearner:
