@@ -65,12 +65,18 @@ def sampled_demonstrations(rng: np.random.Generator, kind: str, skips: bool) -> 
     mode=st.sampled_from(["general", "strict", "partial order"]),
     skips=st.booleans(),
 )
-def test_order_probabilities_equal_counting_every_execution(seed: int, kind: str, mode: str, skips: bool) -> None:
+def test_order_probabilities_and_required_orders_equal_counting_every_execution(
+    seed: int, kind: str, mode: str, skips: bool
+) -> None:
     demos = sampled_demonstrations(np.random.default_rng(seed), kind, skips)
     htn = HTNLearner(mode=mode, alternatives=0).fit(demos).htn_  # type: ignore[arg-type]
     leaves, before = order_probabilities(htn)
+    counted = _brute_force(htn)
     assert leaves == htn.leaves
-    assert np.allclose(before, _brute_force(htn))
+    assert np.allclose(before, counted)
+    required_leaves, always = required_orders(htn)  # the pairs every execution performing both orders alike
+    assert required_leaves == htn.leaves
+    assert (always == (counted == 1.0)).all() and (always == (before == 1.0)).all()
 
 
 def test_a_free_pair_of_a_partial_order_is_not_a_coin() -> None:
@@ -83,24 +89,6 @@ def test_a_free_pair_of_a_partial_order_is_not_a_coin() -> None:
     index = {leaf[0]: i for i, leaf in enumerate(leaves)}
     assert before[index["b3"], index["a1"]] == pytest.approx(1 / 20)
     assert before[index["a1"], index["b1"]] == pytest.approx(1 / 2)
-
-
-@settings(max_examples=40, deadline=None)
-@given(
-    seed=st.integers(0, 10_000),
-    kind=st.sampled_from(["ikea", "uniform", "partial order"]),
-    mode=st.sampled_from(["general", "strict", "partial order"]),
-    skips=st.booleans(),
-)
-def test_required_orders_are_the_pairs_every_execution_performing_both_orders_alike(
-    seed: int, kind: str, mode: str, skips: bool
-) -> None:
-    demos = sampled_demonstrations(np.random.default_rng(seed), kind, skips)
-    htn = HTNLearner(mode=mode, alternatives=0).fit(demos).htn_  # type: ignore[arg-type]
-    leaves, always = required_orders(htn)
-    assert leaves == htn.leaves
-    assert (always == (_brute_force(htn) == 1.0)).all()
-    assert (always == (order_probabilities(htn)[1] == 1.0)).all()
 
 
 def test_required_orders_between_roots_come_from_the_paths_that_perform_both() -> None:
