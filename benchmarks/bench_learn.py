@@ -12,6 +12,7 @@ slip search has work to do; it carries no goal.
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import platform
 import random
@@ -46,14 +47,22 @@ def measure(
     fit: Callable[[], HTNLearner], peer: Callable[[], HTNLearner], repeats: int
 ) -> tuple[dict[str, float | int | bool], dict[str, float | int | bool]]:
     """``fit`` and its ``peer`` timed in turns (one run of each, ``repeats`` times: a slower spell of the
-    machine falls on both alike), then each one's peak memory."""
+    machine falls on both alike), then each one's peak memory. The runs are timed as :mod:`timeit` times
+    them, with the garbage collector off (after one full collection): in turns, the cyclic garbage one
+    learner leaves would otherwise be collected, at a cost that grows with everything alive (the earlier
+    cases' data too), during either's run."""
     learners: list[HTNLearner] = [fit(), peer()]  # warm up imports and caches
     times: tuple[list[float], list[float]] = ([], [])
-    for _ in range(repeats):
-        for k, run in enumerate((fit, peer)):
-            started = time.perf_counter()
-            learners[k] = run()
-            times[k].append(time.perf_counter() - started)
+    gc.collect()
+    gc.disable()
+    try:
+        for _ in range(repeats):
+            for k, run in enumerate((fit, peer)):
+                started = time.perf_counter()
+                learners[k] = run()
+                times[k].append(time.perf_counter() - started)
+    finally:
+        gc.enable()
     first, second = (_summary(run, learner, spent) for run, learner, spent in zip((fit, peer), learners, times, strict=True))
     return first, second
 
