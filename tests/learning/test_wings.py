@@ -136,6 +136,11 @@ def test_a_root_the_top_level_may_leave_out_is_optional_in_the_alternative() -> 
     assert not htn.complete and all(htn.alternatives[0].admits_leaves(e) for e in executions(htn))
 
 
+def test_an_initial_state_with_no_move_requires_no_root() -> None:
+    assert required_roots(TopLevel((0,), (), ()), 2) == set()
+    assert required_roots(TopLevel((0,), (2,), ((0, 0, 1), (1, 1, 2))), 2) == {0, 1}
+
+
 def test_strict_alternatives_are_still_restrictions_of_the_known_executions() -> None:
     """§2.1.5.3's two glasses: the strict learner's readings each admit known executions only."""
     from supportive.examples import load

@@ -89,5 +89,5 @@ def required_roots(top_level: TopLevel, n_roots: int) -> set[int]:
         on_all[state] = bits
     found = every
     for state in top_level.initial:
-        found &= on_all.get(state, 0)
+        found &= on_all[state] if state in out or state in terminal else 0  # one with no move requires nothing
     return {r for r in range(n_roots) if found >> r & 1}
