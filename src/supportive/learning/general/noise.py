@@ -344,14 +344,15 @@ class _Search:
                     groups[slip.leaf] = groups.get(slip.leaf, frozenset()) | {slip}
             if not groups:
                 return slips
-            chance, leaf = max((self._chance(slips, group), leaf) for leaf, group in sorted(groups.items()))
+            tight = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)  # the same for every step
+            chance, leaf = max((self._chance(slips, group, tight), leaf) for leaf, group in sorted(groups.items()))
             if chance < level:
                 return slips
             slips = slips - groups[leaf]
 
-    def _chance(self, slips: frozenset[Deviation], group: frozenset[Deviation]) -> float:
+    def _chance(self, slips: frozenset[Deviation], group: frozenset[Deviation], tight: OrderLikelihood) -> float:
         """The chance that as few demonstrations as do fall outside the hierarchy learned with ``slips`` taken
-        out, were they drawn from the one learned with ``group`` (one step's slips) kept in, every order it
+        out (``tight``), were they drawn from the one learned with ``group`` (one step's slips) kept in, every order it
         admits equally likely (:class:`OrderLikelihood`): each demonstration falls outside with chance
         ``1 - tight / loose``, the two hierarchies' numbers of orders of the steps it performs (0 when the
         tighter has as many), and how many do is Poisson-binomial. The demonstrations other slips touch are left out:
@@ -360,7 +361,6 @@ class _Search:
 
         rest = slips - group
         loose = OrderLikelihood(self._fit(rest).htn(), shared=self._orders)
-        tight = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)
         others = {slip.demonstration for slip in rest}
         outside, chances = 0, []
         for d, demo in enumerate(self._cleaned(rest)):
