@@ -28,12 +28,11 @@ from supportive.tasks.htn import (
     Counts,
     Node,
     Support,
-    count_orderings,
     shape,
     with_children,
 )
 
-__all__ = ["Annotated", "annotate"]
+__all__ = ["Annotated", "admitted_orders", "annotate"]
 
 _ABSENT = np.iinfo(np.int64).max
 """The first position of a node a demonstration does not perform (after any other)."""
@@ -62,7 +61,6 @@ class Annotated:
             if node in decomposition.groups
         }
         self._orders = _ChildOrders(decomposition, self._kinds)
-        self._admitted: dict[tuple[bool, tuple[bool, ...]], int] = {}
         self.nodes: dict[int, Node] = {}
         for root in decomposition.roots:
             self._node(root, frozenset(range(demonstrations)))
@@ -98,15 +96,6 @@ class Annotated:
             visit(root)
         return performed
 
-    def _admitted_orders(self, chain: bool, optional: tuple[bool, ...]) -> int:
-        """Orders of children with these optional flags a chain (or clique) admits, performing any."""
-        key = (chain, optional)
-        if key not in self._admitted:
-            children = tuple(ActionNode(str(i), optional=flag) for i, flag in enumerate(optional))
-            level: Node = ChainNode(children) if chain else CliqueNode(children)
-            self._admitted[key] = count_orderings(level) - int(all(optional))
-        return self._admitted[key]
-
     def _node(self, node: int, parent_performed: frozenset[int]) -> Node:
         performed = self._performed[node]
         optional = not parent_performed <= performed
@@ -131,7 +120,7 @@ class Annotated:
                 counts = Counts(performed=len(performed), skipped=skipped)
             else:
                 counts = self._orders.counts(node, len(performed), skipped)
-            admitted = self._admitted_orders(group.chain, tuple(c.optional for c in children))
+            admitted = admitted_orders(group.chain, sum(c.optional for c in children), len(children))
             if not group.chain:
                 admitted //= math.prod(math.factorial(n) for n in Counter(kinds).values())
             support = Support(len(performed), seen, admitted, seen >= admitted)
@@ -185,6 +174,22 @@ def _aligned(node: Node) -> list[int]:
         return list(range(len(node.children)))
     assert not isinstance(node, ActionNode)
     return sorted(range(len(node.children)), key=lambda i: repr(shape(node.children[i], optional=False)))
+
+
+def admitted_orders(chain: bool, optional: int, children: int) -> int:
+    """The non-empty orders a chain (or clique) of ``children`` children, ``optional`` of them optional and
+    each performed as one step, admits: each subset of the optional children performed, in the one order (a
+    chain) or in any order (a clique).
+
+    >>> admitted_orders(False, 1, 3)  # a, b and maybe c, in any order: 2 + 6
+    8
+    """
+    required = children - optional
+    if chain:
+        total = 1 << optional
+    else:
+        total = sum(math.comb(optional, k) * math.factorial(required + k) for k in range(optional + 1))
+    return total - int(required == 0)
 
 
 def _choice_counts(orders: Sequence[Sequence[int]], size: int, performed: int, skipped: int) -> Counts:
