@@ -7,7 +7,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from supportive.generate import generate_task
-from supportive.learning.general.annotate import Annotated, _ListOrders, _MatrixOrders, _owned_children, admitted_orders
+from supportive.learning.general.annotate import (
+    Annotated,
+    _ListOrders,
+    _MatrixOrders,
+    _owned_children,
+    admitted_orders,
+)
 from supportive.learning.general.decomposition import decompose
 from supportive.learning.general.labelling import label_performances
 from supportive.learning.general.repeats import fold_repeats
