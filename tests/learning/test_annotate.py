@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Literal
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -37,7 +39,9 @@ def test_admitted_orders_are_the_non_empty_orders_counted_one_by_one(chain: bool
     profile=st.sampled_from(["ikea", "uniform"]),
     slipped=st.booleans(),
 )
-def test_both_forms_of_the_child_orders_agree(size: int, seed: int, demonstrations: int, profile: str, slipped: bool) -> None:
+def test_both_forms_of_the_child_orders_agree(
+    size: int, seed: int, demonstrations: int, profile: Literal["ikea", "uniform"], slipped: bool
+) -> None:
     """The child orders read one demonstration at a time and as matrices are the same (the learner picks one
     by size only), on generated tasks with repeated subtasks, optional steps and, some, a step moved."""
     spec = generate_task(size, seed, demonstrations=demonstrations, profile=profile)
