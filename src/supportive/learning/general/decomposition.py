@@ -443,7 +443,8 @@ def _choose(
         if key in closures:
             found = closures[key]
         else:
-            found = closures[key] = level.closure(pair, max_module)
+            # a closure of the whole level is no candidate (the whole level is classified apart): stop short of it
+            found = closures[key] = level.closure(pair, min(max_module, len(level.present) - 1))
         if found is not None:
             candidates[found] = None
     whole = frozenset(level.present)

@@ -69,6 +69,8 @@ _Closure = tuple[frozenset[int], list[tuple[int, int]]]
 
 _TAKEN_OUT = frozenset({"out of order", "repeated", "unknown"})
 _PUT_BACK = frozenset({"out of order", "missing"})
+_BEYOND = np.iinfo(np.int64).max
+"""Where a step a demonstration does not do starts (after any other)."""
 
 
 @dataclass(frozen=True)
@@ -721,7 +723,6 @@ def _robust_closure(
     members = set(start)
     met: list[frozenset[int]] = []
     member = np.zeros(at.shape[1], dtype=bool)
-    beyond = np.iinfo(np.int64).max
     while True:
         key = frozenset(members)
         found = known.get(key)
@@ -732,7 +733,7 @@ def _robust_closure(
         where = at[:, member]
         done = where >= 0
         spanned = done.sum(axis=1) >= 2
-        first = np.where(done, where, beyond).min(axis=1)
+        first = np.where(done, where, _BEYOND).min(axis=1)
         last = where.max(axis=1)
         inside = (at > first[:, None]) & (at < last[:, None]) & spanned[:, None] & ~member
         joining = np.flatnonzero(inside.sum(axis=0) >= need)
