@@ -237,7 +237,7 @@ class _ChildOrders(abc.ABC):
         which."""
 
 
-SMALL_ORDERS = 256
+_SMALL_ORDERS = 256
 """Up to this many leaf performances (demonstrations times the steps of the longest), the child orders are
 read one demonstration at a time (:class:`_ListOrders`), from there on as matrices (:class:`_MatrixOrders`):
 only the speed depends on it. Numpy's cost per call outweighs its speed per entry on a few dozen entries: on
@@ -247,9 +247,9 @@ matrices, 240 take about 150 µs either way, 400 take 294 µs and 257 µs."""
 
 def _child_orders(decomposition: Decomposition, kinds: Mapping[int, Sequence[int]]) -> _ChildOrders:
     """The child orders of the nodes of ``kinds`` (for each, per child, the index of the first child of its
-    shape), in the form that suits the demonstrations' size (:data:`SMALL_ORDERS`)."""
+    shape), in the form that suits the demonstrations' size (:data:`_SMALL_ORDERS`)."""
     owned = _owned_children(decomposition.groups, kinds)
-    if decomposition.leaf_nodes.size <= SMALL_ORDERS:
+    if decomposition.leaf_nodes.size <= _SMALL_ORDERS:
         return _ListOrders(decomposition, kinds, owned)
     return _MatrixOrders(decomposition, kinds, owned)
 
