@@ -37,7 +37,6 @@ from functools import cached_property
 import numpy as np
 
 from supportive.learning.general.evidence import (
-    BoolMatrix,
     IntMatrix,
     as_matrix,
     established_precedences,
@@ -512,28 +511,144 @@ def _classify(level: _Level, listed: list[int], order_support: int) -> Group | N
     if chain is not None:
         return Group(chain, True)
     positions = level.positions(listed)
-    present = positions >= 0
-    before, together = position_pair_counts(positions)
-    precedes = before > 0
-    if _topological(precedes, lambda i: i) is not None:
-        mean = _mean_positions(positions)
-        order = _topological(precedes, lambda i: (mean[i], i))
+    facts: _OrderFacts
+    if positions.shape[0] * len(listed) ** 2 <= _SMALL_CLASSIFY:
+        facts = _ListFacts(positions.tolist())
+    else:
+        facts = _MatrixFacts(positions)
+    if _topological(facts.successors, lambda i: i) is not None:
+        mean = facts.mean_positions()
+        order = _topological(facts.successors, lambda i: (mean[i], i))
         assert order is not None
         return Group(tuple(listed[i] for i in order), True)
-    if established_precedences(before, together, order_support).any():
+    if facts.established(order_support):
         return None
-    complete = np.argsort(positions[present.all(axis=1)], axis=1)
-    return Group(tuple(listed), False, _every_order(complete, len(listed)))
+    return Group(tuple(listed), False, _every_order(facts.complete_orders(), len(listed)))
 
 
-def _topological(edges: BoolMatrix, key: Callable[[int], object]) -> list[int] | None:
-    """The nodes ``0 … n-1`` of the graph ``edges`` (``edges[i, j]``: an edge ``i -> j``) in topological
-    order, the ready node of smallest ``key`` first; None when the graph has a cycle."""
-    indegree = edges.sum(axis=0).tolist()
-    sources, targets = np.nonzero(edges)
-    successors: list[list[int]] = [[] for _ in indegree]
-    for u, v in zip(sources.tolist(), targets.tolist(), strict=True):
-        successors[u].append(v)
+_SMALL_CLASSIFY = 400
+"""Up to this many sequences times members squared, :func:`_classify` reads the order evidence of a candidate
+from lists (:class:`_ListFacts`), from there on as matrices (:class:`_MatrixFacts`): only the speed depends
+on it (numpy's cost per call outweighs its speed per entry on a few dozen entries)."""
+
+
+class _OrderFacts(abc.ABC):
+    """What the sequences show about the order of some members (``positions[s, i]``: where sequence ``s``
+    does member ``i``, -1: not at all), as :func:`_classify` asks for it. Two forms answer alike:
+    :class:`_ListFacts` and :class:`_MatrixFacts`.
+
+    Attributes:
+        successors: Member -> the members some sequence does after it (ascending).
+    """
+
+    successors: list[list[int]]
+
+    @abc.abstractmethod
+    def mean_positions(self) -> list[float]:
+        """Mean relative position (0 to 1) of each member within the sequences performing it, summed in
+        sequence order."""
+
+    @abc.abstractmethod
+    def established(self, order_support: int) -> bool:
+        """Whether an order between two members is established
+        (:func:`~supportive.learning.general.evidence.established_precedences`)."""
+
+    @abc.abstractmethod
+    def complete_orders(self) -> list[tuple[int, ...]]:
+        """The order of the members in each sequence that performs them all."""
+
+
+class _MatrixFacts(_OrderFacts):
+    """:class:`_OrderFacts` read from the positions as a matrix."""
+
+    def __init__(self, positions: IntMatrix) -> None:
+        self._positions = positions
+        self._before, self._together = position_pair_counts(positions)
+        sources, targets = np.nonzero(self._before > 0)
+        self.successors = [[] for _ in range(positions.shape[1])]
+        for u, v in zip(sources.tolist(), targets.tolist(), strict=True):
+            self.successors[u].append(v)
+
+    def mean_positions(self) -> list[float]:
+        """See :meth:`_OrderFacts.mean_positions`."""
+        positions = self._positions
+        present = positions >= 0
+        performed = present.sum(axis=1)
+        order = np.argsort(np.where(present, positions, positions.shape[1] + positions.max()), axis=1)
+        place = np.empty_like(order)
+        np.put_along_axis(place, order, np.arange(positions.shape[1])[None, :], axis=1)
+        share = np.where(present, place / np.maximum(performed - 1, 1)[:, None], 0.0)
+        total = np.cumsum(share, axis=0)[-1]  # one sequence after another, as a running sum would
+        mean: list[float] = (total / present.sum(axis=0)).tolist()
+        return mean
+
+    def established(self, order_support: int) -> bool:
+        """See :meth:`_OrderFacts.established`."""
+        return bool(established_precedences(self._before, self._together, order_support).any())
+
+    def complete_orders(self) -> list[tuple[int, ...]]:
+        """See :meth:`_OrderFacts.complete_orders`."""
+        complete = self._positions[(self._positions >= 0).all(axis=1)]
+        return list(map(tuple, np.argsort(complete, axis=1).tolist()))
+
+
+class _ListFacts(_OrderFacts):
+    """:class:`_OrderFacts` read from the positions as lists, one sequence at a time."""
+
+    def __init__(self, rows: list[list[int]]) -> None:
+        size = len(rows[0]) if rows else 0
+        self._rows = rows
+        self._before = [[0] * size for _ in range(size)]
+        self._together = [[0] * size for _ in range(size)]
+        for row in rows:
+            done = [i for i, p in enumerate(row) if p >= 0]
+            if len(done) < 2:
+                continue
+            for i in done:
+                before, together = self._before[i], self._together[i]
+                for j in done:
+                    together[j] += 1
+                    before[j] += row[i] < row[j]
+        self.successors = [[j for j, n in enumerate(counts) if n > 0] for counts in self._before]
+
+    def mean_positions(self) -> list[float]:
+        """See :meth:`_OrderFacts.mean_positions`."""
+        size = len(self._rows[0])
+        total = [0.0] * size
+        performing = [0] * size
+        for row in self._rows:
+            done = sorted((p, i) for i, p in enumerate(row) if p >= 0)
+            last = max(len(done) - 1, 1)
+            for place, (_, i) in enumerate(done):
+                total[i] += place / last
+                performing[i] += 1
+        return [t / n for t, n in zip(total, performing, strict=True)]
+
+    def established(self, order_support: int) -> bool:
+        """See :meth:`_OrderFacts.established`."""
+        before, together = self._before, self._together
+        size = len(before)
+        consistent = [[before[i][j] > 0 and before[j][i] == 0 for j in range(size)] for i in range(size)]
+        for i in range(size):
+            for j in range(size):
+                if consistent[i][j] and (
+                    together[i][j] >= order_support or any(consistent[i][m] and consistent[m][j] for m in range(size))
+                ):
+                    return True
+        return False
+
+    def complete_orders(self) -> list[tuple[int, ...]]:
+        """See :meth:`_OrderFacts.complete_orders`."""
+        return [tuple(sorted(range(len(row)), key=row.__getitem__)) for row in self._rows if min(row) >= 0]
+
+
+def _topological(successors: Sequence[Sequence[int]], key: Callable[[int], object]) -> list[int] | None:
+    """The nodes ``0 … n-1`` of the graph ``successors`` (``successors[i]``: the nodes ``i`` has an edge to) in
+    topological order, the ready node of smallest ``key`` first; None when the graph has a cycle."""
+    indegree = [0] * len(successors)
+    for targets in successors:
+        for v in targets:
+            indegree[v] += 1
     ready = [(key(i), i) for i, degree in enumerate(indegree) if degree == 0]
     heapq.heapify(ready)
     out: list[int] = []
@@ -547,28 +662,14 @@ def _topological(edges: BoolMatrix, key: Callable[[int], object]) -> list[int] |
     return out if len(out) == len(indegree) else None
 
 
-def _mean_positions(positions: IntMatrix) -> list[float]:
-    """Mean relative position (0 to 1) of each member within the sequences performing it (``positions`` as
-    in :meth:`_Level.positions`), summed in sequence order."""
-    present = positions >= 0
-    performed = present.sum(axis=1)
-    order = np.argsort(np.where(present, positions, positions.shape[1] + positions.max()), axis=1)
-    place = np.empty_like(order)
-    np.put_along_axis(place, order, np.arange(positions.shape[1])[None, :], axis=1)
-    share = np.where(present, place / np.maximum(performed - 1, 1)[:, None], 0.0)
-    total = np.cumsum(share, axis=0)[-1]  # one sequence after another, as a running sum would
-    mean: list[float] = (total / present.sum(axis=0)).tolist()
-    return mean
-
-
-def _every_order(orders: IntMatrix, size: int) -> bool:
-    """True when the rows of ``orders`` hold each of the ``size!`` orders of ``size`` members."""
+def _every_order(orders: Sequence[tuple[int, ...]], size: int) -> bool:
+    """True when ``orders`` hold each of the ``size!`` orders of ``size`` members."""
     needed = 1
     for k in range(2, size + 1):
         needed *= k
         if needed > len(orders):
             return False
-    return len(set(map(tuple, orders.tolist()))) == needed
+    return len(set(orders)) == needed
 
 
 def _spliced(
