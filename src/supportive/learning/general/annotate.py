@@ -249,7 +249,8 @@ def _child_orders(decomposition: Decomposition, kinds: Mapping[int, Sequence[int
     """The child orders of the nodes of ``kinds`` (for each, per child, the index of the first child of its
     shape), in the form that suits the demonstrations' size (:data:`_SMALL_ORDERS`)."""
     owned = _owned_children(decomposition.groups, kinds)
-    if decomposition.leaf_nodes.size <= _SMALL_ORDERS:
+    sequences = decomposition.leaf_sequences
+    if len(sequences) * max(map(len, sequences), default=0) <= _SMALL_ORDERS:
         return _ListOrders(decomposition, kinds, owned)
     return _MatrixOrders(decomposition, kinds, owned)
 
@@ -274,8 +275,8 @@ class _ListOrders(_ChildOrders):
         below = {node: [groups[node].children[i] for i in owned[node]] for node in kinds}
         upward = [node for level in _heights(below) for node in level]
         firsts: list[dict[int, int]] = []  # per demonstration, node -> where it starts
-        for row in decomposition.leaf_nodes.tolist():
-            first = {leaf: k for k, leaf in enumerate(row) if leaf >= 0}
+        for sequence in decomposition.leaf_sequences:
+            first = {leaf: k for k, leaf in enumerate(sequence)}
             for node in upward:
                 starts = [first[c] for c in below[node] if c in first]
                 if starts:

@@ -70,7 +70,7 @@ class Decomposition:
         roots: The top-level node ids, in the order they first occur.
         sequences: Every demonstration as a sequence of root ids.
         presence: Node id -> the demonstrations (indices) performing any of its leaves.
-        leaf_nodes: Every demonstration as a row of leaf ids, -1 after its end.
+        leaf_sequences: Every demonstration as a list of leaf ids.
     """
 
     leaves: tuple[Leaf, ...]
@@ -78,7 +78,12 @@ class Decomposition:
     roots: list[int] = field(default_factory=list)
     sequences: list[list[int]] = field(default_factory=list)
     presence: dict[int, frozenset[int]] = field(default_factory=dict)
-    leaf_nodes: IntMatrix = field(default_factory=lambda: np.zeros((0, 0), dtype=np.int64))
+    leaf_sequences: list[list[int]] = field(default_factory=list)
+
+    @cached_property
+    def leaf_nodes(self) -> IntMatrix:
+        """Every demonstration as a row of leaf ids, -1 after its end (:func:`~supportive.learning.general.evidence.as_matrix`)."""
+        return as_matrix(self.leaf_sequences)
 
 
 class Shapes:
@@ -372,8 +377,8 @@ def decompose(
     order = {leaf: i for i, leaf in enumerate(dict.fromkeys(itertools.chain.from_iterable(labelled)))}
     result = Decomposition(tuple(order))
     rank = list(range(len(order)))
-    level = _level([list(map(order.__getitem__, demo)) for demo in labelled], len(order), many)
-    result.leaf_nodes = level.nodes
+    result.leaf_sequences = [list(map(order.__getitem__, demo)) for demo in labelled]
+    level = _level(result.leaf_sequences, len(order), many)
     presence = level.performers()
     formed: dict[int, tuple[_Level, tuple[int, ...]]] = {}  # clique -> the level it was formed at, its members
     chance: dict[int, float] = {}

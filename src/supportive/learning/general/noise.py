@@ -337,6 +337,8 @@ class _Search:
         below ``evidence`` over the pairs of steps (Bonferroni over the arrangements a tighter hierarchy may
         forbid). The likelihood comparison of the search gains from any arrangement a sample happens to
         avoid, and among the many a task has, some come up far less often than due in clean samples."""
+        if not any(slip.kind == "out of order" for slip in slips):
+            return slips
         steps = len({leaf for demo in self.labelled for leaf in demo})
         level = self.structure_settings.evidence / max(steps * (steps - 1) // 2, 1)
         while True:
