@@ -192,6 +192,13 @@ class _Steps:
         return cls(leaves, index, matrix, positions_of(matrix, len(leaves)))
 
     @cached_property
+    def by_step(self) -> IntMatrix:
+        """``at`` laid out by step: ``by_step[i, d]`` is where demonstration ``d`` does leaf ``i`` (a step's row
+        is contiguous, so sums over the demonstrations run along rows)."""
+        by_step: IntMatrix = np.ascontiguousarray(self.at.T)
+        return by_step
+
+    @cached_property
     def doers(self) -> IntMatrix:
         """How many demonstrations do each leaf."""
         doers: IntMatrix = (self.at >= 0).sum(axis=0)
@@ -543,7 +550,7 @@ class _Search:
         closures: dict[frozenset[int], _Closure] = {}
         for code in codes[counts >= need].tolist():
             pair = divmod(code, len(leaves))
-            members, intruders = _robust_closure(frozenset(pair), at, need, closures)
+            members, intruders = _robust_closure(frozenset(pair), steps.by_step, need, closures)
             if not intruders:
                 continue
             kept = int((performed[:, sorted(members)].sum(axis=1) >= 2).sum())
@@ -716,15 +723,15 @@ def _outliers(scores: Sequence[float]) -> set[int]:
 
 
 def _robust_closure(
-    start: frozenset[int], at: IntMatrix, need: int, known: dict[frozenset[int], _Closure]
+    start: frozenset[int], by_step: IntMatrix, need: int, known: dict[frozenset[int], _Closure]
 ) -> _Closure:
     """The smallest set of step ids holding ``start`` whose members are contiguous in every demonstration but
     for steps found inside its span in fewer than ``need`` demonstrations; those ``(demonstration, step)`` are
-    returned apart, by step. ``at[d, i]``: where demonstration ``d`` does step ``i`` (-1: not at all); ``known``: the
-    closures of sets met before (the closure of every set met on the way is the same)."""
+    returned apart, by step. ``by_step[i, d]``: where demonstration ``d`` does step ``i`` (-1: not at all);
+    ``known``: the closures of sets met before (the closure of every set met on the way is the same)."""
     members = set(start)
     met: list[frozenset[int]] = []
-    member = np.zeros(at.shape[1], dtype=bool)
+    member = np.zeros(len(by_step), dtype=bool)
     while True:
         key = frozenset(members)
         found = known.get(key)
@@ -732,15 +739,14 @@ def _robust_closure(
             break
         met.append(key)
         member[list(members)] = True
-        where = at[:, member]
+        where = by_step[member]
         done = where >= 0
-        spanned = done.sum(axis=1) >= 2
-        first = np.where(done, where, _BEYOND).min(axis=1)
-        last = where.max(axis=1)
-        inside = (at > first[:, None]) & (at < last[:, None]) & spanned[:, None] & ~member
-        joining = np.flatnonzero(inside.sum(axis=0) >= need)
+        first = np.where(done, where, _BEYOND).min(axis=0)
+        last = where.max(axis=0)  # a demonstration doing one member or none spans nothing
+        inside = (by_step > first) & (by_step < last) & ~member[:, None]
+        joining = np.flatnonzero(inside.sum(axis=1) >= need)
         if not len(joining):
-            steps, rows = np.nonzero(inside.T)
+            steps, rows = np.nonzero(inside)
             found = (key, list(zip(rows.tolist(), steps.tolist(), strict=True)))
             break
         members.update(joining.tolist())
