@@ -63,6 +63,7 @@ class Annotated:
         }
         self._orders = _child_orders(decomposition, self._kinds)
         self.nodes: dict[int, Node] = {}
+        self._leaves: dict[tuple[int, int], tuple[Counts, Support]] = {}
         for root in decomposition.roots:
             self._node(root, frozenset(range(demonstrations)))
 
@@ -97,6 +98,14 @@ class Annotated:
             visit(root)
         return performed
 
+    def _leaf_evidence(self, performed: int, skipped: int) -> tuple[Counts, Support]:
+        """A leaf's counts and support (made once for each pair of numbers and shared: they are frozen)."""
+        key = (performed, skipped)
+        found = self._leaves.get(key)
+        if found is None:
+            found = self._leaves[key] = (Counts(performed=performed, skipped=skipped), Support(performed, 1, 1, True))
+        return found
+
     def _node(self, node: int, parent_performed: frozenset[int]) -> Node:
         performed = self._performed[node]
         optional = not parent_performed <= performed
@@ -104,13 +113,8 @@ class Annotated:
         skipped = len(parent_performed - performed)
         if group is None:
             action, instance = self.decomposition.leaves[node]
-            out: Node = ActionNode(
-                action,
-                instance,
-                optional=optional,
-                counts=Counts(performed=len(performed), skipped=skipped),
-                support=Support(len(performed), 1, 1, True),
-            )
+            counts, support = self._leaf_evidence(len(performed), skipped)
+            out: Node = ActionNode(action, instance, optional=optional, counts=counts, support=support)
         else:
             kinds = self._kinds[node]  # interchangeable instances make one order
             children = tuple(self._node(child, performed) for child in group.children)
@@ -287,7 +291,7 @@ class _ListOrders(_ChildOrders):
         for node in kinds:
             children = list(zip(owned[node], below[node], strict=True))
             if groups[node].chain:
-                done = [sum(c in first for _, c in children) for first in firsts]
+                done = [sum(map(first.__contains__, below[node])) for first in firsts]
                 if all(k in (0, len(children)) for k in done):  # a simple chain: its order or nothing
                     self.seen[node] = int(any(done))
                     continue
