@@ -539,8 +539,8 @@ on it (numpy's cost per call outweighs its speed per entry on a few dozen entrie
 
 class _OrderFacts(abc.ABC):
     """What the sequences show about the order of some members (``positions[s, i]``: where sequence ``s``
-    does member ``i``, -1: not at all), as :func:`_classify` asks for it. Two forms answer alike:
-    :class:`_ListFacts` and :class:`_MatrixFacts`.
+    does member ``i``, -1: not at all; every member done by some sequence, as the nodes of a level are), as
+    :func:`_classify` asks for it. Two forms answer alike: :class:`_ListFacts` and :class:`_MatrixFacts`.
 
     Attributes:
         successors: Member -> the members some sequence does after it (ascending).
