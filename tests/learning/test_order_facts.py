@@ -1,4 +1,5 @@
-"""The general learner's order evidence for a candidate subtask, read from lists and from matrices."""
+"""The general learner's order evidence for a candidate subtask, read from lists and from matrices (the counts
+and the test of `learning.general.evidence` in both forms, and the facts `_classify` reads from them)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.learning.general.decomposition import _ListFacts, _MatrixFacts, _topological
+from supportive.learning.general.evidence import (
+    established_precedences,
+    establishes_any,
+    position_pair_counts,
+    position_pair_counts_listed,
+)
 
 
 @st.composite
@@ -20,6 +27,15 @@ def position_rows(draw: st.DrawFn) -> list[list[int]]:
         rows.append([p if draw(st.booleans()) or draw(st.booleans()) else -1 for p in places])
     rows.append(list(draw(st.permutations(range(k)))))  # every member done somewhere
     return rows
+
+
+@settings(max_examples=300, deadline=None)
+@given(rows=position_rows(), order_support=st.integers(1, 8))
+def test_both_forms_of_the_pair_counts_and_the_order_test_agree(rows: list[list[int]], order_support: int) -> None:
+    before, together = position_pair_counts(np.array(rows, dtype=np.int64))
+    listed = position_pair_counts_listed(rows, len(rows[0]))
+    assert listed == (before.tolist(), together.tolist())
+    assert establishes_any(*listed, order_support) == bool(established_precedences(before, together, order_support).any())
 
 
 @settings(max_examples=300, deadline=None)

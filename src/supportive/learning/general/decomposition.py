@@ -40,8 +40,10 @@ from supportive.learning.general.evidence import (
     IntMatrix,
     as_matrix,
     established_precedences,
+    establishes_any,
     matrix_contiguity_chance,
     position_pair_counts,
+    position_pair_counts_listed,
     positions_of,
     supported,
 )
@@ -601,19 +603,8 @@ class _ListFacts(_OrderFacts):
     """:class:`_OrderFacts` read from the positions as lists, one sequence at a time."""
 
     def __init__(self, rows: list[list[int]]) -> None:
-        size = len(rows[0]) if rows else 0
         self._rows = rows
-        self._before = [[0] * size for _ in range(size)]
-        self._together = [[0] * size for _ in range(size)]
-        for row in rows:
-            done = [i for i, p in enumerate(row) if p >= 0]
-            if len(done) < 2:
-                continue
-            for i in done:
-                before, together = self._before[i], self._together[i]
-                for j in done:
-                    together[j] += 1
-                    before[j] += row[i] < row[j]
+        self._before, self._together = position_pair_counts_listed(rows, len(rows[0]) if rows else 0)
         self.successors = [[j for j, n in enumerate(counts) if n > 0] for counts in self._before]
 
     def mean_positions(self) -> list[float]:
@@ -631,16 +622,7 @@ class _ListFacts(_OrderFacts):
 
     def established(self, order_support: int) -> bool:
         """See :meth:`_OrderFacts.established`."""
-        before, together = self._before, self._together
-        size = len(before)
-        consistent = [[before[i][j] > 0 and before[j][i] == 0 for j in range(size)] for i in range(size)]
-        for i in range(size):
-            for j in range(size):
-                if consistent[i][j] and (
-                    together[i][j] >= order_support or any(consistent[i][m] and consistent[m][j] for m in range(size))
-                ):
-                    return True
-        return False
+        return establishes_any(self._before, self._together, order_support)
 
     def complete_orders(self) -> list[tuple[int, ...]]:
         """See :meth:`_OrderFacts.complete_orders`."""
