@@ -47,3 +47,18 @@ def test_a_bad_mistake_file_is_one_line_and_exit_2(
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and problem in err and "Traceback" not in err
     assert sorted(tmp_path.iterdir()) == before
+
+
+def test_learning_from_the_correct_demonstrations_only_is_said_and_in_the_json(cli: CliRunner) -> None:
+    code, out, _ = cli(["evaluate", "tea-mistakes", "--mistakes", "--learn-from", "correct", "--json"])
+    assert code == 0 and json.loads(out)["learned_from"] == "correct"
+    code, out, err = cli(["evaluate", "tea-mistakes", "--mistakes", "--learn-from", "correct"])
+    assert code == 0 and "learned from the correct ones among the others" in " ".join((out + err).split())
+    code, out, _ = cli(["evaluate", "tea-mistakes", "--mistakes", "--json"])
+    assert code == 0 and json.loads(out)["learned_from"] == "all"
+
+
+@pytest.mark.parametrize("command", [["evaluate", "tea-mistakes"], ["captaincook"]])
+def test_learn_from_without_mistakes_is_one_line_and_exit_2(command: list[str], cli: CliRunner) -> None:
+    code, out, err = cli([*command, "--learn-from", "correct"])
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and "give --mistakes too" in err

@@ -78,3 +78,47 @@ def test_unlabelled_or_single_demonstrations_are_refused() -> None:
         evaluate_mistakes(clean)
     with pytest.raises(TaskFileError, match="at least two"):
         evaluate_mistakes(clean.with_demonstrations(clean.demonstrations[:1]))
+
+
+def test_learning_from_the_correct_ones_leaves_out_every_demonstration_that_shows_a_mistake(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Each fold learns from the others with no skipped step and no visible label: the technique-labelled one
+    (its order is right) is kept; the held-out one never is. The baselines learn from the same ones."""
+    import supportive.evaluation.mistakes as module
+
+    learned: list[list[str]] = []
+    baseline: list[list[str]] = []
+    model, precondition = module.detection_model, module._precondition
+
+    def recording_model(training: TaskSpec, settings: object = None) -> object:
+        learned.append([d.id for d in training.demonstrations])
+        return model(training)
+
+    def recording_precondition(training: list[tuple[str, ...]]) -> object:
+        baseline.append([" ".join(actions) for actions in training])
+        return precondition(training)
+
+    monkeypatch.setattr(module, "detection_model", recording_model)
+    monkeypatch.setattr(module, "_precondition", recording_precondition)
+    spec = _tea()
+    scored = evaluate_mistakes(spec, learn_from="correct")
+    correct = [f"c{i}" for i in range(len(CLEAN))] + ["dropped-cup"]
+    ids = [d.id for d in spec.demonstrations]
+    assert learned == [[c for c in correct if c != held] for held in ids]
+    assert [len(b) for b in baseline] == [len(fold) for fold in learned]
+    ours = scored.method(DETECTOR)
+    assert scored.as_dict()["learned_from"] == "correct"
+    assert (ours.positives, ours.found, ours.clean_flagged) == (3, 3, 0)
+    with pytest.raises(TaskFileError, match="learned from different demonstrations"):
+        scored.merge(MistakeEvaluation("tea", scored.thresholds))
+
+
+def test_learning_from_the_correct_ones_needs_two_of_them() -> None:
+    spec = _tea()
+    last = spec.demonstrations[len(CLEAN) - 1 :]  # c7, then the four labelled: c7 and dropped-cup are correct
+    assert evaluate_mistakes(spec.with_demonstrations(last), learn_from="correct").held_out == 5
+    with pytest.raises(TaskFileError, match=r"needs at least two of them .*: 1 of the 4 show no skipped step"):
+        evaluate_mistakes(spec.with_demonstrations(last[1:]), learn_from="correct")
+    with pytest.raises(TaskFileError, match="learn from all or correct"):
+        evaluate_mistakes(spec, learn_from="some")

@@ -63,6 +63,24 @@ DetectorThreshold = Annotated[
 """``--threshold`` of ``evaluate --mistakes`` and ``captaincook --mistakes``."""
 
 
+class LearnFrom(StrEnum):
+    """What each fold of a mistake evaluation learns from (``evaluation.mistakes.LEARN_FROM``)."""
+
+    all = "all"
+    correct = "correct"
+
+
+DetectorLearnFrom = Annotated[
+    LearnFrom,
+    typer.Option(
+        "--learn-from",
+        help="--mistakes: learn each fold from all the other demonstrations, or only the correct ones (no "
+        "skipped step and no label a step sequence shows).",
+    ),
+]
+"""``--learn-from`` of ``evaluate --mistakes`` and ``captaincook --mistakes``."""
+
+
 def learn(
     file: Annotated[
         Path, typer.Argument(help="Task file (.yaml, .yml, .json or .csv) or a bundled example's name.")
@@ -209,6 +227,7 @@ def evaluate(
         typer.Option("--mistakes", help="Score online mistake detection on the file's labelled steps instead."),
     ] = False,
     threshold: DetectorThreshold = None,
+    learn_from: DetectorLearnFrom = LearnFrom.all,
 ) -> None:
     """Cross-validate your demonstrations: does the hierarchy learned from the others admit the one held out
     (with a ground-truth structure: recall and precision of its orderings), and how well the progress-aware
@@ -243,9 +262,11 @@ def evaluate(
                 place="demonstrations",
             )
         with progress_bar(f"mistakes {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
-            found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), progress=advance)
+            found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), learn_from=learn_from.value, progress=advance)
         print_mistakes(found, printable(spec.name), as_json=as_json)
         return
+    if learn_from is not LearnFrom.all:
+        raise OptionError("--learn-from chooses what mistake detection learns from: give --mistakes too", "--learn-from")
     k = default_folds(len(spec.demonstrations)) if folds == "auto" else None if folds == "loo" else int(folds)
     with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
         result = evaluate_task(spec, k=k, seed=seed, progress=advance)
@@ -307,6 +328,7 @@ def captaincook(
         ),
     ] = False,
     threshold: DetectorThreshold = None,
+    learn_from: DetectorLearnFrom = LearnFrom.all,
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph. With --mistakes: leave each
@@ -318,8 +340,10 @@ def captaincook(
     from supportive.render.tables import fitted_table
 
     if mistakes:
-        _captaincook_mistakes(data, threshold, as_json)
+        _captaincook_mistakes(data, threshold, learn_from.value, as_json)
         return
+    if learn_from is not LearnFrom.all:
+        raise OptionError("--learn-from chooses what mistake detection learns from: give --mistakes too", "--learn-from")
 
     reports = captaincook_report(load_captaincook(data))
     if as_json:
@@ -368,7 +392,7 @@ def _threshold(given: float | None) -> float:
     return given
 
 
-def _captaincook_mistakes(data: Path | None, given: float | None, as_json: bool) -> None:
+def _captaincook_mistakes(data: Path | None, given: float | None, learn_from: str, as_json: bool) -> None:
     """``captaincook --mistakes``: every recipe left one recording out, summed."""
     from supportive.cli.mistakes import print_mistakes
     from supportive.evaluation.mistakes import MistakeEvaluation, evaluate_mistakes
@@ -378,9 +402,13 @@ def _captaincook_mistakes(data: Path | None, given: float | None, as_json: bool)
 
     threshold = _threshold(given)
     recipes = load_captaincook(data, errors=True)
-    total = MistakeEvaluation("captaincook4d", (threshold,))
+    total = MistakeEvaluation("captaincook4d", (threshold,), learn_from)
     with progress_bar("captaincook mistakes", sum(len(r.spec.demonstrations) for r in recipes)) as advance:
         for recipe in recipes:
-            total.merge(evaluate_mistakes(recipe.spec, thresholds=(threshold,), positives=POSITIVES, progress=advance))
+            total.merge(
+                evaluate_mistakes(
+                    recipe.spec, thresholds=(threshold,), positives=POSITIVES, learn_from=learn_from, progress=advance
+                )
+            )
     extra = {"positives": list(POSITIVES), "recipes": len(recipes)}
     print_mistakes(total, f"CaptainCook4D, {len(recipes)} recipes ({' and '.join(POSITIVES)} as mistakes)", as_json=as_json, extra=extra)

@@ -21,7 +21,11 @@ def print_mistakes(evaluation: MistakeEvaluation, title: str, *, as_json: bool, 
         out.print_json(json.dumps(data))
         return
     methods: dict[str, dict[str, Any]] = data["methods"]  # type: ignore[assignment]
-    say(f"{title}: {evaluation.held_out} demonstrations held out in turn, {evaluation.steps} steps, detector threshold {evaluation.thresholds[0]}")
+    others = "the correct ones among the others" if evaluation.learned_from == "correct" else "all the others"
+    say(
+        f"{title}: {evaluation.held_out} demonstrations held out in turn, each judged by what was learned from "
+        f"{others}; {evaluation.steps} steps, detector threshold {evaluation.thresholds[0]}"
+    )
     rows = [
         [
             name,

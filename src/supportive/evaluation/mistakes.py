@@ -1,9 +1,14 @@
 """Online mistake detection, scored: leave one labelled recording out, detect its mistakes step by step.
 
 Each held-out demonstration's steps are judged one by one by a :class:`~supportive.inference.mistakes.MistakeDetector`
-over the progress-aware model of the hierarchy learned from the other demonstrations (labels play no part in
-learning; by default the ``general`` reading, whose orders all rest on evidence: a robot must not call a
-habit it has seen a rule), and by two baselines learned from the same demonstrations:
+over the progress-aware model of the hierarchy learned from the other demonstrations (by default the
+``general`` reading, whose orders all rest on evidence: a robot must not call a habit it has seen a rule),
+and by two baselines learned from the same demonstrations. Which of the others every method learns from is
+``learn_from``: ``all`` of them (labels play no part in learning: the robot learns from what it saw, mistakes
+and all, as it would at a workbench), or the ``correct`` ones, those with no label a step sequence can show
+(:data:`VISIBLE`, or a skipped step; the usual protocol of supervised mistake detection, where the training
+split's labels say which recordings are correct executions, and the one the generated tasks of ``reproduce
+mistake-detection`` follow). The baselines are:
 
 * **precondition**: a step is a mistake when a step that precedes it in every training demonstration that
   performs both, and that every training demonstration performing it performs, has not been done;
@@ -46,6 +51,7 @@ from supportive.tasks.spec import Demonstration, TaskSpec
 __all__ = [
     "DETECTOR",
     "KIND_HEADERS",
+    "LEARN_FROM",
     "METHODS",
     "VISIBLE",
     "MethodScores",
@@ -54,6 +60,10 @@ __all__ = [
     "evaluate_mistakes",
     "kind_rows",
 ]
+
+LEARN_FROM = ("all", "correct")
+"""What each fold learns from (:func:`evaluate_mistakes`): every other demonstration, or those with no label a
+step sequence can show."""
 
 DETECTOR = "progress-aware"
 METHODS = (DETECTOR, "precondition", "unseen bigram")
@@ -135,6 +145,7 @@ class MistakeEvaluation:
 
     task: str
     thresholds: tuple[float, ...]
+    learned_from: str = "all"
     held_out: int = 0
     steps: int = 0
     methods: dict[str, MethodScores] = field(default_factory=lambda: {m: MethodScores() for m in METHODS[1:]})
@@ -148,6 +159,8 @@ class MistakeEvaluation:
         """Add another task's held-out demonstrations and counts (same thresholds) to these."""
         if other.thresholds != self.thresholds:
             raise TaskFileError("evaluations at different thresholds cannot be merged")
+        if other.learned_from != self.learned_from:
+            raise TaskFileError("evaluations learned from different demonstrations cannot be merged")
         self.held_out += other.held_out
         self.steps += other.steps
         for name, scores in other.methods.items():
@@ -164,6 +177,7 @@ class MistakeEvaluation:
         return {
             "task": self.task,
             "threshold": self.thresholds[0],
+            "learned_from": self.learned_from,
             "held_out": self.held_out,
             "steps": self.steps,
             "methods": {name: self.method(name).as_dict() for name in METHODS},
@@ -177,6 +191,7 @@ def evaluate_mistakes(
     thresholds: Sequence[float] = (0.5,),
     positives: Sequence[str] = VISIBLE,
     settings: Mapping[str, Any] | None = None,
+    learn_from: str = "all",
     progress: Callable[[], None] | None = None,
 ) -> MistakeEvaluation:
     """Leave each demonstration out in turn and score every method's flags on it (see the module docstring).
@@ -189,10 +204,13 @@ def evaluate_mistakes(
             kinds are counted apart).
         settings: :class:`~supportive.learning.learner.HTNLearner` settings (default: the ``general``
             reading) and :class:`~supportive.inference.tracker.ProgressHMM` ones (``smoothing``, ``slip``).
+        learn_from: ``all`` (every other demonstration) or ``correct`` (the others with no label a step sequence
+            can show); see the module docstring.
         progress: Called once per held-out demonstration.
 
     Raises:
-        TaskFileError: when no demonstration carries a label, or there are fewer than two.
+        TaskFileError: when no demonstration carries a label, or there are fewer than two; with ``correct``,
+            when fewer than two demonstrations are correct (a fold would learn from none).
     """
     demos = list(spec.demonstrations)
     if len(demos) < 2:
@@ -201,10 +219,18 @@ def evaluate_mistakes(
         raise TaskFileError("no step carries a mistake label (see docs/task-files.md: 'mistake: order', …)")
     if not thresholds:
         raise TaskFileError("give at least one threshold")
-    result = MistakeEvaluation(spec.name, tuple(thresholds))
+    if learn_from not in LEARN_FROM:
+        raise TaskFileError(f"learn from {' or '.join(LEARN_FROM)}, not {learn_from!r}")
+    correct = [not _shows_mistake(d) for d in demos]
+    if learn_from == "correct" and sum(correct) < 2:
+        raise TaskFileError(
+            f"learning from the correct demonstrations needs at least two of them (each is held out in turn): "
+            f"{sum(correct)} of the {len(demos)} show no skipped step and no mistake a step sequence can show"
+        )
+    result = MistakeEvaluation(spec.name, tuple(thresholds), learn_from)
     wanted = frozenset(positives)
     for held in range(len(demos)):
-        training = [d for i, d in enumerate(demos) if i != held]
+        training = [d for i, d in enumerate(demos) if i != held and (learn_from == "all" or correct[i])]
         hmm = detection_model(spec.with_demonstrations(training), settings)
         demo = demos[held]
         result.held_out += 1
@@ -232,6 +258,12 @@ def detection_model(training: TaskSpec | Sequence[Sequence[str]], settings: Mapp
 
 def _labelled(demo: Demonstration) -> bool:
     return bool(demo.skipped) or any(step.mistake is not None for step in demo.steps)
+
+
+def _shows_mistake(demo: Demonstration) -> bool:
+    """Whether the demonstration has a mistake its step sequence shows (a skipped step, or a step labelled with
+    one of :data:`VISIBLE`): not a correct execution to learn the order from."""
+    return bool(demo.skipped) or any(step.mistake in VISIBLE for step in demo.steps)
 
 
 def _detector(detector: MistakeDetector) -> Callable[[Demonstration], list[Flag]]:
