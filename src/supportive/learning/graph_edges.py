@@ -24,12 +24,14 @@ Scored against itself this way, a published graph gets 1.0 unless it holds an ed
 from __future__ import annotations
 
 from collections.abc import Collection, Iterable
-
-import networkx as nx
+from typing import TYPE_CHECKING
 
 from supportive.errors import LearningError
 from supportive.learning.precedence import Pair, PrecedenceScore, precedence_scores
 from supportive.tasks.htn import Leaf
+
+if TYPE_CHECKING:  # imported where used: networkx is a fifth of every command's start-up
+    import networkx as nx
 
 __all__ = ["END_NODE", "PEERS", "START_NODE", "GraphEdge", "edge_scores", "reduced_edges"]
 
@@ -55,6 +57,8 @@ def reduced_edges(pairs: Iterable[Pair], steps: Collection[Leaf]) -> frozenset[G
     Raises:
         LearningError: when the relation has a cycle (it is then no precedence relation).
     """
+    import networkx as nx  # here: networkx is a fifth of every command's start-up
+
     graph: nx.DiGraph[Leaf] = nx.DiGraph()
     graph.add_nodes_from(steps)
     graph.add_edges_from((a, b) for a, b in pairs if a in graph and b in graph)

@@ -19,10 +19,12 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
-
-import networkx as nx
+from typing import TYPE_CHECKING
 
 from supportive.tasks.htn import ChainNode, CliqueNode, Node, TopLevel
+
+if TYPE_CHECKING:  # imported where used: networkx is a fifth of every command's start-up
+    import networkx as nx
 
 __all__ = ["complete_alternative", "may_precede", "required_roots"]
 
@@ -39,6 +41,8 @@ def complete_alternative(roots: Sequence[Node], top_level: TopLevel) -> Node:
     >>> [child.kind for child in complete_alternative((a, b, c), then_c).children]
     ['clique', 'action']
     """
+    import networkx as nx  # here: networkx is a fifth of every command's start-up
+
     graph: nx.DiGraph[int] = nx.DiGraph()
     graph.add_nodes_from(range(len(roots)))
     graph.add_edges_from((s, r) for s, later in enumerate(may_precede(top_level, len(roots))) for r in later)

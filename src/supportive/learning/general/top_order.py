@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import networkx as nx
 import numpy as np
 
 from supportive.learning.general.evidence import established_precedences, pair_counts
@@ -47,6 +46,8 @@ def precedence_top_level(
         return seen_top_level(roots, sequences)
     before, together = pair_counts(sequences, list(roots))
     established = established_precedences(before, together, order_support)
+    import networkx as nx  # here: networkx is a fifth of every command's start-up
+
     graph = nx.DiGraph()
     graph.add_nodes_from(range(len(roots)))
     graph.add_edges_from((int(u), int(v)) for u, v in zip(*np.nonzero(established), strict=True))

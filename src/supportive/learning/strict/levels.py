@@ -15,8 +15,6 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-import networkx as nx
-
 from supportive.learning.reachability import reachable
 
 __all__ = ["Group", "LevelGraph", "Ordering"]
@@ -150,6 +148,8 @@ class LevelGraph:
 
     def clique_candidates(self, pairs: Iterable[tuple[int, int]], ordering: Ordering) -> list[frozenset[int]]:
         """Maximal cliques (Bron–Kerbosch, networkx) of an undirected simplification, largest first."""
+        import networkx as nx  # here: networkx is a fifth of every command's start-up
+
         graph = nx.Graph()
         graph.add_edges_from(pairs)
         cliques = [frozenset(c) for c in nx.find_cliques(graph) if len(c) > 1]
