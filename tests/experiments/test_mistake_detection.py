@@ -19,7 +19,7 @@ from supportive.experiments.mistake_detection.measure import (
     run_trial,
     summarize,
 )
-from supportive.experiments.mistake_detection.report import plots, report
+from supportive.experiments.mistake_detection.report import _alike, findings, plots, report
 from supportive.inference.mistakes import DEFAULT_THRESHOLD
 
 
@@ -48,15 +48,27 @@ def test_a_generated_trial_and_a_recipe_summarise_and_plot(tmp_path: Path) -> No
     assert set(generated["thresholds"]) == {str(t) for t in THRESHOLDS}
     for row in generated["thresholds"].values():
         assert set(row["kinds"]) == set(KINDS) and row["clean"][1] > 0
-    tea = evaluate_mistakes(_tea(), thresholds=THRESHOLDS, positives=("order", "missing"))
-    sums = {str(t): vars(s) for t, s in tea.detector.items()} | {n: vars(tea.methods[n]) for n in METHODS[1:]}
-    recipe = {"index": 1, "kind": "recipe", "recipe": "tea", "held_out": tea.held_out, "sums": sums}
-    metrics = summarize([generated, recipe])
+    sums = {}
+    for learn_from in ("all", "correct"):
+        tea = evaluate_mistakes(_tea(), thresholds=THRESHOLDS, positives=("order", "missing"), learn_from=learn_from)
+        sums[learn_from] = {str(t): vars(s) for t, s in tea.detector.items()} | {n: vars(tea.methods[n]) for n in METHODS[1:]}
+    recipe = {"index": 1, "kind": "recipe", "recipe": "tea", "held_out": tea.held_out, "sums": sums["all"], "sums_correct": sums["correct"]}
+    fewer = {**recipe, "index": 2, "recipe": "few correct", "sums_correct": None}  # fewer than two correct recordings
+    metrics = summarize([generated, recipe, fewer])
     assert metrics["chosen"] in THRESHOLDS
     cc = metrics["captaincook"]
-    assert cc["held_out"] == 12 and set(cc["methods"]) == set(METHODS) and set(cc["curve"]) == {str(t) for t in THRESHOLDS}
-    assert cc["methods"][DETECTOR]["positives"] == 2  # the early pour and the skipped steep
+    assert cc["held_out"] == 24 and set(cc["methods"]) == set(METHODS) and set(cc["curve"]) == {str(t) for t in THRESHOLDS}
+    assert cc["methods"][DETECTOR]["positives"] == 4  # twice: the early pour and the skipped steep
+    correct = cc["learned_from_correct"]
+    assert correct["recipes"] == 1 and set(correct["methods"]) == set(METHODS)
+    assert correct["methods"][DETECTOR]["positives"] == 2 and set(correct["curve"]) == {str(t) for t in THRESHOLDS}
     text = report(metrics)
-    assert "Chosen: **" in text and "precondition" in text
+    assert "Chosen: **" in text and "precondition" in text and "Learned from the correct recordings only (1 recipes)" in text
+    assert len(findings(metrics)) == 3  # generated; CaptainCook4D learned from all, from correct
     (picture,) = plots(metrics, tmp_path)
     assert picture.name == "precision-recall.png" and picture.stat().st_size > 0
+
+
+def test_thresholds_giving_one_point_are_labelled_once_as_a_run() -> None:
+    points = [(0.2, 0.5), (0.2, 0.5), (0.3, 0.4), (0.2, 0.5)]
+    assert _alike(points, ["0.1", "0.3", "0.5", "0.7"]) == [((0.2, 0.5), "0.1–0.3"), ((0.3, 0.4), "0.5"), ((0.2, 0.5), "0.7")]

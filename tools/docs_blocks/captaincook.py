@@ -69,4 +69,10 @@ BLOCKS: dict[str, Block] = {
     "mistake-detection-kinds": report_table(
         "mistake-detection", "mistake-detection.json", "| method | kind |"
     ),
+    "mistake-detection-correct": report_table(
+        "mistake-detection", "mistake-detection.json", "| method | precision |", 1
+    ),
+    "mistake-detection-correct-kinds": report_table(
+        "mistake-detection", "mistake-detection.json", "| method | kind |", 1
+    ),
 }

@@ -7,7 +7,7 @@ from typing import Any
 
 from .common import RESULTS, Block, read_json
 from .prose import number, span, words
-from .reports import nth_table, report_table
+from .reports import report_table
 from .runs import digest
 
 _CG = "docs/results/caregiver.json (supportive reproduce caregiver)"
@@ -142,10 +142,7 @@ BLOCKS: dict[str, Block] = {
     "caregiver-sha": digest("caregiver.json"),
     "caregiver-reduction": report_table("caregiver", "caregiver.json", "| novice | reduction,"),
     "caregiver-damage": report_table("caregiver", "caregiver.json", "| novice | no caregiver |"),
-    "caregiver-steps": Block(
-        "docs/results/caregiver.json (supportive reproduce caregiver)",
-        lambda: nth_table("caregiver", "caregiver.json", "| novice | no caregiver |", 1),
-    ),
+    "caregiver-steps": report_table("caregiver", "caregiver.json", "| novice | no caregiver |", 1),
     "caregiver-collisions": Block(
         "docs/results/caregiver.json (supportive reproduce caregiver)", caregiver_collisions
     ),

@@ -27,12 +27,12 @@ def nth_table(experiment: str, file: str, header: str, n: int = 0) -> str:
     return matching[n]
 
 
-def report_table(experiment: str, file: str, header: str) -> Block:
-    """The first table of ``experiment``'s report (from ``docs/results/FILE``) whose header starts with
-    ``header``."""
+def report_table(experiment: str, file: str, header: str, n: int = 0) -> Block:
+    """The ``n``-th (by default the first) table of ``experiment``'s report (from ``docs/results/FILE``) whose
+    header starts with ``header``."""
     return Block(
         f"docs/results/{file} (supportive reproduce {experiment})",
-        lambda: nth_table(experiment, file, header),
+        lambda: nth_table(experiment, file, header, n),
     )
 
 

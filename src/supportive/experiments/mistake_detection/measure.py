@@ -6,8 +6,15 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.errors import ExperimentError
-from supportive.evaluation.mistakes import DETECTOR, METHODS, MethodScores, detection_model, evaluate_mistakes
+from supportive.errors import ExperimentError, TaskFileError
+from supportive.evaluation.mistakes import (
+    DETECTOR,
+    METHODS,
+    MethodScores,
+    MistakeEvaluation,
+    detection_model,
+    evaluate_mistakes,
+)
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import PROFILES, MistakeKind, inject, random_known_task
 from supportive.inference.mistakes import MistakeDetector
@@ -61,14 +68,33 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
 
 
 def run_trial(trial: Trial) -> dict[str, Any]:
-    """One generated task at every threshold, or one recipe left one recording out."""
+    """One generated task at every threshold, or one recipe left one recording out: each fold learned from all
+    the other recordings (``sums``), and from the correct ones among them (``sums_correct``; None when the
+    recipe has fewer than two)."""
     if trial.params["kind"] == "generated":
         return {"index": trial.index, "kind": "generated", **_generated(trial)}
     recipe = load_captaincook(errors=True)[int(trial.params["recipe"])]
     evaluation = evaluate_mistakes(recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES)
+    try:
+        correct: dict[str, Any] | None = _sums(
+            evaluate_mistakes(recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES, learn_from="correct")
+        )
+    except TaskFileError:  # fewer than two correct recordings: a fold would learn from none
+        correct = None
+    return {
+        "index": trial.index,
+        "kind": "recipe",
+        "recipe": recipe.name,
+        "held_out": evaluation.held_out,
+        "sums": _sums(evaluation),
+        "sums_correct": correct,
+    }
+
+
+def _sums(evaluation: MistakeEvaluation) -> dict[str, Any]:
+    """The counts of the detector at each threshold and of each baseline, as plain data."""
     sums = {str(t): vars(scores) for t, scores in evaluation.detector.items()}
-    sums |= {name: vars(evaluation.methods[name]) for name in METHODS[1:]}
-    return {"index": trial.index, "kind": "recipe", "recipe": recipe.name, "held_out": evaluation.held_out, "sums": sums}
+    return sums | {name: vars(evaluation.methods[name]) for name in METHODS[1:]}
 
 
 def _generated(trial: Trial) -> dict[str, Any]:
@@ -152,15 +178,26 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     captaincook: dict[str, Any] = {}
     if recipes:
         at = str(chosen if chosen is not None else 0.5)
-        summed = {name: _summed([r["sums"][name] for r in recipes]) for name in (*(str(t) for t in THRESHOLDS), *METHODS[1:])}
         captaincook = {
             "recipes": len(recipes),
             "held_out": sum(int(r["held_out"]) for r in recipes),
             "threshold": float(at),
-            "methods": {DETECTOR: summed[at].as_dict(), **{n: summed[n].as_dict() for n in METHODS[1:]}},
-            "curve": {str(t): summed[str(t)].as_dict() for t in THRESHOLDS},
+            **_methods([r["sums"] for r in recipes], at),
         }
+        correct = [r["sums_correct"] for r in recipes if r.get("sums_correct") is not None]
+        if correct:
+            captaincook["learned_from_correct"] = {"recipes": len(correct), **_methods(correct, at)}
     return {"generated": table, "chosen": chosen, "captaincook": captaincook}
+
+
+def _methods(sums: Sequence[Mapping[str, Any]], at: str) -> dict[str, Any]:
+    """The recipes' counts summed: every method's scores (the detector at threshold ``at``) and the
+    detector's curve over the thresholds."""
+    summed = {name: _summed([row[name] for row in sums]) for name in (*(str(t) for t in THRESHOLDS), *METHODS[1:])}
+    return {
+        "methods": {DETECTOR: summed[at].as_dict(), **{n: summed[n].as_dict() for n in METHODS[1:]}},
+        "curve": {str(t): summed[str(t)].as_dict() for t in THRESHOLDS},
+    }
 
 
 def _share(part: int, whole: int) -> float:
