@@ -2,9 +2,11 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Iterator
+from dataclasses import replace
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.generate import Profile, random_structure
@@ -14,6 +16,7 @@ from supportive.tasks.htn import (
     ChainNode,
     CliqueNode,
     Leaf,
+    Node,
     TopLevel,
     admits,
     allowed_next,
@@ -151,3 +154,65 @@ def test_allowed_next_rejects_invalid_prefixes() -> None:
         allowed_next(ChainNode((A, B, C)), [("b", 1)])
     with pytest.raises(ValueError, match="under way"):
         allowed_next(CliqueNode((ChainNode((A, B)), ChainNode((C, D)))), [("a", 1), ("c", 1)])
+
+
+def _root(draw: st.DrawFn, name: str) -> Node:
+    """A small root over actions named ``name…``: an action, or a chain or clique of two or three, any of them
+    optional, so some roots may be performed as nothing though not optional themselves."""
+    kind = draw(st.sampled_from(["action", "chain", "clique"]))
+    if kind == "action":
+        return ActionNode(name, optional=draw(st.booleans()))
+    children = tuple(ActionNode(f"{name}{i}", optional=draw(st.booleans())) for i in range(draw(st.integers(2, 3))))
+    node = ChainNode(children) if kind == "chain" else CliqueNode(children)
+    return replace(node, optional=draw(st.booleans()))
+
+
+@st.composite
+def partial_htns(draw: st.DrawFn) -> HTN:
+    """Two to four roots and a top level of root orders: each order a path through the sets of roots done
+    (orders sharing a set share its state), ending where an order ends."""
+    roots = tuple(_root(draw, name) for name in "pqrs"[: draw(st.integers(2, 4))])
+    number: dict[frozenset[int], int] = {frozenset(): 0}
+    edges: set[tuple[int, int, int]] = set()
+    terminal: set[int] = set()
+    for _ in range(draw(st.integers(1, 5))):
+        order = draw(st.permutations(range(len(roots))))[: draw(st.integers(1, len(roots)))]
+        done: frozenset[int] = frozenset()
+        for root in order:
+            after = done | {root}
+            number.setdefault(after, len(number))
+            edges.add((number[done], root, number[after]))
+            done = after
+        terminal.add(number[done])
+    return HTN("t", roots, TopLevel(initial=(0,), terminal=tuple(sorted(terminal)), edges=tuple(sorted(edges))))
+
+
+def _paths(top: TopLevel, state: int) -> Iterator[tuple[int, ...]]:
+    if state in top.terminal:
+        yield ()
+    for root, dst in top.successors().get(state, {}).items():
+        for rest in _paths(top, dst):
+            yield (root, *rest)
+
+
+@settings(max_examples=300, deadline=None)
+@given(htn=partial_htns())
+def test_a_partial_htn_counts_each_leaf_sequence_once(htn: HTN) -> None:
+    """Brute force: every path of the top level, each root on it performed in each of its ways (as nothing
+    too, when it may be), the distinct leaf sequences counted; a root performed as nothing on one path gives
+    what another path gives, and counts once."""
+    assert htn.top_level is not None
+    sequences = {
+        tuple(leaf for part in parts for leaf in part)
+        for path in _paths(htn.top_level, htn.top_level.initial[0])
+        for parts in itertools.product(*(set(iter_orderings(htn.roots[r])) for r in path))
+    }
+    assert htn.count_orderings() == len(sequences)
+
+
+def test_a_required_root_that_may_be_performed_as_nothing_adds_the_orders_without_it() -> None:
+    maybe = CliqueNode((ActionNode("b", optional=True), ActionNode("c", optional=True)))  # required, nullable
+    top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)))
+    htn = HTN("t", (A, maybe), top)
+    # a alone (the clique performed as nothing, before or after it: once), and a before or after b, c, bc, cb
+    assert htn.count_orderings() == 1 + 2 * 4

@@ -395,10 +395,13 @@ class HTN:
         return self.executions.accepts_leaves(leaves)
 
     def count_orderings(self) -> int:
-        """How many leaf sequences this HTN admits (exact)."""
+        """How many leaf sequences this HTN admits (exact: a root that may be performed as nothing where a
+        path of the top level passes it counts once, not once per path)."""
         if self.top_level is None:
             return math.prod(count_orderings(root) for root in self.roots)
-        return self.top_level.count_orderings([count_performed(root) for root in self.roots])
+        free = self.top_level.free  # passing one silently gives an order a path without it gives already
+        silent = [i for i, root in enumerate(self.roots) if nullable(root) and i not in free]
+        return self.top_level.count_orderings([count_performed(root) for root in self.roots], silent)
 
     def canonical(self) -> tuple[object, ...]:
         """Hashable form, equal for equivalent hierarchies (see :func:`canonical`)."""

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Literal, TypeAlias
@@ -266,18 +266,71 @@ class TopLevel:
         states = out.keys() | set(self.terminal) | set(self.initial) | {d for e in out.values() for d in e.values()}
         return _reverse_topological(sorted(states), out)
 
-    def count_orderings(self, weights: Sequence[int] | None = None) -> int:
+    def count_orderings(self, weights: Sequence[int] | None = None, nullable: Collection[int] = ()) -> int:
         """How many root orders this top level allows (exact, by dynamic programming); with ``weights``, each
-        root performed on a path counts ``weights[root]`` times (its own orderings, say)."""
+        root performed on a path counts ``weights[root]`` times (its own orderings, say).
+
+        ``nullable`` roots may also be performed as nothing where a path passes them: what is counted is
+        then the distinct orders of the roots performed (each weighted), however many paths give one (a
+        path through a root performed as nothing gives the order of the path without it).
+        """
         out = self.successors()
         terminal = set(self.terminal)
-        memo: dict[int, int] = {}
-        for state in self.successors_first():
-            memo[state] = int(state in terminal) + sum(
-                (weights[root] if weights is not None else 1) * memo[dst]
-                for root, dst in out.get(state, {}).items()
-            )
-        return sum(memo.get(s, int(s in terminal)) for s in self.initial)
+        weight = (lambda root: 1) if weights is None else weights.__getitem__
+        if not nullable:
+            memo: dict[int, int] = {}
+            for state in self.successors_first():
+                memo[state] = int(state in terminal) + sum(
+                    weight(root) * memo[dst] for root, dst in out.get(state, {}).items()
+                )
+            return sum(memo.get(s, int(s in terminal)) for s in self.initial)
+        return _count_distinct(out, terminal, self.initial, weight, frozenset(nullable))
+
+def _count_distinct(
+    out: dict[int, dict[int, int]],
+    terminal: set[int],
+    initial: Sequence[int],
+    weight: Callable[[int], int],
+    nullable: frozenset[int],
+) -> int:
+    """:meth:`TopLevel.count_orderings` with roots that may be performed as nothing: the weighted orders of the
+    roots performed, counted once each, over the sets of states a prefix of them may lead to (the subset
+    construction of the graph whose ``nullable`` edges may also be passed silently; a DAG, so it ends)."""
+
+    def closure(states: Iterable[int]) -> frozenset[int]:
+        reached = set(states)
+        frontier = list(reached)
+        while frontier:
+            for root, dst in out.get(frontier.pop(), {}).items():
+                if root in nullable and dst not in reached:
+                    reached.add(dst)
+                    frontier.append(dst)
+        return frozenset(reached)
+
+    def moves(states: frozenset[int]) -> dict[int, frozenset[int]]:
+        targets: dict[int, set[int]] = {}
+        for state in states:
+            for root, dst in out.get(state, {}).items():
+                targets.setdefault(root, set()).add(dst)
+        return {root: closure(dsts) for root, dsts in targets.items()}
+
+    start = closure(initial)
+    memo: dict[frozenset[int], int] = {}
+    successors: dict[frozenset[int], dict[int, frozenset[int]]] = {}
+    stack = [start]
+    while stack:  # each set once its successors are counted (depth first, without recursion)
+        states = stack[-1]
+        if states in memo:
+            stack.pop()
+            continue
+        following = successors.setdefault(states, moves(states))
+        waiting = [nxt for nxt in following.values() if nxt not in memo]
+        if waiting:
+            stack.extend(waiting)
+            continue
+        stack.pop()
+        memo[states] = int(bool(states & terminal)) + sum(weight(root) * memo[nxt] for root, nxt in following.items())
+    return memo[start]
 
 
 def _reverse_topological(states: Sequence[int], out: dict[int, dict[int, int]]) -> list[int]:
