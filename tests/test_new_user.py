@@ -311,8 +311,8 @@ ROUGH_EDGES: list[tuple[list[str], str, Callable[[subprocess.CompletedProcess[st
 
 
 LEFT = {"chat": ["ikea-chair.edited.yaml"], "generate": ["task.csv"]}
-"""The files a rough edge's command leaves beside steps.txt: chat, told a preference, makes its copy; teach, told
-nothing, makes none; nothing else writes."""
+"""The files a rough edge's command leaves beside steps.txt: chat, told a preference, makes its copy; generate
+writes the CSV it was asked for; teach, told nothing, makes none; nothing else writes."""
 
 
 @pytest.mark.slow

@@ -21,6 +21,8 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Literal, TypeAlias
 
+from supportive.errors import TaskModelError
+
 __all__ = [
     "ActionNode",
     "ChainNode",
@@ -266,43 +268,48 @@ class TopLevel:
         states = out.keys() | set(self.terminal) | set(self.initial) | {d for e in out.values() for d in e.values()}
         return _reverse_topological(sorted(states), out)
 
-    def count_orderings(self, weights: Sequence[int] | None = None, nullable: Collection[int] = ()) -> int:
+    def count_orderings(self, weights: Sequence[int] | None = None, silent: Collection[int] = ()) -> int:
         """How many root orders this top level allows (exact, by dynamic programming); with ``weights``, each
         root performed on a path counts ``weights[root]`` times (its own orderings, say).
 
-        ``nullable`` roots may also be performed as nothing where a path passes them: what is counted is
-        then the distinct orders of the roots performed (each weighted), however many paths give one (a
-        path through a root performed as nothing gives the order of the path without it).
+        ``silent`` roots may also be performed as nothing where a path passes them: what is counted is then
+        the distinct orders of the roots performed (each weighted), however many paths give one (a path
+        through a root performed as nothing gives the order of the path without it). That count keeps a set
+        of states per prefix: it grows with the silent roots of free order, about threefold for each.
+
+        Raises:
+            TaskModelError: with ``silent`` roots, when the top level has a cycle (it is a DAG by design).
         """
         out = self.successors()
         terminal = set(self.terminal)
         weight = (lambda root: 1) if weights is None else weights.__getitem__
-        if not nullable:
+        if not silent:
             memo: dict[int, int] = {}
             for state in self.successors_first():
                 memo[state] = int(state in terminal) + sum(
                     weight(root) * memo[dst] for root, dst in out.get(state, {}).items()
                 )
             return sum(memo.get(s, int(s in terminal)) for s in self.initial)
-        return _count_distinct(out, terminal, self.initial, weight, frozenset(nullable))
+        return _count_distinct(out, terminal, self.initial, weight, frozenset(silent))
+
 
 def _count_distinct(
     out: dict[int, dict[int, int]],
     terminal: set[int],
     initial: Sequence[int],
     weight: Callable[[int], int],
-    nullable: frozenset[int],
+    silent: frozenset[int],
 ) -> int:
     """:meth:`TopLevel.count_orderings` with roots that may be performed as nothing: the weighted orders of the
     roots performed, counted once each, over the sets of states a prefix of them may lead to (the subset
-    construction of the graph whose ``nullable`` edges may also be passed silently; a DAG, so it ends)."""
+    construction of the graph whose ``silent`` edges may also be passed without a root performed)."""
 
     def closure(states: Iterable[int]) -> frozenset[int]:
         reached = set(states)
         frontier = list(reached)
         while frontier:
             for root, dst in out.get(frontier.pop(), {}).items():
-                if root in nullable and dst not in reached:
+                if root in silent and dst not in reached:
                     reached.add(dst)
                     frontier.append(dst)
         return frozenset(reached)
@@ -316,20 +323,25 @@ def _count_distinct(
 
     start = closure(initial)
     memo: dict[frozenset[int], int] = {}
-    successors: dict[frozenset[int], dict[int, frozenset[int]]] = {}
+    successors: dict[frozenset[int], dict[int, frozenset[int]]] = {}  # the sets entered and not yet counted
     stack = [start]
-    while stack:  # each set once its successors are counted (depth first, without recursion)
+    while stack:  # depth first, without recursion: a set is counted once every set it leads to is
         states = stack[-1]
         if states in memo:
             stack.pop()
             continue
-        following = successors.setdefault(states, moves(states))
+        if states not in successors:
+            successors[states] = moves(states)
+        following = successors[states]
         waiting = [nxt for nxt in following.values() if nxt not in memo]
+        if any(nxt in successors for nxt in waiting):  # entered, not counted: it leads back here
+            raise TaskModelError("the top level has a cycle: its roots cannot be counted")
         if waiting:
             stack.extend(waiting)
             continue
         stack.pop()
         memo[states] = int(bool(states & terminal)) + sum(weight(root) * memo[nxt] for root, nxt in following.items())
+        del successors[states]
     return memo[start]
 
 

@@ -79,7 +79,7 @@ def run_trial(trial: Trial) -> dict[str, Any]:
         correct: dict[str, Any] | None = _sums(
             evaluate_mistakes(recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES, learn_from="correct")
         )
-    except TaskFileError:  # fewer than two correct recordings: a fold would learn from none
+    except TaskFileError:  # the only refusal left once the run above passed: fewer than two correct recordings
         correct = None
     return {
         "index": trial.index,
