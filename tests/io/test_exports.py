@@ -5,9 +5,10 @@ import json
 import pytest
 
 from supportive import examples
+from supportive.errors import TaskFileError
 from supportive.io.dot import htn_to_dot
 from supportive.io.htn_json import htn_from_dict, htn_to_dict
-from supportive.learning import learn
+from supportive.learning import HTNLearner, learn
 from supportive.render.tree import render_tree
 from supportive.tasks.htn import HTN, ActionNode, ChainNode
 from supportive.tasks.naming import full_name
@@ -22,6 +23,8 @@ def test_json_round_trip(name: str) -> None:
     back = htn_from_dict(data)
     assert back.canonical() == learner.htn_.canonical()
     assert back.top_level == learner.htn_.top_level
+    if back.top_level is not None:  # the counting hint too (TopLevel's equality leaves it out)
+        assert learner.htn_.top_level is not None and back.top_level.free == learner.htn_.top_level.free
     assert [a.canonical() for a in back.alternatives] == [a.canonical() for a in learner.htn_.alternatives]
     assert [getattr(r, "name", None) for r in back.roots] == [  # made-up names come back whole (issue 26)
         None if isinstance(r, ActionNode) else full_name(r) for r in learner.htn_.roots
@@ -115,3 +118,18 @@ def test_json_names_are_never_cut(name: str) -> None:
     assert not any("…" in n for n in written), written
     if name == "tea-mistakes":
         assert "pour_water → steep → remove_teabag → Milk and sugar → stir" in written
+
+
+def test_the_counting_hint_of_a_partial_order_of_roots_survives_json() -> None:
+    """A partial hierarchy whose optional root unlocks nothing keeps ``free`` through JSON (and so its fast
+    count); a ``free`` that is not a list of root indices is one clear error."""
+    demos = [["a", "b", "d"], ["a", "b", "c", "e"], ["b", "a", "d"]]  # c, d and e optional, of no fixed order
+    htn = HTNLearner(mode="general").fit(demos).htn_
+    assert htn.top_level is not None and htn.top_level.free
+    back = htn_from_dict(json.loads(json.dumps(htn_to_dict(htn))))
+    assert back.top_level is not None and back.top_level.free == htn.top_level.free
+    assert back.count_orderings() == htn.count_orderings()
+    data = htn_to_dict(htn)
+    data["top_level"]["free"] = ["b"]
+    with pytest.raises(TaskFileError, match="'free', if given, a list of root indices"):
+        htn_from_dict(data)

@@ -120,7 +120,8 @@ def node_from_dict(data: Any, place: str = "node") -> Node:
 
 def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]:
     """The JSON form of docs/exports.md; ``top_level`` is added for a partial hierarchy (how its roots may follow
-    one another: ``edges`` are ``[from state, root index, to state]``); counts in ``stats`` beyond 2^53 are
+    one another: ``edges`` are ``[from state, root index, to state]``; ``free``, when any, the roots whose
+    passing unlocks nothing, :attr:`~supportive.tasks.htn.TopLevel.free`); counts in ``stats`` beyond 2^53 are
     strings (:func:`json_count`)."""
     data: dict[str, Any] = {
         "task": htn.task,
@@ -136,6 +137,8 @@ def htn_to_dict(htn: HTN, stats: dict[str, Any] | None = None) -> dict[str, Any]
         }
         if top.counts is not None:
             data["top_level"]["counts"] = top.counts.as_dict()
+        if top.free:
+            data["top_level"]["free"] = sorted(top.free)
     data["alternatives"] = [{"roots": [node_to_dict(r) for r in alt.roots]} for alt in htn.alternatives]
     if stats is not None:
         data["stats"] = _json_numbers(stats)
@@ -157,10 +160,13 @@ def htn_from_dict(data: Any) -> HTN:
                 tuple(map(int, top["terminal"])),
                 edges,
                 _counts_from(top.get("counts"), "top_level.counts"),
+                frozenset(map(int, top.get("free", []))),
             )
         except (KeyError, TypeError, ValueError):
             raise TaskFileError(
-                "top_level needs 'initial', 'terminal' and 'edges' of [from, root, to]", place="top_level"
+                "top_level needs 'initial', 'terminal' and 'edges' of [from, root, to] (and 'free', if given, "
+                "a list of root indices)",
+                place="top_level",
             ) from None
     alternatives = tuple(
         HTN(data.get("task", ""), tuple(node_from_dict(r, f"alternatives[{i}]") for r in alt["roots"]))
