@@ -265,8 +265,7 @@ def evaluate(
             found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), learn_from=learn_from.value, progress=advance)
         print_mistakes(found, printable(spec.name), as_json=as_json)
         return
-    if learn_from is not LearnFrom.all:
-        raise OptionError("--learn-from chooses what mistake detection learns from: give --mistakes too", "--learn-from")
+    _without_mistakes(learn_from)
     k = default_folds(len(spec.demonstrations)) if folds == "auto" else None if folds == "loo" else int(folds)
     with progress_bar(f"evaluate {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
         result = evaluate_task(spec, k=k, seed=seed, progress=advance)
@@ -342,8 +341,7 @@ def captaincook(
     if mistakes:
         _captaincook_mistakes(data, threshold, learn_from.value, as_json)
         return
-    if learn_from is not LearnFrom.all:
-        raise OptionError("--learn-from chooses what mistake detection learns from: give --mistakes too", "--learn-from")
+    _without_mistakes(learn_from)
 
     reports = captaincook_report(load_captaincook(data))
     if as_json:
@@ -379,6 +377,12 @@ def captaincook(
             f"task-graph edges ({setting}, the protocol of Differentiable Task Graph Learning): precision "
             f"{scores['precision']:.3f}, recall {scores['recall']:.3f}, F1 {scores['f1']:.3f}; published: {peers}"
         )
+
+
+def _without_mistakes(learn_from: LearnFrom) -> None:
+    """Refuse ``--learn-from`` given without ``--mistakes`` (it chooses nothing else)."""
+    if learn_from is not LearnFrom.all:
+        raise OptionError("--learn-from chooses what mistake detection learns from: give --mistakes too", "--learn-from")
 
 
 def _threshold(given: float | None) -> float:

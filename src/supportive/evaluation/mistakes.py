@@ -215,7 +215,7 @@ def evaluate_mistakes(
     demos = list(spec.demonstrations)
     if len(demos) < 2:
         raise TaskFileError("mistake detection is scored leaving one demonstration out: give at least two")
-    if not any(_labelled(d) for d in demos):
+    if not any(d.labelled for d in demos):
         raise TaskFileError("no step carries a mistake label (see docs/task-files.md: 'mistake: order', …)")
     if not thresholds:
         raise TaskFileError("give at least one threshold")
@@ -254,10 +254,6 @@ def detection_model(training: TaskSpec | Sequence[Sequence[str]], settings: Mapp
     learner = {"mode": "general", **{k: v for k, v in settings.items() if k not in _TRACKER}}
     htn = HTNLearner(alternatives=0, **learner).fit(training).htn_
     return ProgressHMM(htn, **{k: v for k, v in settings.items() if k in _TRACKER}).fit()
-
-
-def _labelled(demo: Demonstration) -> bool:
-    return bool(demo.skipped) or any(step.mistake is not None for step in demo.steps)
 
 
 def _shows_mistake(demo: Demonstration) -> bool:
@@ -318,7 +314,7 @@ def _score(demo: Demonstration, flags: list[Flag], scores: MethodScores, positiv
     labels = [step.mistake for step in demo.steps]
     positive = [label is not None and label in positives for label in labels]
     skipped = list(demo.skipped) if "missing" in positives else []
-    clean = not _labelled(demo)
+    clean = not demo.labelled
     pending = set(range(len(skipped)))
     found = [False] * len(labels)
     named_before: set[str] = set()
