@@ -1,6 +1,9 @@
 from __future__ import annotations
 
+import copy
 from collections import Counter
+from collections.abc import Sequence
+from unittest import mock
 
 import numpy as np
 import pytest
@@ -10,7 +13,7 @@ from hypothesis import strategies as st
 from supportive import examples
 from supportive.errors import LearningError
 from supportive.generate import random_structure
-from supportive.learning import HTNLearner
+from supportive.learning import HTNLearner, instructors
 from supportive.learning.instructors import (
     PartialOrder,
     SimulatedInstructor,
@@ -379,6 +382,42 @@ def test_bad_input_raises_learning_errors() -> None:
         person.next_action(("red", "pink"), None)
     with pytest.raises(LearningError, match="not in the task"):
         person.steps_to(["red", "red"], "blue")
+    with pytest.raises(LearningError, match="not a valid prefix"):  # asked again: refused again, not remembered
+        person.next_action(("yellow",), None)
+
+
+def _fewest_steps(structure: Node, done: Sequence[str], action: str) -> int | None:
+    """Brute force: in how many steps ``action``'s next performance can come after ``done`` (breadth first
+    over every valid way on)."""
+    leaves = to_leaves(done)
+    target = (action, sum(a == action for a in done) + 1)
+    if target not in structure.leaves:
+        return None
+    frontier, depth = {frozenset(leaves)}, 1
+    while frontier:
+        if any(target in allowed_next(structure, state) for state in frontier):
+            return depth
+        frontier = {state | {leaf} for state in frontier for leaf in allowed_next(structure, state)}
+        depth += 1
+    return None
+
+
+@given(structures, st.integers(0, 2**31), st.data())
+def test_answers_do_not_depend_on_what_was_asked_before(structure: Node, seed: int, data: st.DataObject) -> None:
+    """The instructor remembers the prefixes she has checked (and forgets them past a bound): questions in
+    any order, on a small memory passed many times over, and to a copy of her, get the brute-force answer."""
+    person = SimulatedInstructor(structure, perturbation=0.5, seed=seed)
+    path = list(person.preferred_path)
+    actions = sorted(set(path))
+    questions = [
+        (path[: data.draw(st.integers(0, len(path)))], data.draw(st.sampled_from(actions))) for _ in range(8)
+    ]
+    expected = [_fewest_steps(structure, done, a) for done, a in questions]
+    with mock.patch.object(instructors, "_PREFIXES_KEPT", 3):
+        assert [person.steps_to(done, a) for done, a in questions] == expected
+        assert len(person._prefixes) <= 3
+    assert [person.steps_to(done, a) for done, a in questions] == expected
+    assert [copy.copy(person).steps_to(done, a) for done, a in questions[::-1]] == expected[::-1]
 
 
 # ---------------------------------------------------------------- pooling

@@ -31,8 +31,8 @@ from collections.abc import Mapping, Sequence
 from typing import Generic, Protocol, TypeAlias, TypeVar
 
 import numpy as np
-from scipy import sparse
 
+from supportive.inference.transitions import sparse_matrix
 from supportive.learning.distribution import END, ProgressModel
 from supportive.tasks.executions import Progress
 
@@ -350,11 +350,11 @@ class VectorMasses:
                     arrivals.append((leaf, i, p))
             if state is not None:
                 done += [(leaf, i, 1.0) for leaf in _bits(state.done)]
-        self._advance = _matrix(moves, self.size, self.size)
-        self._skip = _matrix(skips, self.size, self.size)
-        self._arriving = _matrix(arrivals, n_leaves, self.size)
-        self._actions = _matrix(nexts, n_actions + 1, self.size)
-        self._done = _matrix(done, n_leaves, self.size)
+        self._advance = sparse_matrix(moves, self.size, self.size)
+        self._skip = sparse_matrix(skips, self.size, self.size)
+        self._arriving = sparse_matrix(arrivals, n_leaves, self.size)
+        self._actions = sparse_matrix(nexts, n_actions + 1, self.size)
+        self._done = sparse_matrix(done, n_leaves, self.size)
 
     def of(self, belief: Mapping[State, float]) -> np.ndarray:
         """The vector of a map from state to mass."""
@@ -408,12 +408,6 @@ class VectorMasses:
     def expectations(self, vector: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """As :meth:`StateMasses.expectations`."""
         return self._done @ vector, self._arriving @ vector, self._actions @ vector, float(vector[self.finished])
-
-
-def _matrix(entries: Sequence[tuple[int, int, float]], rows: int, cols: int) -> sparse.csr_matrix:
-    """A sparse matrix from ``(row, column, value)`` entries (repeated entries add up)."""
-    r, c, v = zip(*entries, strict=True) if entries else ((), (), ())
-    return sparse.csr_matrix((np.asarray(v, dtype=float), (np.asarray(r, dtype=np.intp), np.asarray(c, dtype=np.intp))), shape=(rows, cols))
 
 
 def _bits(mask: int) -> list[int]:

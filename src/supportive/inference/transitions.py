@@ -22,10 +22,9 @@ import itertools
 from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy import sparse
 
 from supportive.tasks.htn import (
     HTN,
@@ -39,7 +38,10 @@ from supportive.tasks.htn import (
     last_leaves,
 )
 
-__all__ = ["DENSE_BELOW", "FlatTransitions", "HierarchicalTransitions", "TaskLayout"]
+if TYPE_CHECKING:
+    from scipy import sparse
+
+__all__ = ["DENSE_BELOW", "FlatTransitions", "HierarchicalTransitions", "TaskLayout", "sparse_matrix"]
 
 DENSE_BELOW = 128
 """Up to this many subgoals the hierarchical operator is compiled into one dense matrix."""
@@ -72,7 +74,7 @@ class TaskLayout:
             for child in node.children:
                 if isinstance(child, ActionNode):
                     parent[leaf_index[child.leaf]] = j
-        membership = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(nodes), len(leaves)))
+        membership = sparse_matrix([(r, c, 1.0) for r, c in zip(rows, cols, strict=True)], len(nodes), len(leaves))
         n_roots = len(htn.roots)
         starts: tuple[int, ...]
         ends: tuple[int, ...]
@@ -166,7 +168,7 @@ class HierarchicalTransitions:
         for r in layout.start_roots:  # the task ends and starts again
             moves.append((roots[r], top, 1.0 / len(layout.start_roots)))
         up = _paths(n, top + 1, parent, end, upward=True)
-        across = _matrix(moves, top + 1, top + 1)
+        across = sparse_matrix(moves, top + 1, top + 1)
         down = _paths(n, top + 1, parent, enter, upward=False)
         self.start = np.asarray(down @ across[:, top].toarray()).ravel()
         # The same numbers three ways; use the cheapest. Three sparse products (big cliques), their product
@@ -211,10 +213,17 @@ def _paths(n: int, size: int, parent: np.ndarray, weight: np.ndarray, *, upward:
             product *= weight[node]
             node = parent[node]
     if upward:
-        return _matrix(list(zip(rows, cols, values, strict=True)), size, n)
-    return _matrix(list(zip(cols, rows, values, strict=True)), n, size)
+        return sparse_matrix(list(zip(rows, cols, values, strict=True)), size, n)
+    return sparse_matrix(list(zip(cols, rows, values, strict=True)), n, size)
 
 
-def _matrix(entries: Sequence[tuple[int, int, float]], n_rows: int, n_cols: int) -> sparse.csr_matrix:
-    rows, cols, values = zip(*entries, strict=True) if entries else ((), (), ())
-    return sparse.csr_matrix((values, (rows, cols)), shape=(n_rows, n_cols))
+def sparse_matrix(entries: Sequence[tuple[int, int, float]], rows: int, cols: int) -> sparse.csr_matrix:
+    """A sparse matrix from ``(row, column, value)`` entries (repeated entries add up).
+
+    scipy is imported here, where the first matrix is built: a command or a server that never tracks a
+    teammate does not pay for it."""
+    from scipy import sparse
+
+    r, c, v = zip(*entries, strict=True) if entries else ((), (), ())
+    indices = (np.asarray(r, dtype=np.intp), np.asarray(c, dtype=np.intp))
+    return sparse.csr_matrix((np.asarray(v, dtype=float), indices), shape=(rows, cols))

@@ -48,6 +48,9 @@ from supportive.tasks.task_graph import TaskGraph
 
 __all__ = ["PartialOrder", "SimulatedInstructor", "demonstrate", "pooled_learner", "pooled_task_graph"]
 
+_PREFIXES_KEPT = 4096
+"""How many checked prefixes an instructor keeps (a bound on memory; the answers never depend on it)."""
+
 
 class PartialOrder:
     """A task given as a partial order over its leaves: a leaf may come next when all its predecessors are done.
@@ -252,10 +255,13 @@ class SimulatedInstructor:
             {} if isinstance(structure, PartialOrder) else _ancestry(structure)
         )
         self._target: Leaf | None = None
+        # Prefix -> (its leaves, the leaves allowed next): the task never changes, so copies share it.
+        self._prefixes: dict[tuple[str, ...], tuple[tuple[Leaf, ...], frozenset[Leaf]]] = {}
 
     def __deepcopy__(self, memo: dict[int, Any]) -> SimulatedInstructor:
         """A twin who draws from here on what this instructor would draw: her random generator is copied; the
-        task, her paths and what she derived from them, which she never changes in place, are shared."""
+        task, her paths and what she derived from them (the prefixes she has checked among them), which she
+        never changes but by adding what follows from the task, are shared."""
         twin = copy.copy(self)
         twin._rng = copy.deepcopy(self._rng, memo)
         return twin
@@ -337,16 +343,24 @@ class SimulatedInstructor:
         prefix of the task."""
         if isinstance(done, str):
             raise LearningError("done is a sequence of action ids, not a string")
-        leaves = to_leaves(done)
+        key = tuple(done)
+        known = self._prefixes.get(key)
+        if known is not None:
+            return known
+        leaves = to_leaves(key)
         unknown = [leaf for leaf in leaves if leaf not in self._rank]
         if unknown:
             raise LearningError(
                 f"done {list(done)}: {unknown[0][0]!r} (performance {unknown[0][1]}) is not in the task"
             )
         try:
-            return leaves, _allowed_next(self.structure, leaves)
+            checked = leaves, _allowed_next(self.structure, leaves)
         except ValueError as exc:
             raise LearningError(f"done {list(done)} is not a valid prefix of the task: {exc}") from exc
+        if len(self._prefixes) >= _PREFIXES_KEPT:
+            self._prefixes.clear()
+        self._prefixes[key] = checked
+        return checked
 
     def _next_leaf(self, leaves: Sequence[Leaf], action: str) -> Leaf | None:
         leaf = (action, sum(a == action for a, _ in leaves) + 1)
