@@ -51,13 +51,22 @@ test: $(VENV)/.dev system
 types: $(VENV)/.dev
 	$(BIN)/mypy
 
+# The suite keeps bytecode in __pycache__ (git-ignored) even where the machine sets PYTHONDONTWRITEBYTECODE:
+# its workers, and the hundreds of commands and servers it starts, would otherwise compile every module they
+# import (and pytest rewrite every test module) again, each time. The package is compiled once, before the
+# workers start, so that they do not both compile it.
+SUITE := PYTHONDONTWRITEBYTECODE= $(BIN)/pytest -q -n auto --dist worksteal
+COMPILE := $(BIN)/python -m compileall -q src
+
 # The whole suite on every core; an idle worker takes queued tests from a busy one (docs/architecture.md).
 suite: $(VENV)/.dev
-	$(BIN)/pytest -q -n auto --dist worksteal
+	@$(COMPILE)
+	$(SUITE)
 
 # The edit-test loop: the suite without the tests marked slow (by a marker, or in SLOW in conftest.py), on every core.
 test-fast: $(VENV)/.dev
-	$(BIN)/pytest -q -n auto --dist worksteal -m "not slow"
+	@$(COMPILE)
+	$(SUITE) -m "not slow"
 
 serve: $(VENV)/.server
 	$(BIN)/supportive serve --task examples/ikea-chair.yaml --db sqlite:///board.db --host 127.0.0.1 --port 8000

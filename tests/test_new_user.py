@@ -217,6 +217,9 @@ def test_the_readme_shows_the_commands_this_script_checks() -> None:
     assert {"demo", "learn", "teach", "chat", "infer", "serve", "reproduce"} <= named
 
 
+FEWEST_TRIALS = {"learner-settings": 2}
+"""Experiments that need more than one trial (one with mistakes and one clean)."""
+
 BOARD = ("serve", "tokens")
 """The commands that share the board database the first `serve` makes: run in the README's order, in one folder."""
 
@@ -236,8 +239,8 @@ def test_every_readme_command_works_after_the_demo_setup(commands: list[list[str
         if args[0] == "serve":
             serves([a if not a.startswith("postgresql") else "sqlite:///board.db" for a in args], tmp_path)
             continue
-        if args[0] == "reproduce":
-            args = [*args, "--trials", "2"]
+        if args[0] == "reproduce":  # the fewest trials the experiment takes (many: tests/experiments/test_execution.py)
+            args = [*args, "--trials", str(FEWEST_TRIALS.get(args[1], 1))]
         result = run(args, tmp_path, INPUT.get(args[0], ""))
         assert result.returncode == 0 and "Traceback" not in result.stderr, f"exit {result.returncode}: {result.stderr[-400:]}"
         CHECKS[args[0]](result, tmp_path)
