@@ -201,3 +201,18 @@ def test_loaders_keep_ordinary_data() -> None:
         "c": 3,
     }
     assert load_json('{"a": {"b": [1.5, "x"]}}', None, FileFormatError) == {"a": {"b": [1.5, "x"]}}
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "character"),
+    [
+        ("a: ééé\nb: ü\nc: \x07\n", 3, "U+0007"),  # libyaml counts bytes: two per letter before it
+        ("a: ééé\n\n\nb: \x7f", 4, "U+007F"),
+        ("a: é\nb: \ud800\n", 2, "U+D800"),  # a lone surrogate, which UTF-8 (and so libyaml) cannot hold
+        ("\ud800", 1, "U+D800"),
+    ],
+)
+def test_a_character_yaml_does_not_allow_names_its_line(text: str, line: int, character: str) -> None:
+    with pytest.raises(FileFormatError) as caught:
+        load_yaml(text, "t.yaml", FileFormatError)
+    assert str(caught.value) == f"t.yaml:{line}: invalid YAML: character {character} is not allowed in YAML"
