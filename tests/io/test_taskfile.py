@@ -3,12 +3,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from supportive import examples
 from supportive.errors import TaskFileError
 from supportive.io.taskfile import dump_task, parse_task_file, parse_task_string, write_task_file
 from supportive.tasks.htn import ActionNode, ChainNode, CliqueNode, Node
-from supportive.tasks.spec import Demonstration, Step, TaskSpec
+from supportive.tasks.spec import Action, Demonstration, Step, TaskSpec
 
 
 @pytest.mark.parametrize("name", examples.names())
@@ -21,6 +23,13 @@ def test_examples_round_trip(name: str, fmt: str, tmp_path: Path) -> None:
     assert [n.name for n in _named(parse_task_file(path).structure)] == [
         n.name for n in _named(spec.structure)
     ]
+
+
+@given(st.text(st.characters(exclude_categories=["Cs", "Cc"]), max_size=30))
+def test_any_text_comes_back_from_yaml_as_it_was(text: str) -> None:
+    """Texts with line separators, quotes, escapes and any letter a text may hold: what is written is read back."""
+    spec = TaskSpec("t", actions=(Action("a", text=text or None),), demonstrations=(Demonstration((Step("a"),), "d"),))
+    assert parse_task_string(dump_task(spec, "yaml"), "yaml") == spec
 
 
 def _named(node: Node | None) -> list[ChainNode | CliqueNode]:
