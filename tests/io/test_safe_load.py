@@ -217,3 +217,56 @@ def test_a_character_yaml_does_not_allow_names_its_line(text: str, line: int, ch
     with pytest.raises(FileFormatError) as caught:
         load_yaml(text, "t.yaml", FileFormatError)
     assert str(caught.value) == f"t.yaml:{line}: invalid YAML: character {character} is not allowed in YAML"
+
+
+WITHOUT_LIBYAML = """
+import json, sys
+sys.modules["yaml._yaml"] = None  # as a PyYAML built without libyaml: importing it fails
+from supportive.errors import FileFormatError
+from supportive.io import safe_load
+from supportive.io.taskfile import dump_task
+from supportive.generate import generate_task
+assert safe_load._Events is safe_load._PythonEvents
+answers = []
+for text in json.loads(sys.stdin.read()):
+    try:
+        answers.append(["ok", safe_load.load_yaml(text, "t.yaml", FileFormatError)])
+    except FileFormatError as exc:
+        answers.append(["refused", str(exc)])
+print(json.dumps([answers, dump_task(generate_task(30, 1, demonstrations=3), "yaml")]))
+"""
+TEXTS = [
+    "a: 1\nb: [x, y]\n",
+    "a: ééé\n\n\nb: \x7f",
+    "a: é\nb: \ud800\n",
+    "a: 1\na: 2",
+    "a: &x [1]\nb: *x\n",
+    "- " * (MAX_DEPTH + 1) + "1",
+    "x: [\n",
+]
+
+
+def test_without_libyaml_the_loader_and_the_dumper_give_the_same_answers() -> None:
+    """PyYAML's wheels have libyaml; built without it, the Python parser and emitter give the same data, the
+    same refusals with the same lines (a syntax error in libyaml's words or in PyYAML's), and the same file."""
+    import json
+    import subprocess
+    import sys
+
+    def answer(text: str) -> list[object]:
+        try:
+            return ["ok", load_yaml(text, "t.yaml", FileFormatError)]
+        except FileFormatError as exc:
+            return ["refused", str(exc)]
+
+    payload = json.dumps(TEXTS)
+    result = subprocess.run([sys.executable, "-c", WITHOUT_LIBYAML], input=payload, capture_output=True, text=True, check=True)
+    answers, dumped = json.loads(result.stdout)
+
+    def said(answer: list[object]) -> list[object]:  # a syntax error's words are libyaml's or PyYAML's
+        syntax = "invalid YAML: " in str(answer[1]) and "is not allowed in YAML" not in str(answer[1])
+        return [answer[0], str(answer[1]).split("invalid YAML: ")[0]] if syntax else answer
+
+    assert [said(a) for a in answers] == [said(answer(text)) for text in TEXTS]
+    assert [a[0] for a in answers] == ["ok", "refused", "refused", "refused", "ok", "refused", "refused"]
+    assert dumped == dump_task(generate_task(30, 1, demonstrations=3), "yaml")

@@ -30,14 +30,16 @@ import re
 import stat
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import yaml
-from yaml._yaml import CParser
 from yaml.composer import Composer
 from yaml.constructor import SafeConstructor
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
+from yaml.parser import Parser
+from yaml.reader import Reader
 from yaml.resolver import Resolver
+from yaml.scanner import Scanner
 
 from supportive.errors import FileFormatError
 from supportive.io.limits import MAX_CSV_FIELD, MAX_DEPTH, MAX_FILE_BYTES, MAX_NODES, MAX_NUMBER_CHARS
@@ -121,13 +123,37 @@ def read_text(path: Path, error: type[FileFormatError], *, limit: int = MAX_FILE
 
 
 # ------------------------------------------------------------------------------------------------- YAML
-class _Loader(CParser, Composer, SafeConstructor, Resolver):
+class _PythonEvents(Reader, Scanner, Parser):
+    """PyYAML's Python reader, scanner and parser: the events of a text, for a PyYAML built without libyaml."""
+
+    def __init__(self, stream: str) -> None:
+        Reader.__init__(self, stream)
+        Scanner.__init__(self)
+        Parser.__init__(self)
+
+
+# _BYTE_POSITIONS: whether a reader error's position counts bytes of UTF-8 (libyaml) or characters (Python).
+if TYPE_CHECKING:
+    from yaml._yaml import CParser as _Events
+
+    _BYTE_POSITIONS: bool
+else:
+    try:
+        from yaml._yaml import CParser as _Events
+
+        _BYTE_POSITIONS = True
+    except ImportError:  # PyYAML built without libyaml (its wheels have it): the same, in Python, slower
+        _Events, _BYTE_POSITIONS = _PythonEvents, False
+
+
+class _Loader(_Events, Composer, SafeConstructor, Resolver):
     """PyYAML's safe loader with the limits: nesting depth while composing, no duplicate key, no overlong or
     non-finite number, no lone surrogate (refused before parsing; libyaml refuses one written as an escape).
 
     The text is read and parsed into events by libyaml (PyYAML's ``CParser``, five times as fast as its
-    Python reader and scanner on a 5,000-action task file); the events are composed into nodes here, in
-    Python (PyYAML's ``Composer``), so that the depth is checked as each node opens."""
+    Python reader and scanner on a 5,000-action task file; those where PyYAML has no libyaml); the events are
+    composed into nodes here, in Python (PyYAML's ``Composer``), so that the depth is checked as each node
+    opens."""
 
     get_single_node = Composer.get_single_node
     compose_document = Composer.compose_document
@@ -137,9 +163,9 @@ class _Loader(CParser, Composer, SafeConstructor, Resolver):
     def __init__(self, stream: str) -> None:
         lone = _SURROGATE.search(stream)  # libyaml reads UTF-8, which cannot hold one
         if lone:
-            offset = len(stream[: lone.start()].encode("utf-8"))
+            offset = len(stream[: lone.start()].encode("utf-8")) if _BYTE_POSITIONS else lone.start()
             raise yaml.reader.ReaderError("<text>", offset, ord(lone.group()), "unicode", "special characters are not allowed")
-        CParser.__init__(self, stream)
+        _Events.__init__(self, stream)
         Composer.__init__(self)
         SafeConstructor.__init__(self)
         Resolver.__init__(self)
@@ -186,6 +212,13 @@ _Loader.yaml_constructors = {
     "tag:yaml.org,2002:int": _Loader.construct_yaml_int,
     "tag:yaml.org,2002:float": _Loader.construct_yaml_float,
 }
+
+
+def _line_at(text: str, position: int) -> int:
+    """The 1-based line of a reader error's position in ``text``."""
+    if _BYTE_POSITIONS:
+        return text.encode("utf-8", "surrogatepass")[:position].count(b"\n") + 1
+    return text.count("\n", 0, position) + 1
 
 
 def _number_length(node: ScalarNode) -> None:
@@ -260,7 +293,7 @@ def load_yaml(text: str, path: str | Path | None, error: type[FileFormatError]) 
     except _Refused as exc:
         raise error(exc.problem, path=path, line=exc.line) from None
     except yaml.reader.ReaderError as exc:
-        line = text.encode("utf-8", "surrogatepass")[: exc.position].count(b"\n") + 1  # libyaml counts bytes
+        line = _line_at(text, exc.position)
         raise error(f"invalid YAML: character U+{exc.character:04X} is not allowed in YAML", path=path, line=line) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)

@@ -398,9 +398,9 @@ class _Pair(list[float]):
     """A keyframe's ``[x, y]``, which YAML writes on one line."""
 
 
-class _Dumper(yaml.CSafeDumper):
-    """The safe dumper (libyaml's emitter, three times as fast as PyYAML's Python one on a 5,000-action task),
-    writing keyframe pairs in flow style."""
+class _Dumper(getattr(yaml, "CSafeDumper", yaml.SafeDumper)):  # type: ignore[misc]
+    """The safe dumper (libyaml's emitter, three times as fast as PyYAML's Python one on a 5,000-action task;
+    the Python one where PyYAML has no libyaml), writing keyframe pairs in flow style."""
 
 
 _Dumper.add_representer(
