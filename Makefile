@@ -89,6 +89,7 @@ bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_service.py
 	$(BIN)/python benchmarks/bench_social.py
 	$(BIN)/python benchmarks/bench_rosbag.py
+	$(BIN)/python benchmarks/bench_load.py
 
 # The numbers the docs quote between <!-- numbers:NAME --> markers, written again from the recorded results
 # (docs/results/, benchmarks/results/) and quick commands; `make test` fails while one is out of date.
