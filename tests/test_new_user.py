@@ -28,6 +28,7 @@ from pathlib import Path
 import httpx
 import pytest
 
+from supportive import experiments
 from supportive.examples import load
 from supportive.io.taskfile import parse_task_file
 from supportive.service.launch import free_port
@@ -217,9 +218,6 @@ def test_the_readme_shows_the_commands_this_script_checks() -> None:
     assert {"demo", "learn", "teach", "chat", "infer", "serve", "reproduce"} <= named
 
 
-FEWEST_TRIALS = {"learner-settings": 2}
-"""Experiments that need more than one trial (one with mistakes and one clean)."""
-
 BOARD = ("serve", "tokens")
 """The commands that share the board database the first `serve` makes: run in the README's order, in one folder."""
 
@@ -240,7 +238,7 @@ def test_every_readme_command_works_after_the_demo_setup(commands: list[list[str
             serves([a if not a.startswith("postgresql") else "sqlite:///board.db" for a in args], tmp_path)
             continue
         if args[0] == "reproduce":  # the fewest trials the experiment takes (many: tests/experiments/test_execution.py)
-            args = [*args, "--trials", str(FEWEST_TRIALS.get(args[1], 1))]
+            args = [*args, "--trials", str(experiments.get(args[1]).fewest_trials)]
         result = run(args, tmp_path, INPUT.get(args[0], ""))
         assert result.returncode == 0 and "Traceback" not in result.stderr, f"exit {result.returncode}: {result.stderr[-400:]}"
         CHECKS[args[0]](result, tmp_path)

@@ -70,6 +70,38 @@ def test_default_trials_must_be_positive(toy: Toy) -> None:
         toy(default_trials=0)
 
 
+@pytest.mark.parametrize(("fewest", "default"), [(0, 5), (6, 5)])
+def test_fewest_trials_lie_between_one_and_the_default(toy: Toy, fewest: int, default: int) -> None:
+    with pytest.raises(ExperimentError, match="1 <= fewest_trials <= default_trials"):
+        toy(fewest_trials=fewest, default_trials=default)
+
+
+def test_a_run_of_fewer_trials_than_the_experiment_takes_is_refused_before_it_starts(toy: Toy) -> None:
+    calls: list[int] = []
+    made = toy().make_trials
+
+    def counted(trials: int, seed: int) -> Any:
+        calls.append(trials)
+        return made(trials, seed)
+
+    experiment = register(toy("toy-fewest", fewest_trials=3, make_trials=counted))
+    try:
+        with pytest.raises(ExperimentError, match=r"^toy-fewest: at least 3 trials, got 2$"):
+            run_experiment(experiment.name, trials=2, progress=False)
+        assert calls == []
+        assert run_experiment(experiment.name, trials=3, progress=False).trials == 3
+    finally:
+        unregister(experiment.name)
+
+
+def test_the_experiments_needing_two_kinds_of_trial_say_so() -> None:
+    assert {name: get(name).fewest_trials for name in names() if get(name).fewest_trials > 1} == {
+        "generalisation": 2,
+        "learner-settings": 2,
+        "mistake-detection": 2,
+    }
+
+
 def test_run_in_process_orders_results_and_writes_files(registered: str, tmp_path: Path) -> None:
     result = run_experiment(registered, seed=3, output=tmp_path, progress=False)
     assert result.trials == 5 and result.backend == "in process"

@@ -87,6 +87,8 @@ class Experiment:
         reference: Where the thesis reports it (section, figure).
         thesis: The thesis's own numbers where it gives them (plain JSON data), for the report.
         default_trials: Trials of a full run (the thesis's sample size).
+        fewest_trials: The fewest trials a run may have (1 unless the first trials cover different kinds of
+            case, each needed by the summary); the runner refuses fewer.
         make_trials: ``(trials, seed) -> trials``; every trial gets its own seed (see
             :func:`~supportive.experiments.trials.spawn_trials`). An experiment with ``readings`` is called
             ``make_trials(trials, seed, readings=names)`` with the readings the run covers.
@@ -124,6 +126,7 @@ class Experiment:
     headline: Callable[[Mapping[str, Any]], list[HeadlineRow]] = field(repr=False)
     timing_report: Callable[[list[dict[str, Any]], Path], list[Path]] | None = field(default=None, repr=False)
     readings: tuple[Reading, ...] = ()
+    fewest_trials: int = 1
     findings: Callable[[Mapping[str, Any]], list[Finding]] | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
@@ -131,9 +134,10 @@ class Experiment:
             raise ExperimentError(
                 f"experiment name {self.name!r}: expected lowercase words joined by hyphens, not {ALL!r}"
             )
-        if self.default_trials < 1:
+        if not 1 <= self.fewest_trials <= self.default_trials:
             raise ExperimentError(
-                f"experiment {self.name}: default_trials must be >= 1, got {self.default_trials}"
+                f"experiment {self.name}: expected 1 <= fewest_trials <= default_trials, got "
+                f"{self.fewest_trials} and {self.default_trials}"
             )
         names = [r.name for r in self.readings]
         if len(set(names)) != len(names):
@@ -171,9 +175,20 @@ def register(experiment: Experiment, *, replace: bool = False) -> Experiment:
 
 _PARTS = ("make_trials", "run_trial", "summarize", "report", "plots", "headline", "timing_report", "findings")
 """The fields :func:`declare` takes from the modules under their own names (the last two may be missing)."""
-_CONSTANTS = {"default_trials": "DEFAULT_TRIALS", "thesis": "THESIS", "readings": "READINGS"}
-"""The fields :func:`declare` takes from the modules' constants (``THESIS`` and ``READINGS`` may be missing)."""
-_OPTIONAL: dict[str, Any] = {"timing_report": None, "findings": None, "thesis": {}, "readings": ()}
+_CONSTANTS = {
+    "default_trials": "DEFAULT_TRIALS",
+    "fewest_trials": "FEWEST_TRIALS",
+    "thesis": "THESIS",
+    "readings": "READINGS",
+}
+"""The fields :func:`declare` takes from the modules' constants (all but ``DEFAULT_TRIALS`` may be missing)."""
+_OPTIONAL: dict[str, Any] = {
+    "timing_report": None,
+    "findings": None,
+    "thesis": {},
+    "readings": (),
+    "fewest_trials": 1,
+}
 
 
 def declare(
@@ -184,7 +199,7 @@ def declare(
     Every other field of :class:`Experiment` is looked up in ``parts``: the functions under their field
     names (``make_trials``, ``run_trial``, ``summarize``, ``report``, ``plots``, ``headline`` and, when
     there, ``timing_report`` and ``findings``) and the constants ``DEFAULT_TRIALS`` and, when there,
-    ``THESIS`` and ``READINGS``. A field given as a keyword is taken as given instead.
+    ``FEWEST_TRIALS``, ``THESIS`` and ``READINGS``. A field given as a keyword is taken as given instead.
 
     Raises:
         ExperimentError: when a required part is in none of the modules, when two modules hold different

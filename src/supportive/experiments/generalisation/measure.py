@@ -7,7 +7,6 @@ from typing import Any
 
 import numpy as np
 
-from supportive.errors import ExperimentError
 from supportive.experiments.captaincook.recipes import FEW_SHOT
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate import random_structure
@@ -23,6 +22,8 @@ SYNTHETIC = 300
 """Generated tasks of a full run (half of each profile)."""
 DEFAULT_TRIALS = SYNTHETIC + 24
 """Trials of a full run: the generated tasks, then the 24 recipes."""
+FEWEST_TRIALS = 2
+"""A run needs a generated task and a recipe."""
 LEARNERS = ("auto", "general", "strict")
 """The default learner (``auto``: the reading chosen by held-out likelihood), the ``general`` reading alone, and
 the thesis's ``strict`` one."""
@@ -36,8 +37,6 @@ SLIP_CLEAN, SLIPPED = 16, 4
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
     """Trials 0..: generated tasks (profiles alternating), then the 24 recipes; fewer trials keep the same
     proportion."""
-    if trials < 2:
-        raise ExperimentError("generalisation: at least 2 trials (a generated task and a recipe)")
     recipes = max(1, round(trials * 24 / (SYNTHETIC + 24)))
     synthetic = trials - recipes
     params: list[dict[str, Any]] = [

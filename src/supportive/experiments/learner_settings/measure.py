@@ -16,7 +16,6 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from supportive.errors import ExperimentError
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import KINDS, PROFILES, inject, random_known_task
 from supportive.learning import HTNLearner
@@ -52,6 +51,8 @@ a slip where there is none."""
 CLEAN_DEMONSTRATIONS = (1, 200)
 DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(KINDS) + CLEAN_TASKS
 """Trials of a full run: the tasks with mistakes, then the clean ones."""
+FEWEST_TRIALS = 2
+"""A run needs a task with mistakes and a clean one."""
 KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
 """Which kind of slip the learner should report for each kind of mistake put in."""
 GRID: dict[str, tuple[float, ...]] = {"slip_margin": (0.0, 1.0, 2.0), "slip_rate": (0.03, 0.1, 0.2)}
@@ -70,8 +71,6 @@ def _combinations() -> list[dict[str, float]]:
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
     """Trials with mistakes cycle through profile × demonstrations × kind (a full run has :data:`TASKS` of
     each), then clean ones cycle through the profiles (:data:`CLEAN_TASKS`); fewer trials keep the proportion."""
-    if trials < 2:
-        raise ExperimentError("learner-settings: at least 2 trials (one with mistakes, one clean)")
     cells = list(itertools.product(PROFILES, DEMONSTRATIONS, KINDS))
     mistaken = max(1, round(trials * len(cells) * TASKS / (len(cells) * TASKS + CLEAN_TASKS)))
     params: list[dict[str, Any]] = [

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.errors import ExperimentError, TaskFileError
+from supportive.errors import TaskFileError
 from supportive.evaluation.mistakes import (
     DETECTOR,
     METHODS,
@@ -41,6 +41,8 @@ GENERATED = 30
 RECIPES = 24
 DEFAULT_TRIALS = GENERATED + RECIPES
 """Trials of a full run: the generated tasks, then every recipe."""
+FEWEST_TRIALS = 2
+"""A run needs a generated task and a recipe."""
 SIZES = (6, 12)
 """Steps per generated task (inclusive range)."""
 TRAIN = 20
@@ -57,8 +59,6 @@ POSITIVES = ("order", "missing")
 
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
     """Generated tasks first (the profiles in turn), then the recipes; fewer trials keep the proportion."""
-    if trials < 2:
-        raise ExperimentError("mistake-detection: at least 2 trials (a generated task and a recipe)")
     recipes = max(1, min(RECIPES, round(trials * RECIPES / (GENERATED + RECIPES))))
     params: list[dict[str, Any]] = [
         {"kind": "generated", "profile": PROFILES[i % len(PROFILES)]} for i in range(trials - recipes)
