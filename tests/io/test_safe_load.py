@@ -13,7 +13,7 @@ from supportive.errors import FileFormatError, ObservationFileError, TaskFileErr
 from supportive.generate import generate_task
 from supportive.io.limits import MAX_DEPTH, MAX_FILE_BYTES
 from supportive.io.observation_file import parse_observation_file
-from supportive.io.safe_load import load_json, load_yaml, read_text
+from supportive.io.safe_load import LIBYAML, load_json, load_yaml, read_text
 from supportive.io.taskfile import dump_task, parse_task_file, parse_task_string
 
 ALIAS_BOMB = "\n".join(
@@ -224,9 +224,11 @@ import json, sys
 sys.modules["yaml._yaml"] = None  # as a PyYAML built without libyaml: importing it fails
 from supportive.errors import FileFormatError
 from supportive.io import safe_load
-from supportive.io.taskfile import dump_task
+from supportive.io.taskfile import _Dumper, dump_task
 from supportive.generate import generate_task
-assert safe_load._Events is safe_load._PythonEvents
+import yaml
+assert not safe_load.LIBYAML and safe_load._Events is safe_load._PythonEvents
+assert _Dumper.__bases__ == (yaml.SafeDumper,)
 answers = []
 for text in json.loads(sys.stdin.read()):
     try:
@@ -259,6 +261,7 @@ def test_without_libyaml_the_loader_and_the_dumper_give_the_same_answers() -> No
         except FileFormatError as exc:
             return ["refused", str(exc)]
 
+    assert LIBYAML  # here, as from PyYAML's wheels: the other reading runs in the subprocess
     payload = json.dumps(TEXTS)
     result = subprocess.run([sys.executable, "-c", WITHOUT_LIBYAML], input=payload, capture_output=True, text=True, check=True)
     answers, dumped = json.loads(result.stdout)

@@ -44,7 +44,7 @@ from yaml.scanner import Scanner
 from supportive.errors import FileFormatError
 from supportive.io.limits import MAX_CSV_FIELD, MAX_DEPTH, MAX_FILE_BYTES, MAX_NODES, MAX_NUMBER_CHARS
 
-__all__ = ["check_kind", "compose_yaml", "load_json", "load_yaml", "read_csv", "read_text"]
+__all__ = ["LIBYAML", "check_kind", "compose_yaml", "load_json", "load_yaml", "read_csv", "read_text"]
 
 _SURROGATE = re.compile("[\ud800-\udfff]")
 _JSON_TOKENS = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]')
@@ -132,18 +132,14 @@ class _PythonEvents(Reader, Scanner, Parser):
         Parser.__init__(self)
 
 
-# _BYTE_POSITIONS: whether a reader error's position counts bytes of UTF-8 (libyaml) or characters (Python).
-if TYPE_CHECKING:
+LIBYAML: bool = yaml.__with_libyaml__
+"""Whether PyYAML has libyaml (its wheels do): YAML is read, and task files written, by it; else by PyYAML's
+Python reader and emitter, the same, slower. A reader error's position then counts characters, not bytes."""
+
+if TYPE_CHECKING or LIBYAML:
     from yaml._yaml import CParser as _Events
-
-    _BYTE_POSITIONS: bool
 else:
-    try:
-        from yaml._yaml import CParser as _Events
-
-        _BYTE_POSITIONS = True
-    except ImportError:  # PyYAML built without libyaml (its wheels have it): the same, in Python, slower
-        _Events, _BYTE_POSITIONS = _PythonEvents, False
+    _Events = _PythonEvents
 
 
 class _Loader(_Events, Composer, SafeConstructor, Resolver):
@@ -163,7 +159,7 @@ class _Loader(_Events, Composer, SafeConstructor, Resolver):
     def __init__(self, stream: str) -> None:
         lone = _SURROGATE.search(stream)  # libyaml reads UTF-8, which cannot hold one
         if lone:
-            offset = len(stream[: lone.start()].encode("utf-8")) if _BYTE_POSITIONS else lone.start()
+            offset = len(stream[: lone.start()].encode("utf-8")) if LIBYAML else lone.start()
             raise yaml.reader.ReaderError("<text>", offset, ord(lone.group()), "unicode", "special characters are not allowed")
         _Events.__init__(self, stream)
         Composer.__init__(self)
@@ -216,7 +212,7 @@ _Loader.yaml_constructors = {
 
 def _line_at(text: str, position: int) -> int:
     """The 1-based line of a reader error's position in ``text``."""
-    if _BYTE_POSITIONS:
+    if LIBYAML:
         return text.encode("utf-8", "surrogatepass")[:position].count(b"\n") + 1
     return text.count("\n", 0, position) + 1
 

@@ -13,7 +13,7 @@ import io
 import json
 from collections import Counter
 from pathlib import Path
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import yaml
 from pydantic import ValidationError
@@ -21,7 +21,7 @@ from pydantic import ValidationError
 from supportive.errors import FormulaError, TaskFileError, TaskModelError
 from supportive.io.atomic import atomic_write
 from supportive.io.limits import MAX_NUMBER_CHARS, MAX_SECONDS
-from supportive.io.safe_load import check_kind, read_csv, read_text
+from supportive.io.safe_load import LIBYAML, check_kind, read_csv, read_text
 from supportive.io.schema import NodeIn, PredicateIn, TaskIn
 from supportive.io.structured import kind_of, line_of, load_structured, place_of, schema_error
 from supportive.io.values import check_id, check_number, is_digits
@@ -398,7 +398,13 @@ class _Pair(list[float]):
     """A keyframe's ``[x, y]``, which YAML writes on one line."""
 
 
-class _Dumper(getattr(yaml, "CSafeDumper", yaml.SafeDumper)):  # type: ignore[misc]
+if TYPE_CHECKING or LIBYAML:
+    from yaml import CSafeDumper as _SafeDumper
+else:
+    from yaml import SafeDumper as _SafeDumper
+
+
+class _Dumper(_SafeDumper):
     """The safe dumper (libyaml's emitter, three times as fast as PyYAML's Python one on a 5,000-action task;
     the Python one where PyYAML has no libyaml), writing keyframe pairs in flow style."""
 
