@@ -207,7 +207,7 @@ def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:
                           capture_output=True, check=False).returncode
     assert code == 0
     files = {p.name: p.read_bytes() for p in run.iterdir()}
-    code, _, lines = interrupt(["reproduce", "edge-reduction", "-n", "1000", "-o", str(run)], tmp_path, after=3.0)
+    code, _, lines = interrupt(["reproduce", "edge-reduction", "-n", "1000", "-o", str(run)], tmp_path, after=1.5)
     assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/: once the run had begun)
     assert {p.name: p.read_bytes() for p in run.iterdir()} == files and leftovers(tmp_path) == []
 
