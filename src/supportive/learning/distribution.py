@@ -101,7 +101,7 @@ class ProgressModel:
             parent, position = ex.parents[parent]
         if mass > 0:
             root = ex.root_of_leaf[state.last]
-            after = ex.top_out.get(state.top, {}).get(root)
+            after = ex.top_successors(state.top).get(root)
             if after is not None:
                 self._top(after, root, state.done, mass, weights)
         return weights
@@ -150,7 +150,7 @@ class ProgressModel:
         options: dict[int, float] = {}
         reachable = ex.skip_closure(top)
         for state in reachable:
-            for root in ex.top_out.get(state, {}):
+            for root in ex.top_successors(state):
                 if root in options or done & ex.masks[ex.root_nodes[root]]:
                     continue
                 seen = 0
@@ -159,7 +159,7 @@ class ProgressModel:
                 elif counts is not None and last is not None and counts.after:
                     seen = counts.after[last][root]
                 options[root] = seen + self.smoothing
-        if any(state in ex.top_terminal for state in reachable):
+        if any(ex.top_ends(state) for state in reachable):
             followed = sum(counts.after[last]) if counts is not None and last is not None and counts.after else 0
             performed = self._performed(ex.root_nodes[last]) if last is not None else 0
             options[END] = max(performed - followed, 0) + self.smoothing

@@ -50,7 +50,8 @@ class Hierarchy(Protocol):
 class Progress:
     """Where an execution is: ``done`` leaves (bit ``i`` for ``Executions.leaves[i]``), the index of the
     ``last`` leaf done (-1 before the first) and the ``top``-level state in which the current root began
-    (always 0 for a complete hierarchy)."""
+    (always 0 for a complete hierarchy; past the top level's own states, one standing for several in which
+    it may have begun, see :meth:`Executions.top_successors`)."""
 
     top: int
     done: int
@@ -75,7 +76,8 @@ class Executions:
     ``masks[n]`` its leaves as bits, ``nullables[n]`` whether it may be performed as nothing, ``leaf_nodes[i]``
     the node of leaf ``i``, ``root_nodes[r]`` and ``root_of_leaf[i]`` the roots, ``top_out`` the top-level
     graph (``state -> {root -> state}``; for a complete hierarchy ``0 -> {0: 1}``), ``top_terminal`` its
-    terminal states.
+    terminal states; :meth:`top_successors` and :meth:`top_ends` answer the same of every top-level state a
+    :class:`Progress` may hold.
 
     Args:
         htn: A complete hierarchy or a partial one with its ``top_level``.
@@ -107,6 +109,13 @@ class Executions:
             self.initial_tops = tuple(htn.top_level.initial)
         if htn.top_level is None and len(htn.roots) != 1:
             self.top_out = {}
+        # Beginning a root after skipping others: where every skippable root is free (skipping one only
+        # forbids, TopLevel.free), the state reached with the fewest skips allows all that the others do;
+        # else a root begun may stand in several top-level states at once: -(the bit mask of their numbers),
+        # the same number in every machine of the hierarchy.
+        free = htn.top_level.free if htn.top_level is not None else frozenset()
+        self._fewest_skips = all(r in free for r, node in enumerate(self.root_nodes) if self.nullables[node])
+        self._several_out: dict[int, dict[int, int]] = {}
         self._by_action: dict[str, tuple[int, ...]] = {}
         for i, (action, _) in enumerate(self.leaves):
             self._by_action[action] = (*self._by_action.get(action, ()), i)
@@ -218,7 +227,7 @@ class Executions:
         if not can_end:
             return moves, False
         root = self.root_of_leaf[state.last]
-        after = self.top_out.get(state.top, {}).get(root)
+        after = self.top_successors(state.top).get(root)
         if after is None:
             return moves, False
         return self._starts_from(after, state.done, firsts, moves)
@@ -229,25 +238,50 @@ class Executions:
         """Add to ``moves`` the leaves that begin a root from top-level state ``top`` (or from a state that
         skipping roots that may be performed as nothing leads to); and say whether the task may end there."""
         can_end = False
+        begun: dict[int, list[int]] = {}  # leaf -> the states it may begin its root from, fewest skips first
         for state in self.skip_closure(top):
-            can_end |= state in self.top_terminal
-            for nxt in self.top_out.get(state, {}):
+            can_end |= self.top_ends(state)
+            for nxt in self.top_successors(state):
                 if done & self.masks[self.root_nodes[nxt]]:
                     continue
                 for leaf in firsts[self.root_nodes[nxt]]:
-                    moves.setdefault(leaf, Progress(state, done | 1 << leaf, leaf))  # fewest skips first
+                    begun.setdefault(leaf, []).append(state)
+        for leaf, states in begun.items():
+            begins = states[0] if self._fewest_skips else _standing_for(states)
+            moves.setdefault(leaf, Progress(begins, done | 1 << leaf, leaf))
         return moves, can_end
 
     def skip_closure(self, top: int) -> list[int]:
         """``top`` and the top-level states reached from it by skipping roots that may be performed as
-        nothing, breadth first: fewer skips first (a root is begun from the first of these that lets it
-        begin, so it skips no more roots than it needs)."""
+        nothing, breadth first: fewer skips first."""
         seen = [top]
         for state in seen:  # grows as it goes: a queue
-            for root, dst in self.top_out.get(state, {}).items():
+            for root, dst in self.top_successors(state).items():
                 if self.nullables[self.root_nodes[root]] and dst not in seen:
                     seen.append(dst)
         return seen
+
+    def top_successors(self, top: int) -> dict[int, int]:
+        """``root -> state`` of the top-level edges out of ``top``: a state of the top level, or one standing
+        for several (negative: a root that may have begun in any of them, after skipping one root or another;
+        its edges lead, for each root, to the state standing for where that root leads from each of them)."""
+        if top >= 0:
+            return self.top_out.get(top, {})
+        out = self._several_out.get(top)
+        if out is None:
+            leads: dict[int, list[int]] = {}
+            for member in _bits(-top):
+                for root, dst in self.top_out.get(member, {}).items():
+                    leads.setdefault(root, []).append(dst)
+            out = self._several_out[top] = {root: _standing_for(dsts) for root, dsts in leads.items()}
+        return out
+
+    def top_ends(self, top: int) -> bool:
+        """Whether the task may end in top-level state ``top`` (one standing for several: when any of them
+        may)."""
+        if top >= 0:
+            return top in self.top_terminal
+        return any(member in self.top_terminal for member in _bits(-top))
 
     # ------------------------------------------------------------------ runs
     def advance(self, states: Iterable[Progress], step: Step) -> tuple[Progress, ...]:
@@ -377,6 +411,15 @@ class Executions:
     def allowed(self, state: Progress) -> frozenset[Leaf]:
         """The leaves allowed next in ``state``."""
         return frozenset(self.leaves[i] for i in self.moves(state))
+
+
+def _standing_for(states: Iterable[int]) -> int:
+    """The top-level state standing for ``states`` (each a real one or standing for several): itself when they
+    are one, else -(the bit mask of the real ones)."""
+    mask = 0
+    for state in states:
+        mask |= 1 << state if state >= 0 else -state
+    return mask.bit_length() - 1 if mask & (mask - 1) == 0 else -mask
 
 
 def _bits(mask: int) -> Iterable[int]:

@@ -397,9 +397,7 @@ class HTN:
     def count_orderings(self) -> int:
         """How many leaf sequences this HTN's structure allows: its roots' orderings along every path of the
         top level (exact: a root that may be performed as nothing where a path passes it gives an order counted
-        once, not once per path). On a top level of seen orders with such a root, :meth:`admits` may refuse a
-        few of them: the executions begin a root after the fewest roots performed as nothing (a known gap,
-        tests/inference/test_tracker_oracle.py)."""
+        once, not once per path): the sequences :meth:`admits_leaves` accepts."""
         if self.top_level is None:
             return math.prod(count_orderings(root) for root in self.roots)
         free = self.top_level.free  # passing one silently gives an order a path without it gives already
