@@ -247,9 +247,16 @@ class Executions:
                 for leaf in firsts[self.root_nodes[nxt]]:
                     begun.setdefault(leaf, []).append(state)
         for leaf, states in begun.items():
-            begins = states[0] if self._fewest_skips else _standing_for(states)
+            begins = states[0] if self._fewest_skips else self._begun_in(states, self.root_of_leaf[leaf])
             moves.setdefault(leaf, Progress(begins, done | 1 << leaf, leaf))
         return moves, can_end
+
+    def _begun_in(self, states: Iterable[int], root: int) -> int:
+        """The top-level state standing for those of ``states`` (of the states they stand for) that ``root``
+        may begin in."""
+        return _standing_for(
+            real for state in states for real in _real(state) if root in self.top_out.get(real, {})
+        )
 
     def skip_closure(self, top: int) -> list[int]:
         """``top`` and the top-level states reached from it by skipping roots that may be performed as
@@ -270,7 +277,7 @@ class Executions:
         out = self._several_out.get(top)
         if out is None:
             leads: dict[int, list[int]] = {}
-            for member in _bits(-top):
+            for member in _real(top):
                 for root, dst in self.top_out.get(member, {}).items():
                     leads.setdefault(root, []).append(dst)
             out = self._several_out[top] = {root: _standing_for(dsts) for root, dsts in leads.items()}
@@ -279,9 +286,7 @@ class Executions:
     def top_ends(self, top: int) -> bool:
         """Whether the task may end in top-level state ``top`` (one standing for several: when any of them
         may)."""
-        if top >= 0:
-            return top in self.top_terminal
-        return any(member in self.top_terminal for member in _bits(-top))
+        return any(member in self.top_terminal for member in _real(top))
 
     # ------------------------------------------------------------------ runs
     def advance(self, states: Iterable[Progress], step: Step) -> tuple[Progress, ...]:
@@ -420,6 +425,11 @@ def _standing_for(states: Iterable[int]) -> int:
     for state in states:
         mask |= 1 << state if state >= 0 else -state
     return mask.bit_length() - 1 if mask & (mask - 1) == 0 else -mask
+
+
+def _real(top: int) -> Iterable[int]:
+    """The states of the top level that ``top`` stands for (itself, when it is one)."""
+    return (top,) if top >= 0 else _bits(-top)
 
 
 def _bits(mask: int) -> Iterable[int]:
