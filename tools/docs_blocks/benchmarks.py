@@ -44,8 +44,30 @@ def learn_benchmark() -> str:
     )
 
 
+def admission_benchmark() -> str:
+    """docs/learning.md: the share of valid executions admitted as clean demonstrations grow, per profile."""
+    result = read_json(BENCHMARKS / "admission.json")
+    sizes = list(result["mean_share_of_valid_executions_admitted"])
+    tasks = sum(result["tasks"].values())
+
+    def row(label: str, values: dict[str, float], form: str = "{:.3f}") -> str:
+        return f"| {label} | " + " | ".join(form.format(values[n]) for n in sizes) + " |"
+
+    rows = [
+        "| demonstrations | " + " | ".join(sizes) + " |",
+        "|---|" + "---:|" * len(sizes),
+        row(f"**valid executions admitted**, mean of {tasks} tasks", result["mean_share_of_valid_executions_admitted"]),
+        *(row(f"… {profile} ({count})", result["by_profile"][profile]) for profile, count in result["tasks"].items()),
+        row("steps set aside as slips (all tasks)", result["steps_set_aside"], "{}"),
+        row("own demonstrations admitted", result["own_demonstrations_admitted"]),
+    ]
+    verdict = "non-decreasing" if result["non_decreasing_on_average"] else "**not** non-decreasing"
+    return "\n".join(rows) + f"\n\nOn average over the tasks the share is {verdict} in the number of demonstrations.\n"
+
+
 BLOCKS: dict[str, Block] = {
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
+    "bench-admission": Block("benchmarks/results/admission.json (make bench)", admission_benchmark),
     "bench-service": from_benchmark(
         "service",
         "**{claim_release.ops_per_second:,.0f} operations/s, p50 {claim_release.p50_ms:.1f} ms, p90 {claim_release.p90_ms:.1f} ms, p99 {claim_release.p99_ms:.1f} ms** (targets ≥ {targets.ops_per_second:.0f} ops/s and p99 < {targets.p99_ms:.0f} ms)",
