@@ -20,10 +20,13 @@ the place it landed among the demonstration's, on top of the probability of the 
 steps out of place are those a greedy cover takes out so that no order the reading requires is reversed and
 no subtask interleaved (an upper bound on the fewest): one when moving one step makes the demonstration
 admitted, else at least two. So a reading too tight to
-generalise pays for every demonstration it refuses, and one too loose for every one it admits. The reading
-with the highest mean held-out log-likelihood per demonstration is kept (the first of :data:`CANDIDATES` on a
-tie), unless, learned from all the demonstrations, it admits exactly the executions the ``general`` reading
-admits: then the same distribution is kept with its subtasks (:func:`same_executions`).
+generalise pays for every demonstration it refuses, and one too loose for every one it admits. The first of
+:data:`CANDIDATES` (the default first) whose mean held-out log-likelihood per demonstration is within one
+standard error of the best mean is kept — the one-standard-error rule (Hastie, Tibshirani and Friedman, *The
+Elements of Statistical Learning*, §7.10), the error being that of the mean of the paired differences over the
+held-out demonstrations: another reading must predict them better by more than chance — unless, learned from
+all the demonstrations, it admits exactly the executions the ``general`` reading admits: then the same
+distribution is kept with its subtasks (:func:`same_executions`).
 
 No comparison is run (``general`` is kept) with fewer than ``min_demonstrations`` demonstrations, when every
 reading admits the same executions, or when the demonstrations show every execution the ``general`` reading
@@ -223,7 +226,7 @@ def select_reading(
     if len({(*htn.canonical(), htn.count_orderings()) for htn in full.values()}) == 1:
         return Selection(READINGS[0], "the readings agree")
     k = min(folds, len(actions))
-    totals = dict.fromkeys(full, 0.0)
+    values: dict[str, list[float]] = {name: [] for name in full}  # each held-out demonstration's, fold by fold
     admitted = dict.fromkeys(full, 0)
     for fold in range(k):
         train = [i for i in range(len(actions)) if i % k != fold]
@@ -235,15 +238,29 @@ def select_reading(
             if key not in scored:
                 scored[key] = held_out_log_likelihoods(htn, [actions[i] for i in held], slip_rate)
             for value, ok in scored[key]:
-                totals[name] += value
+                values[name].append(value)
                 admitted[name] += ok
-    scores = {name: total / len(actions) for name, total in totals.items()}
-    best = max(scores.values())
-    chosen = next(name for name in full if scores[name] == best)
+    scores = {name: sum(held) / len(actions) for name, held in values.items()}
+    best = max(full, key=lambda name: (scores[name], -CANDIDATES.index(name)))
+    chosen = next(name for name in full if _within_one_error(values[name], values[best]))
     if chosen != READINGS[0] and same_executions(full[chosen], general):
-        reason = f"held-out likelihood; {chosen}, the best, admits the same executions"
+        reason = f"held-out likelihood; {chosen}, the one kept, admits the same executions"
         return Selection(READINGS[0], reason, scores, admitted, k)
     return Selection(chosen, "held-out likelihood", scores, admitted, k)
+
+
+def _within_one_error(candidate: Sequence[float], best: Sequence[float]) -> bool:
+    """Whether ``candidate``'s mean held-out log-likelihood is within one standard error of ``best``'s: the
+    standard error of the mean of their differences, demonstration by demonstration (the one-standard-error
+    rule)."""
+    differences = [b - c for b, c in zip(best, candidate, strict=True)]
+    mean = sum(differences) / len(differences)
+    if mean <= 0:
+        return True
+    if len(differences) < 2:
+        return False
+    variance = sum((d - mean) ** 2 for d in differences) / (len(differences) - 1)
+    return mean <= math.sqrt(variance / len(differences))
 
 
 def same_executions(first: HTN, second: HTN, *, limit: int = 20_000) -> bool:
