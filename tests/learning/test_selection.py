@@ -54,3 +54,6 @@ def test_more_clean_demonstrations_do_not_make_a_tighter_reading_win_by_chance()
         learner = HTNLearner().fit(demos[:n])
         assert learner.reading_ == "general", n
         assert all(learner.htn_.admits(list(order)) for order in valid)
+    selection = HTNLearner().fit(demos[:32]).selection_
+    assert selection is not None
+    assert selection.reason == "held-out likelihood (strict best by 0.104 nats, within one standard error, 0.183)"

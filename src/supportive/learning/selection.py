@@ -76,7 +76,8 @@ class Selection:
 
     Attributes:
         chosen: The reading kept.
-        reason: ``"held-out likelihood"``, ``"the readings agree"``, ``"every execution was demonstrated"``
+        reason: ``"held-out likelihood"`` (saying, when another reading scored best, by how much and the
+            standard error it was within), ``"the readings agree"``, ``"every execution was demonstrated"``
             or ``"too few demonstrations"``.
         scores: Mean held-out log-likelihood per demonstration (nats) of each reading, when compared.
         admitted: Held-out demonstrations each reading admitted, when compared.
@@ -104,7 +105,11 @@ class Selection:
         if not self.scores:
             return f"reading: {self.chosen} ({self.reason})"
         scores = ", ".join(f"{name} {value:.2f}" for name, value in self.scores.items())
-        return f"reading: {self.chosen} (held-out log-likelihood per demonstration, {self.folds} folds: {scores})"
+        why = self.reason.removeprefix("held-out likelihood").removeprefix(" ")
+        return (
+            f"reading: {self.chosen} (held-out log-likelihood per demonstration, {self.folds} folds: {scores})"
+            + (f" {why}" if why else "")
+        )
 
 
 def held_out_log_likelihoods(
@@ -243,24 +248,32 @@ def select_reading(
     scores = {name: sum(held) / len(actions) for name, held in values.items()}
     best = max(full, key=lambda name: (scores[name], -CANDIDATES.index(name)))
     chosen = next(name for name in full if _within_one_error(values[name], values[best]))
+    reason = "held-out likelihood"
+    if chosen != best:
+        gap, error = _gap(values[chosen], values[best])
+        reason += f" ({best} best by {gap:.3f} nats, within one standard error, {error:.3f})"
     if chosen != READINGS[0] and same_executions(full[chosen], general):
-        reason = f"held-out likelihood; {chosen}, the one kept, admits the same executions"
+        reason += f"; {chosen} admits the same executions as {READINGS[0]}"
         return Selection(READINGS[0], reason, scores, admitted, k)
-    return Selection(chosen, "held-out likelihood", scores, admitted, k)
+    return Selection(chosen, reason, scores, admitted, k)
+
+
+def _gap(candidate: Sequence[float], best: Sequence[float]) -> tuple[float, float]:
+    """How much better ``best`` predicted the held-out demonstrations than ``candidate`` (the mean of their
+    differences, demonstration by demonstration, in nats) and the standard error of that mean (0 for one)."""
+    differences = [b - c for b, c in zip(best, candidate, strict=True)]
+    n = len(differences)
+    mean = sum(differences) / n
+    if n < 2:
+        return mean, 0.0
+    return mean, math.sqrt(sum((d - mean) ** 2 for d in differences) / (n - 1) / n)
 
 
 def _within_one_error(candidate: Sequence[float], best: Sequence[float]) -> bool:
-    """Whether ``candidate``'s mean held-out log-likelihood is within one standard error of ``best``'s: the
-    standard error of the mean of their differences, demonstration by demonstration (the one-standard-error
-    rule)."""
-    differences = [b - c for b, c in zip(best, candidate, strict=True)]
-    mean = sum(differences) / len(differences)
-    if mean <= 0:
-        return True
-    if len(differences) < 2:
-        return False
-    variance = sum((d - mean) ** 2 for d in differences) / (len(differences) - 1)
-    return mean <= math.sqrt(variance / len(differences))
+    """Whether ``candidate``'s mean held-out log-likelihood is within one standard error of ``best``'s (the
+    one-standard-error rule, on the paired differences)."""
+    gap, error = _gap(candidate, best)
+    return gap <= error
 
 
 def same_executions(first: HTN, second: HTN, *, limit: int = 20_000) -> bool:
