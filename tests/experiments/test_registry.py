@@ -70,10 +70,11 @@ def test_default_trials_must_be_positive(toy: Toy) -> None:
         toy(default_trials=0)
 
 
-@pytest.mark.parametrize(("fewest", "default"), [(0, 5), (6, 5)])
-def test_fewest_trials_lie_between_one_and_the_default(toy: Toy, fewest: int, default: int) -> None:
-    with pytest.raises(ExperimentError, match="1 <= fewest_trials <= default_trials"):
-        toy(fewest_trials=fewest, default_trials=default)
+@pytest.mark.parametrize(("kinds", "default"), [(("a", "a"), 5), (("a", "b", "c"), 2)])
+def test_trial_kinds_are_distinct_and_fit_in_the_default(toy: Toy, kinds: tuple[str, ...], default: int) -> None:
+    with pytest.raises(ExperimentError, match="trial_kinds must be distinct and no more than default_trials"):
+        toy(trial_kinds=kinds, default_trials=default)
+    assert toy(default_trials=default).fewest_trials == 1
 
 
 def test_a_run_of_fewer_trials_than_the_experiment_takes_is_refused_before_it_starts(toy: Toy) -> None:
@@ -84,9 +85,9 @@ def test_a_run_of_fewer_trials_than_the_experiment_takes_is_refused_before_it_st
         calls.append(trials)
         return made(trials, seed)
 
-    experiment = register(toy("toy-fewest", fewest_trials=3, make_trials=counted))
+    experiment = register(toy("toy-fewest", trial_kinds=("a", "b", "c"), make_trials=counted))
     try:
-        with pytest.raises(ExperimentError, match=r"^toy-fewest: at least 3 trials, got 2$"):
+        with pytest.raises(ExperimentError, match=r"^toy-fewest: at least 3 trials \(one of each kind it compares: a, b, c\), got 2$"):
             run_experiment(experiment.name, trials=2, progress=False)
         assert calls == []
         assert run_experiment(experiment.name, trials=3, progress=False).trials == 3

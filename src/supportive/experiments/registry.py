@@ -87,8 +87,8 @@ class Experiment:
         reference: Where the thesis reports it (section, figure).
         thesis: The thesis's own numbers where it gives them (plain JSON data), for the report.
         default_trials: Trials of a full run (the thesis's sample size).
-        fewest_trials: The fewest trials a run may have (1 unless the first trials cover different kinds of
-            case, each needed by the summary); the runner refuses fewer.
+        trial_kinds: The kinds of case a run must hold a trial of each of, because its summary compares them
+            (a generated task and a recipe, say); empty when any one trial will do. See :attr:`fewest_trials`.
         make_trials: ``(trials, seed) -> trials``; every trial gets its own seed (see
             :func:`~supportive.experiments.trials.spawn_trials`). An experiment with ``readings`` is called
             ``make_trials(trials, seed, readings=names)`` with the readings the run covers.
@@ -126,7 +126,7 @@ class Experiment:
     headline: Callable[[Mapping[str, Any]], list[HeadlineRow]] = field(repr=False)
     timing_report: Callable[[list[dict[str, Any]], Path], list[Path]] | None = field(default=None, repr=False)
     readings: tuple[Reading, ...] = ()
-    fewest_trials: int = 1
+    trial_kinds: tuple[str, ...] = ()
     findings: Callable[[Mapping[str, Any]], list[Finding]] | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
@@ -134,14 +134,24 @@ class Experiment:
             raise ExperimentError(
                 f"experiment name {self.name!r}: expected lowercase words joined by hyphens, not {ALL!r}"
             )
-        if not 1 <= self.fewest_trials <= self.default_trials:
+        if self.default_trials < 1:
             raise ExperimentError(
-                f"experiment {self.name}: expected 1 <= fewest_trials <= default_trials, got "
-                f"{self.fewest_trials} and {self.default_trials}"
+                f"experiment {self.name}: default_trials must be >= 1, got {self.default_trials}"
+            )
+        if len(set(self.trial_kinds)) != len(self.trial_kinds) or self.fewest_trials > self.default_trials:
+            raise ExperimentError(
+                f"experiment {self.name}: trial_kinds must be distinct and no more than default_trials "
+                f"({self.default_trials}), got {list(self.trial_kinds)}"
             )
         names = [r.name for r in self.readings]
         if len(set(names)) != len(names):
             raise ExperimentError(f"experiment {self.name}: reading names must be unique, got {names}")
+
+    @property
+    def fewest_trials(self) -> int:
+        """The fewest trials a run may have: one of each of :attr:`trial_kinds` (at least one); the runner
+        refuses fewer before anything runs."""
+        return max(1, len(self.trial_kinds))
 
     @property
     def default_reading(self) -> str | None:
@@ -177,7 +187,7 @@ _PARTS = ("make_trials", "run_trial", "summarize", "report", "plots", "headline"
 """The fields :func:`declare` takes from the modules under their own names (the last two may be missing)."""
 _CONSTANTS = {
     "default_trials": "DEFAULT_TRIALS",
-    "fewest_trials": "FEWEST_TRIALS",
+    "trial_kinds": "TRIAL_KINDS",
     "thesis": "THESIS",
     "readings": "READINGS",
 }
@@ -187,7 +197,7 @@ _OPTIONAL: dict[str, Any] = {
     "findings": None,
     "thesis": {},
     "readings": (),
-    "fewest_trials": 1,
+    "trial_kinds": (),
 }
 
 
@@ -199,7 +209,7 @@ def declare(
     Every other field of :class:`Experiment` is looked up in ``parts``: the functions under their field
     names (``make_trials``, ``run_trial``, ``summarize``, ``report``, ``plots``, ``headline`` and, when
     there, ``timing_report`` and ``findings``) and the constants ``DEFAULT_TRIALS`` and, when there,
-    ``FEWEST_TRIALS``, ``THESIS`` and ``READINGS``. A field given as a keyword is taken as given instead.
+    ``TRIAL_KINDS``, ``THESIS`` and ``READINGS``. A field given as a keyword is taken as given instead.
 
     Raises:
         ExperimentError: when a required part is in none of the modules, when two modules hold different

@@ -254,7 +254,10 @@ def _trial_count(experiment: Experiment, trials: int | None) -> int:
     if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
         raise ExperimentError(f"trials must be an int >= 1, got {trials!r}")
     if trials < experiment.fewest_trials:
-        raise ExperimentError(f"{experiment.name}: at least {experiment.fewest_trials} trials, got {trials}")
+        raise ExperimentError(
+            f"{experiment.name}: at least {experiment.fewest_trials} trials (one of each kind it compares: "
+            f"{', '.join(experiment.trial_kinds)}), got {trials}"
+        )
     return trials
 
 

@@ -22,8 +22,8 @@ SYNTHETIC = 300
 """Generated tasks of a full run (half of each profile)."""
 DEFAULT_TRIALS = SYNTHETIC + 24
 """Trials of a full run: the generated tasks, then the 24 recipes."""
-FEWEST_TRIALS = 2
-"""A run needs a generated task and a recipe."""
+TRIAL_KINDS = ("generated task", "recipe")
+"""What a run needs a trial of each of (its summary compares them)."""
 LEARNERS = ("auto", "general", "strict")
 """The default learner (``auto``: the reading chosen by held-out likelihood), the ``general`` reading alone, and
 the thesis's ``strict`` one."""

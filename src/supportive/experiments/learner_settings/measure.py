@@ -51,8 +51,8 @@ a slip where there is none."""
 CLEAN_DEMONSTRATIONS = (1, 200)
 DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(KINDS) + CLEAN_TASKS
 """Trials of a full run: the tasks with mistakes, then the clean ones."""
-FEWEST_TRIALS = 2
-"""A run needs a task with mistakes and a clean one."""
+TRIAL_KINDS = ("task with mistakes", "clean task")
+"""What a run needs a trial of each of (its summary compares them)."""
 KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
 """Which kind of slip the learner should report for each kind of mistake put in."""
 GRID: dict[str, tuple[float, ...]] = {"slip_margin": (0.0, 1.0, 2.0), "slip_rate": (0.03, 0.1, 0.2)}

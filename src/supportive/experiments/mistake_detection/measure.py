@@ -41,8 +41,8 @@ GENERATED = 30
 RECIPES = 24
 DEFAULT_TRIALS = GENERATED + RECIPES
 """Trials of a full run: the generated tasks, then every recipe."""
-FEWEST_TRIALS = 2
-"""A run needs a generated task and a recipe."""
+TRIAL_KINDS = ("generated task", "recipe")
+"""What a run needs a trial of each of (its summary compares them)."""
 SIZES = (6, 12)
 """Steps per generated task (inclusive range)."""
 TRAIN = 20
