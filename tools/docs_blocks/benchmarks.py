@@ -65,9 +65,28 @@ def admission_benchmark() -> str:
     return "\n".join(rows) + f"\n\nOn average over the tasks the share is {verdict} in the number of demonstrations.\n"
 
 
+def backoff_benchmark() -> str:
+    """docs/inference.md: next-step prediction on generated tasks with mistakes, one back-off weight against a
+    second one after an off-script step."""
+    result = read_json(BENCHMARKS / "backoff.json")
+    rows = [
+        "| demonstrations with a mistake | held-out steps | one weight: top-1 · log2 P | off-script back-off: top-1 · log2 P | fitted weights (mean): on · off script |",
+        "|---:|---:|---:|---:|---:|",
+    ]
+    for row in result["rows"]:
+        one, two = row["one weight"], row["off-script back-off"]
+        rows.append(
+            f"| {row['share_mistaken']:.0%} | {row['held_out_steps']:,} | {one['top1']:.3f} · {one['log2']:.3f} | "
+            f"{two['top1']:.3f} · {two['log2']:.3f} | {row['mean_backoff']:.2f} · {row['mean_off_script_backoff']:.2f} |"
+        )
+    tasks = result["rows"][0]["tasks"]
+    return "\n".join(rows) + f"\n\n{tasks} tasks per row (seed {result['seed']}).\n"
+
+
 BLOCKS: dict[str, Block] = {
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
     "bench-admission": Block("benchmarks/results/admission.json (make bench)", admission_benchmark),
+    "bench-backoff": Block("benchmarks/results/backoff.json (make bench)", backoff_benchmark),
     "bench-service": from_benchmark(
         "service",
         "**{claim_release.ops_per_second:,.0f} operations/s, p50 {claim_release.p50_ms:.1f} ms, p90 {claim_release.p90_ms:.1f} ms, p99 {claim_release.p99_ms:.1f} ms** (targets ≥ {targets.ops_per_second:.0f} ops/s and p99 < {targets.p99_ms:.0f} ms)",

@@ -7,12 +7,16 @@ probability of each action id being done next, plus ``"<end>"`` for "the task is
 probabilities add up to one. Unknown actions in ``prefix`` are slips, not errors.
 
 **Calibrated, not only accurate.** What the hierarchy says is mixed with an add-one smoothed bigram whose
-transition counts go only to actions still open (:class:`~supportive.inference.bigram.OpenBigram`, weight
-``backoff``), so a step it did not expect still has a probability but a step already done is not pushed to the
-top by the transitions that led to it the first time, and its choices are smoothed by ``smoothing`` pseudo-counts per option. Both are fitted inside
-``fit`` by K-fold cross-validation over the demonstrations (``calibration_folds``; the grid pair with the
-highest held-out log-likelihood of the next step), unless given; with fewer than three demonstrations there is
-nothing to hold out and the first values of the grids' defaults apply (see :class:`StepPredictor`).
+transition counts go only to actions still open (:class:`~supportive.inference.bigram.OpenBigram`), so a step it
+did not expect still has a probability but a step already done is not pushed to the top by the transitions that
+led to it the first time, and its choices are smoothed by ``smoothing`` pseudo-counts per option. How much the
+bigram weighs depends on whether the tracker could follow the last step: ``backoff`` when it was on script,
+``off_script_backoff`` when it was off script (a step the hierarchy did not admit there: after it the tracker's
+reading of where the person is may be wrong, and what usually follows the step just done is the better guess),
+mixed by the tracker's probability that it was off script (``ProgressBelief.off_script``). All three are fitted
+inside ``fit`` by K-fold cross-validation over the demonstrations (``calibration_folds``; the combination of the
+grids with the highest held-out log-likelihood of the next step), unless given; with fewer than three
+demonstrations there is nothing to hold out and the first values of the grids apply (see :class:`StepPredictor`).
 
 >>> predictor = StepPredictor().fit([["knife", "carrots", "celery"], ["knife", "celery", "carrots"]] * 2)
 >>> {a: round(p, 2) for a, p in predictor.next_step(["knife", "carrots"]).items() if p > 0.1}
@@ -46,31 +50,35 @@ _TRACKER = ("slip", "restart", "max_states", "beam")
 
 @dataclass(frozen=True)
 class Calibration:
-    """How ``smoothing`` and ``backoff`` were chosen.
+    """How ``smoothing``, ``backoff`` and ``off_script_backoff`` were chosen.
 
     Attributes:
         smoothing: The pseudo-counts kept.
-        backoff: The bigram's weight kept.
+        backoff: The bigram's weight kept after a step the tracker followed.
+        off_script_backoff: The bigram's weight kept after a step the tracker read as off script.
         folds: Folds of the cross-validation (0: not fitted, the values given or the grids' first).
         steps: Held-out steps scored.
-        log2: Mean held-out ``log2`` probability of the next step, per smoothing (rows) and back-off weight
-            (columns), as the grids list them.
+        log2: Mean held-out ``log2`` probability of the next step, ``log2[i][j][k]`` for the ``i``-th
+            smoothing, ``j``-th back-off weight and ``k``-th off-script back-off weight tried, as the grids
+            list them (a setting given: its value alone).
     """
 
     smoothing: float
     backoff: float
+    off_script_backoff: float
     folds: int = 0
     steps: int = 0
-    log2: tuple[tuple[float, ...], ...] = ()
+    log2: tuple[tuple[tuple[float, ...], ...], ...] = ()
 
     def as_dict(self) -> dict[str, object]:
         """Plain-data form."""
         return {
             "smoothing": self.smoothing,
             "backoff": self.backoff,
+            "off_script_backoff": self.off_script_backoff,
             "folds": self.folds,
             "held_out_steps": self.steps,
-            "held_out_log2": [[round(v, 4) for v in row] for row in self.log2],
+            "held_out_log2": [[[round(v, 4) for v in row] for row in table] for table in self.log2],
         }
 
 
@@ -84,9 +92,14 @@ class StepPredictor(Estimator):
         slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
             default.
         smoothing: Pseudo-counts per option of every choice, above 0; None: fitted.
-        backoff: The bigram's weight, in [0, 1); None: fitted.
-        smoothing_grid, backoff_grid: The values tried when fitting them (the first used when there is too
-            little to fit on).
+        backoff: The bigram's weight after a step the tracker followed, in [0, 1); None: fitted.
+        off_script_backoff: The bigram's weight after a step the tracker read as off script, in [0, 1); None:
+            fitted. Between the two, the weight is mixed by the tracker's probability that the last step was
+            off script.
+        smoothing_grid: The smoothing values tried when fitting it (the first used when there is too little to
+            fit on).
+        backoff_grid: The weights tried for ``backoff`` and ``off_script_backoff`` (the first used for both
+            when there is too little to fit on).
         calibration_folds: At most this many folds, at least 2.
 
     Raises:
@@ -120,14 +133,16 @@ class StepPredictor(Estimator):
         beam: int | None = None,
         smoothing: float | None = None,
         backoff: float | None = None,
+        off_script_backoff: float | None = None,
         smoothing_grid: tuple[float, ...] = (1.0, 0.25, 4.0),
-        backoff_grid: tuple[float, ...] = (0.1, 0.0, 0.01, 0.03, 0.2, 0.35, 0.5),
+        backoff_grid: tuple[float, ...] = (0.1, 0.0, 0.01, 0.03, 0.2, 0.35, 0.5, 0.7, 0.9),
         calibration_folds: int = 5,
     ) -> None:
         if smoothing is not None and not smoothing > 0:
             raise LearningError(f"smoothing must be above 0, got {smoothing}")
-        if backoff is not None and not 0.0 <= backoff < 1.0:
-            raise LearningError(f"backoff must be in [0, 1), got {backoff}")
+        for name, weight in (("backoff", backoff), ("off_script_backoff", off_script_backoff)):
+            if weight is not None and not 0.0 <= weight < 1.0:
+                raise LearningError(f"{name} must be in [0, 1), got {weight}")
         if not smoothing_grid or not all(v > 0 for v in smoothing_grid):
             raise LearningError(f"smoothing_grid must hold values above 0, got {smoothing_grid}")
         if not backoff_grid or not all(0.0 <= v < 1.0 for v in backoff_grid):
@@ -151,6 +166,7 @@ class StepPredictor(Estimator):
         self.beam = beam
         self.smoothing = smoothing
         self.backoff = backoff
+        self.off_script_backoff = off_script_backoff
         self.smoothing_grid = smoothing_grid
         self.backoff_grid = backoff_grid
         self.calibration_folds = calibration_folds
@@ -163,7 +179,8 @@ class StepPredictor(Estimator):
 
     def fit(self, demonstrations: TaskSpec | Iterable[DemonstrationLike]) -> Self:
         """Learn the hierarchy, its frequencies, the back-off and the tracker from demonstrations (a task spec
-        or step sequences of action ids), and fit ``smoothing`` and ``backoff`` when not given."""
+        or step sequences of action ids), and fit ``smoothing``, ``backoff`` and ``off_script_backoff`` when
+        not given."""
         self._forget()
         demos = list(demonstrations.demonstrations if isinstance(demonstrations, TaskSpec) else demonstrations)
         self.learner_ = self._learner().fit(demonstrations)
@@ -182,7 +199,8 @@ class StepPredictor(Estimator):
 
     def session(self) -> PredictionSession:
         """A fresh prediction, step by step (``observe`` each action, ``next_step`` for what comes next)."""
-        return PredictionSession(self.tracker(), self.bigram_, self.calibration_.backoff)
+        calibration = self.calibration_
+        return PredictionSession(self.tracker(), self.bigram_, calibration.backoff, calibration.off_script_backoff)
 
     def next_step(self, prefix: Sequence[str]) -> dict[str, float]:
         """Probability of each action id being done next after ``prefix``, and of ``"<end>"``."""
@@ -207,14 +225,15 @@ class StepPredictor(Estimator):
         return hmm.fit() if build else hmm
 
     def _calibrate(self, demos: Sequence[DemonstrationLike]) -> Calibration:
-        """Choose ``smoothing`` and ``backoff`` by the held-out log-likelihood of the next step."""
+        """Choose ``smoothing``, ``backoff`` and ``off_script_backoff`` by the held-out log-likelihood of the
+        next step."""
         smoothings = [self.smoothing] if self.smoothing is not None else list(self.smoothing_grid)
-        backoffs = [self.backoff] if self.backoff is not None else list(self.backoff_grid)
-        if len(demos) < 3 or (len(smoothings) == 1 and len(backoffs) == 1):
-            return Calibration(float(smoothings[0]), float(backoffs[0]))
+        on = np.asarray([self.backoff] if self.backoff is not None else self.backoff_grid, dtype=float)
+        off = np.asarray([self.off_script_backoff] if self.off_script_backoff is not None else self.backoff_grid, dtype=float)
+        if len(demos) < 3 or len(smoothings) * len(on) * len(off) == 1:
+            return Calibration(float(smoothings[0]), float(on[0]), float(off[0]))
         k = min(self.calibration_folds, len(demos))
-        weights = np.asarray(backoffs, dtype=float)
-        totals = np.zeros((len(smoothings), len(weights)))
+        totals = np.zeros((len(smoothings), len(on), len(off)))
         steps = 0
         for fold in range(k):
             train = [d for i, d in enumerate(demos) if i % k != fold]
@@ -224,23 +243,26 @@ class StepPredictor(Estimator):
             for row, smoothing in enumerate(smoothings):
                 hmm = self._hmm(htn, float(smoothing))
                 for actions in held:
-                    model, back = _truth_probabilities(hmm.filter(), bigram, actions)
-                    mixed = (1.0 - weights)[None, :] * model[:, None] + weights[None, :] * back[:, None]
+                    model, back, lost = _truth_probabilities(hmm.filter(), bigram, actions)
+                    weight = (1.0 - lost)[:, None, None] * on[None, :, None] + lost[:, None, None] * off[None, None, :]
+                    mixed = model[:, None, None] + weight * (back - model)[:, None, None]
                     totals[row] += np.log2(np.maximum(mixed, 1e-300)).sum(axis=0)
                     if row == 0:
                         steps += len(actions) + 1
         best = np.unravel_index(int(np.argmax(totals)), totals.shape)
-        table = tuple(tuple(float(v) / steps for v in row) for row in totals)
-        return Calibration(float(smoothings[best[0]]), float(weights[best[1]]), k, steps, table)
+        table = tuple(tuple(tuple(float(v) / steps for v in row) for row in grid) for grid in totals)
+        return Calibration(float(smoothings[best[0]]), float(on[best[1]]), float(off[best[2]]), k, steps, table)
 
 
 class PredictionSession:
-    """One prediction step by step: the tracker's belief of what comes next, mixed with the back-off."""
+    """One prediction step by step: the tracker's belief of what comes next, mixed with the back-off by how
+    likely the tracker finds it that the last step was off script."""
 
-    def __init__(self, tracker: ProgressFilter, bigram: OpenBigram, backoff: float) -> None:
+    def __init__(self, tracker: ProgressFilter, bigram: OpenBigram, backoff: float, off_script_backoff: float) -> None:
         self.tracker = tracker
         self.bigram = bigram
         self.backoff = backoff
+        self.off_script_backoff = off_script_backoff
         self.prefix: list[str] = []
 
     def observe(self, action: str) -> None:
@@ -250,7 +272,14 @@ class PredictionSession:
 
     def next_step(self) -> dict[str, float]:
         """Probability of each action id being done next, and of ``"<end>"``; sums to one."""
-        return _mixed(self.tracker.last.next_actions, self.bigram.next_step(self.prefix), self.backoff)
+        last = self.tracker.last
+        weight = _weight(self.backoff, self.off_script_backoff, last.off_script)
+        return _mixed(last.next_actions, self.bigram.next_step(self.prefix), weight)
+
+
+def _weight(backoff: float, off_script_backoff: float, off_script: float) -> float:
+    """The back-off's weight when the last step was off script with probability ``off_script``."""
+    return (1.0 - off_script) * backoff + off_script * off_script_backoff
 
 
 def _mixed(model: dict[str, float], back: dict[str, float], weight: float) -> dict[str, float]:
@@ -262,16 +291,18 @@ def _mixed(model: dict[str, float], back: dict[str, float], weight: float) -> di
 
 def _truth_probabilities(
     running: ProgressFilter, bigram: OpenBigram, actions: Sequence[str]
-) -> tuple[np.ndarray, np.ndarray]:
-    """The probability the tracker and the bigram gave each next step of ``actions`` (and its end)."""
-    model, back = [], []
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The probability the tracker and the bigram gave each next step of ``actions`` (and its end), and the
+    tracker's probability that the step before was off script (0 before the first)."""
+    model, back, lost = [], [], []
     for position in range(len(actions) + 1):
         truth = actions[position] if position < len(actions) else END_LABEL
         model.append(running.last.next_actions.get(truth, 0.0))
         back.append(bigram.next_step(actions[:position]).get(truth, 0.0))
+        lost.append(running.last.off_script)
         if position < len(actions):
             running.observe(truth)
-    return np.asarray(model), np.asarray(back)
+    return np.asarray(model), np.asarray(back), np.asarray(lost)
 
 
 def _actions(demo: DemonstrationLike) -> tuple[str, ...]:
