@@ -10,6 +10,7 @@ signal lands there exactly, as a kill would.
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import shutil
@@ -26,6 +27,7 @@ import pytest
 from tests.conftest import CliRunner
 
 from supportive import examples
+from supportive.cli.interrupt import handling
 from supportive.generate import generate_task
 from supportive.io.taskfile import parse_task_file, write_task_file
 from supportive.service.launch import free_port
@@ -330,6 +332,30 @@ def test_an_error_a_library_raises_from_a_ctrl_c_is_an_interruption(
     code, out, err = cli(["learn", "blocks-v"])
     assert code == 130 and out == ""
     assert err.strip().splitlines() == ["supportive: interrupted (Ctrl-C): nothing written"]
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_that_lands_in_a_garbage_collector_callback_is_not_lost(
+    sig: int, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Python drops an exception raised in a gc callback (dask installs one): a Ctrl-C landing there once let a
+    dask run go on to the end and exit 0. It is delivered again, after the callback, and nothing is printed."""
+
+    def callback(phase: str, info: dict[str, int]) -> None:
+        if phase == "start":
+            signal.raise_signal(sig)
+            sum(range(100))  # the handler runs here, inside the callback
+
+    gc.callbacks.append(callback)
+    try:
+        with handling() as stopped, pytest.raises(KeyboardInterrupt):
+            gc.collect()
+            for _ in range(500):  # sent again from another thread: it arrives a moment later
+                time.sleep(0.01)
+    finally:
+        gc.callbacks.remove(callback)
+    assert stopped.signal == sig
+    assert capsys.readouterr().err == ""
 
 
 LOADING = """

@@ -13,7 +13,9 @@ the line says nothing was written.
 
 from __future__ import annotations
 
+import gc
 import os
+import queue
 import signal
 import threading
 from collections.abc import Callable, Iterator, Sequence
@@ -61,15 +63,24 @@ def interruption() -> Interruption:
 def handling() -> Iterator[Interruption]:
     """While the block runs, SIGTERM raises ``KeyboardInterrupt`` like Ctrl-C does (recording which signal it
     was); the previous handlers come back afterwards. Yields the interruption, fresh. Outside the main thread
-    (where Python runs signal handlers) only the interruption is made fresh."""
+    (where Python runs signal handlers) only the interruption is made fresh.
+
+    Python runs a signal's handler wherever the main thread is, and an exception raised in a garbage
+    collector's callback (dask's scheduler installs one) or in a finaliser is reported and dropped, not passed
+    on: the signal would be lost and the command go on. A signal that arrives there is sent again, from a
+    thread of the block's own, until it arrives where the interruption can be raised."""
     _current.signal = signal.SIGINT
     _current.statements.clear()
     if threading.current_thread() is not threading.main_thread():
         yield _current
         return
+    again = _Resender()
 
     def stop(signum: int, frame: FrameType | None) -> None:
         _current.signal = signum
+        if _dropped_from(frame):
+            again.send(signum)
+            return
         raise KeyboardInterrupt
 
     previous = {number: signal.signal(number, stop) for number in (signal.SIGINT, signal.SIGTERM)}
@@ -78,6 +89,42 @@ def handling() -> Iterator[Interruption]:
     finally:
         for number, handler in previous.items():
             signal.signal(number, handler if handler is not None else signal.SIG_DFL)
+        again.close()
+
+
+class _Resender:
+    """A thread that sends the main thread a signal again when asked (a queue written from a signal handler:
+    :class:`queue.SimpleQueue` is reentrant)."""
+
+    def __init__(self) -> None:
+        self._queue: queue.SimpleQueue[int | None] = queue.SimpleQueue()
+        self._main = threading.get_ident()
+        self._thread = threading.Thread(target=self._run, name="supportive-signal-again", daemon=True)
+        self._thread.start()
+
+    def send(self, signum: int) -> None:
+        """Send ``signum`` to the main thread again, from the thread."""
+        self._queue.put(signum)
+
+    def close(self) -> None:
+        """Stop the thread."""
+        self._queue.put(None)
+        self._thread.join()
+
+    def _run(self) -> None:
+        while (signum := self._queue.get()) is not None:
+            signal.pthread_kill(self._main, signum)
+
+
+def _dropped_from(frame: FrameType | None) -> bool:
+    """Whether an exception raised in ``frame`` would be dropped: it runs in (or is called from) a garbage
+    collector's callback or a finaliser (``__del__``)."""
+    callbacks = {code for callback in gc.callbacks if (code := getattr(callback, "__code__", None)) is not None}
+    while frame is not None:
+        if frame.f_code in callbacks or frame.f_code.co_name == "__del__":
+            return True
+        frame = frame.f_back
+    return False
 
 
 @contextmanager
