@@ -57,6 +57,16 @@ def test_local_cluster_gives_identical_metrics(in_process: Path, tmp_path: Path)
     assert "LocalCluster" in (tmp_path / "run.json").read_text()
 
 
+@pytest.mark.parametrize(("trials", "backend"), [(1, "in process"), (2, "dask LocalCluster, 2 worker processes")])
+def test_no_more_workers_start_than_there_are_trials(trials: int, backend: str, tmp_path: Path) -> None:
+    """``workers=4`` with one trial runs it in process and with two starts two workers: the others would only
+    wait. The metrics are the same wherever the trials ran."""
+    alone = run_experiment("edge-reduction", trials=trials, seed=5, workers=1, progress=False)
+    result = run_experiment("edge-reduction", trials=trials, seed=5, workers=4, output=tmp_path, progress=False)
+    assert result.backend == backend and result.trials == trials
+    assert result.metrics == alone.metrics
+
+
 def test_existing_scheduler_gives_identical_metrics(
     in_process: Path, tmp_path: Path, external_cluster: Any
 ) -> None:

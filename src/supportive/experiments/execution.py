@@ -129,6 +129,8 @@ def check_backend(workers: int, scheduler: str | None) -> None:
     Raises:
         ExperimentError: for fewer than one worker, both ``workers`` (other than 1) and ``scheduler``, or a
             scheduler address that is not ``PROTOCOL://HOST:PORT``.
+        MissingExtraError: for more than one worker without dask.distributed (asked for, even where a run
+            with a single trial then needs none).
     """
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ExperimentError(f"workers must be an int >= 1, got {workers!r}")
@@ -140,6 +142,8 @@ def check_backend(workers: int, scheduler: str | None) -> None:
             )
         if not _ADDRESS.match(scheduler):
             raise ExperimentError(f"scheduler address {scheduler!r}: expected tcp://HOST:PORT")
+    if workers > 1:
+        import_distributed()
 
 
 def check_listening(scheduler: str, timeout: float = 5.0) -> None:

@@ -51,6 +51,7 @@ from supportive.experiments.registry import (
     get,
     names,
 )
+from supportive.experiments.trials import Trial
 
 __all__ = [
     "DEFAULT_OUTPUT",
@@ -135,7 +136,8 @@ def run_experiment(
         trials: Number of trials; the experiment's ``default_trials`` (a full run) when ``None``.
         seed: The run's seed (int >= 0); each trial's own seed is spawned from it.
         workers: 1 runs the trials in this process; more starts a dask ``LocalCluster`` of that many worker
-            processes (one thread each, on 127.0.0.1, no dashboard) for the run.
+            processes (one thread each, on 127.0.0.1, no dashboard) for the run, or of as many as there are
+            trials when there are fewer (one trial runs in this process: a worker would only wait).
         scheduler: Address of an existing dask scheduler (``tcp://HOST:PORT``) to run the trials on instead;
             its workers need ``supportive`` installed. Not together with ``workers`` > 1.
         output: Directory for ``metrics.json``, ``report.md``, the plots, ``run.json`` and, when trials
@@ -156,10 +158,10 @@ def run_experiment(
     experiment = get(name)
     chosen = select_readings(experiment.name, experiment.readings, readings)
     check_backend(workers, scheduler)
-    count = _trial_count(experiment, trials)
+    specs = _specs(experiment, _trial_count(experiment, trials), seed, chosen)
     directory = _directory(output)
-    with open_executor(workers, scheduler) as executor:
-        return _run(experiment, executor, count, seed, directory, progress, chosen)
+    with open_executor(_useful(workers, len(specs)), scheduler) as executor:
+        return _run(experiment, executor, specs, seed, directory, progress, chosen)
 
 
 def run_all(
@@ -172,23 +174,28 @@ def run_all(
 ) -> list[RunResult]:
     """Run every registered experiment (every reading), in name order, on one executor; experiment ``x``
     writes into ``output/x/``, and ``output/summary.md`` (+ ``summary.json``) gathers their findings.
-    Arguments as for :func:`run_experiment` (``trials`` applies to each experiment)."""
+    Arguments as for :func:`run_experiment` (``trials`` applies to each experiment; the cluster has at most as
+    many workers as the largest experiment has trials)."""
     experiments = [get(name) for name in names()]
     check_backend(workers, scheduler)
-    counts = [_trial_count(experiment, trials) for experiment in experiments]
+    readings = [select_readings(experiment.name, experiment.readings, None) for experiment in experiments]
+    specs = [
+        _specs(experiment, _trial_count(experiment, trials), seed, chosen)
+        for experiment, chosen in zip(experiments, readings, strict=True)
+    ]
     directory = _directory(output)
-    with open_executor(workers, scheduler) as executor:
+    with open_executor(_useful(workers, max(len(s) for s in specs)), scheduler) as executor:
         results = [
             _run(
                 experiment,
                 executor,
-                count,
+                trial_specs,
                 seed,
                 None if directory is None else directory / experiment.name,
                 progress,
-                select_readings(experiment.name, experiment.readings, None),
+                chosen,
             )
-            for experiment, count in zip(experiments, counts, strict=True)
+            for experiment, trial_specs, chosen in zip(experiments, specs, readings, strict=True)
         ]
     if directory is not None:
         document = {
@@ -269,10 +276,22 @@ def _directory(output: str | Path | None) -> Path | None:
     return Path(output)
 
 
+def _specs(experiment: Experiment, trials: int, seed: int, readings: tuple[str, ...]) -> Sequence[Trial]:
+    """The experiment's trials (each reading's, when it has readings)."""
+    if experiment.readings:
+        return experiment.make_trials(trials, seed, readings=readings)
+    return experiment.make_trials(trials, seed)
+
+
+def _useful(workers: int, trials: int) -> int:
+    """The workers worth starting for ``trials`` trials: no more than there are trials."""
+    return max(1, min(workers, trials))
+
+
 def _run(
     experiment: Experiment,
     executor: Executor,
-    trials: int,
+    specs: Sequence[Trial],
     seed: int,
     output: Path | None,
     progress: bool,
@@ -280,11 +299,6 @@ def _run(
 ) -> RunResult:
     started_at = datetime.now(UTC)
     started = time.perf_counter()
-    specs = (
-        experiment.make_trials(trials, seed, readings=readings)
-        if experiment.readings
-        else experiment.make_trials(trials, seed)
-    )
     with progress_bar(experiment.name, len(specs), enabled=progress) as advance:
         returned = executor.map(experiment.run_trial, specs, advance)
     for index, result in enumerate(returned):
