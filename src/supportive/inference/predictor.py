@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from typing import Any, Self
 
 import numpy as np
+import numpy.typing as npt
 
 from supportive.errors import LearningError
 from supportive.estimator import Estimator
@@ -244,7 +245,7 @@ class StepPredictor(Estimator):
                 hmm = self._hmm(htn, float(smoothing))
                 for actions in held:
                     model, back, lost = _truth_probabilities(hmm.filter(), bigram, actions)
-                    weight = (1.0 - lost)[:, None, None] * on[None, :, None] + lost[:, None, None] * off[None, None, :]
+                    weight = _weight(on[None, :, None], off[None, None, :], lost[:, None, None])
                     mixed = model[:, None, None] + weight * (back - model)[:, None, None]
                     totals[row] += np.log2(np.maximum(mixed, 1e-300)).sum(axis=0)
                     if row == 0:
@@ -273,13 +274,16 @@ class PredictionSession:
     def next_step(self) -> dict[str, float]:
         """Probability of each action id being done next, and of ``"<end>"``; sums to one."""
         last = self.tracker.last
-        weight = _weight(self.backoff, self.off_script_backoff, last.off_script)
+        weight = float(_weight(self.backoff, self.off_script_backoff, last.off_script))
         return _mixed(last.next_actions, self.bigram.next_step(self.prefix), weight)
 
 
-def _weight(backoff: float, off_script_backoff: float, off_script: float) -> float:
-    """The back-off's weight when the last step was off script with probability ``off_script``."""
-    return (1.0 - off_script) * backoff + off_script * off_script_backoff
+def _weight(backoff: npt.ArrayLike, off_script_backoff: npt.ArrayLike, off_script: npt.ArrayLike) -> np.ndarray:
+    """The back-off's weight when the last step was off script with probability ``off_script`` (numbers, or
+    arrays that broadcast: the whole grid of the cross-validation at once)."""
+    lost = np.asarray(off_script, dtype=float)
+    weight: np.ndarray = (1.0 - lost) * np.asarray(backoff, dtype=float) + lost * np.asarray(off_script_backoff, dtype=float)
+    return weight
 
 
 def _mixed(model: dict[str, float], back: dict[str, float], weight: float) -> dict[str, float]:

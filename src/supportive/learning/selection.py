@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import statistics
 from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -262,11 +263,9 @@ def _gap(candidate: Sequence[float], best: Sequence[float]) -> tuple[float, floa
     """How much better ``best`` predicted the held-out demonstrations than ``candidate`` (the mean of their
     differences, demonstration by demonstration, in nats) and the standard error of that mean (0 for one)."""
     differences = [b - c for b, c in zip(best, candidate, strict=True)]
-    n = len(differences)
-    mean = sum(differences) / n
-    if n < 2:
-        return mean, 0.0
-    return mean, math.sqrt(sum((d - mean) ** 2 for d in differences) / (n - 1) / n)
+    if len(differences) < 2:
+        return statistics.fmean(differences), 0.0
+    return statistics.fmean(differences), statistics.stdev(differences) / math.sqrt(len(differences))
 
 
 def _within_one_error(candidate: Sequence[float], best: Sequence[float]) -> bool:
