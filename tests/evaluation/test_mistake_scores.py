@@ -1,18 +1,23 @@
 """Mistake detection scored leaving one demonstration out (evaluation/mistakes.py): the counts, worked by hand
-on a small labelled task, and the two baselines."""
+on a small labelled task, the two baselines, and the reference scored on the task's true orders."""
 
 from __future__ import annotations
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from supportive.errors import TaskFileError
 from supportive.evaluation.mistakes import (
     DETECTOR,
     METHODS,
+    REFERENCE,
     MethodScores,
     MistakeEvaluation,
+    _true_precondition,
     evaluate_mistakes,
 )
+from supportive.tasks.htn import Leaf
 from supportive.tasks.spec import Demonstration, Step, TaskSpec
 
 CLEAN = [["boil", "cup", "teabag", "pour", "steep", "serve"], ["cup", "boil", "teabag", "pour", "steep", "serve"]] * 4
@@ -58,6 +63,56 @@ def test_the_baselines_are_scored_alike(scored: MistakeEvaluation) -> None:
     assert pre.found == 2  # the repeat is not a missing precondition
     assert bigram.found == 3  # pour after cup, serve after pour, steep after steep: none seen in training
     assert set(scored.as_dict()["methods"]) == set(METHODS)  # type: ignore[call-overload]
+
+
+TEA_RULES = {(("boil", 1), ("pour", 1)), (("cup", 1), ("teabag", 1)), (("teabag", 1), ("pour", 1)),
+             (("pour", 1), ("steep", 1)), (("steep", 1), ("serve", 1))}
+"""The tea's true orders: the water boiled and the teabag in the cup before pouring, steeping, serving."""
+
+
+def test_the_true_orders_are_scored_beside_the_methods_as_the_reference(scored: MistakeEvaluation) -> None:
+    """The early pour (teabag not in) is flagged and names the teabag; the skipped steep is named at the serve;
+    the second steep needs nothing the first did not: the reference finds two of the three, flags nothing
+    else. It learns nothing, so it is the same learned from the correct demonstrations."""
+    known = evaluate_mistakes(_tea(), thresholds=(0.5, 0.99), truth=TEA_RULES)
+    reference = known.method(REFERENCE)
+    assert (reference.positives, reference.found, reference.flagged, reference.right) == (3, 2, 2, 2)
+    assert reference.clean_flagged == 0 and reference.invisible_flagged == 0
+    assert list(known.as_dict()["methods"]) == [*METHODS, REFERENCE]  # type: ignore[call-overload]
+    for name in METHODS:  # the methods' own scores do not depend on it
+        assert known.method(name).as_dict() == scored.method(name).as_dict()
+    correct = evaluate_mistakes(_tea(), learn_from="correct", truth=TEA_RULES).method(REFERENCE)
+    assert correct.as_dict() == reference.as_dict()
+    total = MistakeEvaluation("both", scored.thresholds)
+    total.merge(scored)
+    total.merge(known)
+    assert total.method(REFERENCE).found == 2 and total.held_out == 24
+
+
+def test_true_orders_naming_an_action_the_task_lacks_are_refused() -> None:
+    with pytest.raises(TaskFileError, match="the true orders name 'kettle', an action the task does not have"):
+        evaluate_mistakes(_tea(), truth={(("kettle", 1), ("pour", 1))})
+
+
+@given(
+    st.lists(st.tuples(st.integers(0, 3), st.integers(1, 2), st.integers(0, 3), st.integers(1, 2)), max_size=6),
+    st.lists(st.integers(0, 3), min_size=1, max_size=8),
+)
+def test_the_reference_flags_a_step_exactly_when_a_step_it_truly_needs_is_not_done_yet(
+    rules: list[tuple[int, int, int, int]], sequence: list[int]
+) -> None:
+    """Against positions: a step is flagged when some rule puts a leaf ``(a, k)`` before its own leaf and the
+    ``k``-th ``a`` is not among the steps before it; the flag names those actions."""
+    actions = ["a", "b", "c", "d"]
+    truth: set[tuple[Leaf, Leaf]] = {((actions[x], i), (actions[y], j)) for x, i, y, j in rules if (x, i) != (y, j)}
+    demo = Demonstration.from_entries([Step(actions[n]) for n in sequence], "d")
+    spec = TaskSpec("t", (), None, (demo, Demonstration.from_entries([Step(a) for a in actions], "every")))
+    flags = _true_precondition(truth, spec)(demo)
+    assert len(flags) == len(sequence) + 1 and flags[-1] == (False, None, ())
+    for position, action in enumerate(demo.actions):
+        occurrence = demo.actions[: position + 1].count(action)
+        unmet = [a for (a, k), then in sorted(truth) if then == (action, occurrence) and demo.actions[:position].count(a) < k]
+        assert flags[position] == (bool(unmet), "order", tuple(dict.fromkeys(unmet)))
 
 
 def test_scores_merge_across_tasks(scored: MistakeEvaluation) -> None:

@@ -411,7 +411,12 @@ def _captaincook_mistakes(data: Path | None, given: float | None, learn_from: st
         for recipe in recipes:
             total.merge(
                 evaluate_mistakes(
-                    recipe.spec, thresholds=(threshold,), positives=POSITIVES, learn_from=learn_from, progress=advance
+                    recipe.spec,
+                    thresholds=(threshold,),
+                    positives=POSITIVES,
+                    learn_from=learn_from,
+                    truth=recipe.published,
+                    progress=advance,
                 )
             )
     extra = {"positives": list(POSITIVES), "recipes": len(recipes)}

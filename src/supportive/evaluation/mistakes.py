@@ -15,6 +15,11 @@ mistake-detection`` follow). The baselines are:
 * **unseen bigram**: a step is a mistake when no training demonstration goes from the previous step (or the
   start) to it.
 
+When the task's true orders are known (``truth``: CaptainCook4D's published task graphs), a reference is
+scored beside them, **published graph**: the precondition check on those orders, learned from nothing. It is
+not a baseline (no robot knows them) but the ceiling of the labelling: how well a detector that knew every
+rule of the task, and flagged each step done before a step it needs, would score against the labels.
+
 What counts (the labels of the task file, ``Step.mistake`` and ``Demonstration.skipped``):
 
 * a **positive** is a performed step labelled with one of ``positives`` (by default ``order``, ``repeated``,
@@ -37,7 +42,8 @@ steps flagged in demonstrations that carry no label at all.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Mapping, Sequence
+from collections import Counter
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -46,6 +52,7 @@ from supportive.inference.bigram import END, START
 from supportive.inference.mistakes import MistakeDetector, StepVerdict
 from supportive.inference.tracker import ProgressHMM
 from supportive.learning.learner import HTNLearner
+from supportive.tasks.htn import Leaf
 from supportive.tasks.spec import Demonstration, TaskSpec
 
 __all__ = [
@@ -53,6 +60,7 @@ __all__ = [
     "KIND_HEADERS",
     "LEARN_FROM",
     "METHODS",
+    "REFERENCE",
     "VISIBLE",
     "MethodScores",
     "MistakeEvaluation",
@@ -68,6 +76,8 @@ step sequence can show."""
 DETECTOR = "progress-aware"
 METHODS = (DETECTOR, "precondition", "unseen bigram")
 """The methods compared, the detector first."""
+REFERENCE = "published graph"
+"""The reference scored when the task's true orders are given (:func:`evaluate_mistakes`'s ``truth``)."""
 VISIBLE = ("order", "missing", "repeated", "unknown", "true")
 """Labels a step sequence can show (``true``: a mistake of unknown kind)."""
 _KIND_OF_LABEL = {"out-of-order": "order", "missing": "missing", "repeated": "repeated", "unknown-step": "unknown"}
@@ -156,7 +166,8 @@ class MistakeEvaluation:
             self.detector.setdefault(threshold, MethodScores())
 
     def merge(self, other: MistakeEvaluation) -> None:
-        """Add another task's held-out demonstrations and counts (same thresholds) to these."""
+        """Add another task's held-out demonstrations and counts (same thresholds) to these (the reference's
+        too, when either has it)."""
         if other.thresholds != self.thresholds:
             raise TaskFileError("evaluations at different thresholds cannot be merged")
         if other.learned_from != self.learned_from:
@@ -164,7 +175,7 @@ class MistakeEvaluation:
         self.held_out += other.held_out
         self.steps += other.steps
         for name, scores in other.methods.items():
-            self.methods[name].merge(scores)
+            self.methods.setdefault(name, MethodScores()).merge(scores)
         for threshold, scores in other.detector.items():
             self.detector[threshold].merge(scores)
 
@@ -180,7 +191,7 @@ class MistakeEvaluation:
             "learned_from": self.learned_from,
             "held_out": self.held_out,
             "steps": self.steps,
-            "methods": {name: self.method(name).as_dict() for name in METHODS},
+            "methods": {name: self.method(name).as_dict() for name in (DETECTOR, *self.methods)},
             "thresholds": {str(t): scores.as_dict() for t, scores in self.detector.items()},
         }
 
@@ -192,6 +203,7 @@ def evaluate_mistakes(
     positives: Sequence[str] = VISIBLE,
     settings: Mapping[str, Any] | None = None,
     learn_from: str = "all",
+    truth: Collection[tuple[Leaf, Leaf]] | None = None,
     progress: Callable[[], None] | None = None,
 ) -> MistakeEvaluation:
     """Leave each demonstration out in turn and score every method's flags on it (see the module docstring).
@@ -206,11 +218,14 @@ def evaluate_mistakes(
             reading) and :class:`~supportive.inference.tracker.ProgressHMM` ones (``smoothing``, ``slip``).
         learn_from: ``all`` (every other demonstration) or ``correct`` (the others with no label a step sequence
             can show); see the module docstring.
+        truth: The task's true orders, when known: pairs ``(a, b)`` of leaves ``(action, occurrence)``, ``a``
+            a step ``b`` needs done first; the :data:`REFERENCE` is then scored on them.
         progress: Called once per held-out demonstration.
 
     Raises:
         TaskFileError: when no demonstration carries a label, or there are fewer than two; with ``correct``,
-            when fewer than two demonstrations are correct (a fold would learn from none).
+            when fewer than two demonstrations are correct (a fold would learn from none); when ``truth``
+            names an action the task does not have.
     """
     demos = list(spec.demonstrations)
     if len(demos) < 2:
@@ -228,6 +243,9 @@ def evaluate_mistakes(
             f"{sum(correct)} of the {len(demos)} show no skipped step and no mistake a step sequence can show"
         )
     result = MistakeEvaluation(spec.name, tuple(thresholds), learn_from)
+    reference = None if truth is None else _true_precondition(truth, spec)
+    if reference is not None:
+        result.methods[REFERENCE] = MethodScores()
     wanted = frozenset(positives)
     for held in range(len(demos)):
         training = [d for i, d in enumerate(demos) if i != held and (learn_from == "all" or correct[i])]
@@ -239,6 +257,8 @@ def evaluate_mistakes(
             _score(demo, _detector(MistakeDetector(hmm, threshold=threshold))(demo), scores, wanted)
         _score(demo, _precondition([d.actions for d in training])(demo), result.methods["precondition"], wanted)
         _score(demo, _unseen_bigram([d.actions for d in training])(demo), result.methods["unseen bigram"], wanted)
+        if reference is not None:
+            _score(demo, reference(demo), result.methods[REFERENCE], wanted)
         if progress is not None:
             progress()
     return result
@@ -279,19 +299,37 @@ def _precondition(training: Sequence[Sequence[str]]) -> Callable[[Demonstration]
     """Flag a step when a step that precedes it in every training demonstration doing both (and that every
     training demonstration doing it does) is not done."""
     actions = sorted({a for demo in training for a in demo})
-    needs: dict[str, list[str]] = {a: [] for a in actions}
+    needs: dict[str, list[Leaf]] = {a: [] for a in actions}
     for a, b in itertools.permutations(actions, 2):
         doing_b = [d for d in training if b in d]
         if doing_b and all(a in d and d.index(a) < d.index(b) for d in doing_b):
-            needs[b].append(a)
+            needs[b].append((a, 1))
+    return _preconditions_checked(lambda action, _: needs.get(action, ()))
+
+
+def _true_precondition(truth: Collection[tuple[Leaf, Leaf]], spec: TaskSpec) -> Callable[[Demonstration], list[Flag]]:
+    """The :data:`REFERENCE`: flag a step when a step it needs by ``truth`` is not done (as often)."""
+    known = set(spec.action_ids())
+    needs: dict[Leaf, list[Leaf]] = {}
+    for first, then in sorted(truth):
+        for leaf in (first, then):
+            if leaf[0] not in known:
+                raise TaskFileError(f"the true orders name {leaf[0]!r}, an action the task does not have")
+        needs.setdefault(then, []).append(first)
+    return _preconditions_checked(lambda action, occurrence: needs.get((action, occurrence), ()))
+
+
+def _preconditions_checked(needs: Callable[[str, int], Sequence[Leaf]]) -> Callable[[Demonstration], list[Flag]]:
+    """Flag a step (its action and how many times it was done, with it) when a leaf ``needs`` gives it was not
+    done yet (its action done fewer times than its occurrence), naming those leaves' actions."""
 
     def judge(demo: Demonstration) -> list[Flag]:
-        done: set[str] = set()
+        done: Counter[str] = Counter()
         flags: list[Flag] = []
         for action in demo.actions:
-            unmet = tuple(a for a in needs.get(action, ()) if a not in done)
+            done[action] += 1
+            unmet = tuple(dict.fromkeys(a for a, k in needs(action, done[action]) if done[a] < k))
             flags.append((bool(unmet), "order", unmet))
-            done.add(action)
         flags.append((False, None, ()))
         return flags
 

@@ -10,6 +10,7 @@ from supportive.errors import TaskFileError
 from supportive.evaluation.mistakes import (
     DETECTOR,
     METHODS,
+    REFERENCE,
     MethodScores,
     MistakeEvaluation,
     detection_model,
@@ -70,14 +71,16 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
 def run_trial(trial: Trial) -> dict[str, Any]:
     """One generated task at every threshold, or one recipe left one recording out: each fold learned from all
     the other recordings (``sums``), and from the correct ones among them (``sums_correct``; None when the
-    recipe has fewer than two)."""
+    recipe has fewer than two); the recipe's published graph scored beside them (:data:`REFERENCE`)."""
     if trial.params["kind"] == "generated":
         return {"index": trial.index, "kind": "generated", **_generated(trial)}
     recipe = load_captaincook(errors=True)[int(trial.params["recipe"])]
-    evaluation = evaluate_mistakes(recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES)
+    evaluation = evaluate_mistakes(recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES, truth=recipe.published)
     try:
         correct: dict[str, Any] | None = _sums(
-            evaluate_mistakes(recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES, learn_from="correct")
+            evaluate_mistakes(
+                recipe.spec, thresholds=THRESHOLDS, positives=POSITIVES, learn_from="correct", truth=recipe.published
+            )
         )
     except TaskFileError:  # the only refusal left once the run above passed: fewer than two correct recordings
         correct = None
@@ -92,9 +95,9 @@ def run_trial(trial: Trial) -> dict[str, Any]:
 
 
 def _sums(evaluation: MistakeEvaluation) -> dict[str, Any]:
-    """The counts of the detector at each threshold and of each baseline, as plain data."""
+    """The counts of the detector at each threshold and of each baseline (and the reference), as plain data."""
     sums = {str(t): vars(scores) for t, scores in evaluation.detector.items()}
-    return sums | {name: vars(evaluation.methods[name]) for name in METHODS[1:]}
+    return sums | {name: vars(scores) for name, scores in evaluation.methods.items()}
 
 
 def _generated(trial: Trial) -> dict[str, Any]:
@@ -191,11 +194,12 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
 
 
 def _methods(sums: Sequence[Mapping[str, Any]], at: str) -> dict[str, Any]:
-    """The recipes' counts summed: every method's scores (the detector at threshold ``at``) and the
-    detector's curve over the thresholds."""
-    summed = {name: _summed([row[name] for row in sums]) for name in (*(str(t) for t in THRESHOLDS), *METHODS[1:])}
+    """The recipes' counts summed: every method's scores (the detector at threshold ``at``; the reference
+    last, when the recipes have it) and the detector's curve over the thresholds."""
+    others = [*METHODS[1:], *([REFERENCE] if all(REFERENCE in row for row in sums) else [])]
+    summed = {name: _summed([row[name] for row in sums]) for name in (*(str(t) for t in THRESHOLDS), *others)}
     return {
-        "methods": {DETECTOR: summed[at].as_dict(), **{n: summed[n].as_dict() for n in METHODS[1:]}},
+        "methods": {DETECTOR: summed[at].as_dict(), **{n: summed[n].as_dict() for n in others}},
         "curve": {str(t): summed[str(t)].as_dict() for t in THRESHOLDS},
     }
 
