@@ -243,9 +243,29 @@ def test_synthetic_mistake_labels(tiny: Path) -> None:
     assert [s.mistake for s in demos["9_3!"].steps] == [None, "order", "measurement", None, None]
     four = demos["9_4!"]
     assert four.actions == (stir, chop, boil)  # skipped steps left out, as before labels
-    assert four.skipped == ((1, boil),)  # the untagged skipped Stir (an optional step) leaves no placeholder
+    # the untagged skipped Stir (an optional step) leaves no placeholder; the missing Boil, listed after the first
+    # Stir, is placed before it: the published graph puts every Stir after the first Boil
+    assert four.skipped == ((0, boil),)
     assert [s.mistake for s in four.steps] == [None, "other", "preparation"]  # Missing Step on a timed step set aside
     assert [d.id for d in load_captaincook(tiny)[0].spec.demonstrations] == ["9_1", "9_2"]
+
+
+def test_a_skipped_step_is_placed_where_the_person_moved_past_it(tiny: Path) -> None:
+    """The annotations list a skipped step where the annotator wrote it, most often after every performed step:
+    it is placed before the first performed step the published graph puts after it, else at the end."""
+    path = tiny / "annotation_json" / "complete_step_annotations.json"
+    steps = json.loads(path.read_text())
+    listed = steps["9_4"]["steps"]  # Stir, Boil, Chop, Stir, Boil: the Chop and the last Boil skipped, listed last
+    steps["9_4"]["steps"] = [listed[0], listed[1], listed[3], listed[2], listed[4]]
+    path.write_text(json.dumps(steps))
+    _skip(tiny, "9_4", 3, 4)
+    _label_errors(tiny, {"9_4": {3: ["Missing Step"], 4: ["Missing Step"]}})
+    (recipe,) = load_captaincook(tiny, errors=True)
+    ids = {a.text: a.id for a in recipe.spec.actions}
+    four = {d.id: d for d in recipe.spec.demonstrations}["9_4!"]
+    assert four.actions == (ids["Stir-Stir it"], ids["Boil-Boil water"], ids["Stir-Stir it"])
+    # the Chop and the second Boil (listed last) are both needed by the second Stir, performed third
+    assert four.skipped == ((2, ids["Chop-Chop 1 onion"]), (2, ids["Boil-Boil water"]))
 
 
 @pytest.mark.parametrize(
@@ -291,3 +311,30 @@ def test_real_mistake_labels(root: Path) -> None:
             performed = [s["start_time"] for s in steps[demo.id[:-1]]["steps"] if s["start_time"] >= 0]
             assert [s.start for s in demo.steps] == performed
     assert not any(d.labelled for r in load_captaincook(root) for d in r.spec.demonstrations)
+
+
+def test_real_skipped_steps_sit_before_the_first_step_the_graph_puts_after_them(root: Path) -> None:
+    """Each step of the listing is the leaf of its action and how many listed steps so far have it (the
+    annotator lists a skipped step where it was missed, or at the end); a skipped one sits before the first
+    performed step whose leaf the published graph puts after its leaf, else at the end."""
+    listings = json.loads((root / "annotation_json" / "complete_step_annotations.json").read_text())
+    places: Counter[str] = Counter()
+    for recipe in load_captaincook(root, errors=True):
+        ids = {a.text: a.id for a in recipe.spec.actions}
+        for demo in recipe.spec.demonstrations:
+            if not demo.skipped:
+                continue
+            listed: Counter[str] = Counter()
+            leaves = []  # (leaf, performed?) in the listed order
+            for entry in listings[demo.id[:-1]]["steps"]:
+                listed[ids[entry["description"]]] += 1
+                leaves.append(((ids[entry["description"]], listed[ids[entry["description"]]]), entry["start_time"] >= 0))
+            performed = [leaf for leaf, done in leaves if done]
+            expected = []
+            for leaf, done in leaves:
+                if not done and leaf[0] in {action for _, action in demo.skipped}:
+                    after = {b for a, b in recipe.published if a == leaf}
+                    expected.append((next((i for i, p in enumerate(performed) if p in after), len(performed)), leaf[0]))
+            assert demo.skipped == tuple(sorted(expected, key=lambda e: e[0])), demo.id
+            places.update("at the end" if p == len(performed) else "inside" for p, _ in demo.skipped)
+    assert places == Counter({"inside": 237, "at the end": 44})

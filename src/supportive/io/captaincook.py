@@ -14,7 +14,10 @@ by the graph itself). Steps are kept in the order the annotation lists them, whi
 Mistake labels (:data:`~supportive.tasks.spec.MISTAKE_LABELS`) come from ``error_annotations.json``: each
 recording's ``step_annotations[k].errors[*].tag`` belongs to the k-th step of the recording. On the recordings
 with errors (``errors=True``), a step tagged "Missing Step" that was skipped (start time -1) becomes a
-placeholder in :attr:`~supportive.tasks.spec.Demonstration.skipped` at its place in the list; a performed step
+placeholder in :attr:`~supportive.tasks.spec.Demonstration.skipped`, placed where the person moved past it:
+before the first performed step the published graph puts after it, or at the end when none is performed. (The
+annotations give a skipped step no time and list it where the annotator wrote it — 242 of the 281 after every
+performed step, where no verdict but the last could name it at its place.) A performed step
 takes ``order`` when one of its tags is "Order Error" (the kind visible in the sequence of steps wins), else its
 first tag (``technique``, ``measurement``, ``timing``, ``temperature``, ``preparation``, ``other``). A few steps
 are tagged "Missing Step" yet have times: they stay performed steps, as every step with times does, the tag set
@@ -267,13 +270,16 @@ def _recipe(root: Path, title: str, recordings: Sequence[Mapping[str, Any]], err
         leaf_of[node] = (ids[texts[node]], seen[texts[node]])
     expected = Counter(texts.values())
     demos = tuple(_demonstration(rec, ids, expected, path) for rec in recordings if rec["clean"])
-    if errors:
-        demos += tuple(_erroneous(rec, ids) for rec in recordings if not rec["clean"])
-    actions = tuple(dict.fromkeys(Action(action_id, text) for text, action_id in ids.items()))
-    spec = TaskSpec(name=slug, actions=actions, demonstrations=demos)
     published = frozenset(
         (leaf_of[a], leaf_of[b]) for a, after in _closure(order, edges).items() for b in after
     )
+    if errors:
+        later: defaultdict[Leaf, set[Leaf]] = defaultdict(set)
+        for first, then in published:
+            later[first].add(then)
+        demos += tuple(_erroneous(rec, ids, later) for rec in recordings if not rec["clean"])
+    actions = tuple(dict.fromkeys(Action(action_id, text) for text, action_id in ids.items()))
+    spec = TaskSpec(name=slug, actions=actions, demonstrations=demos)
     named: dict[str, Leaf | str] = {k: v for k, v in nodes.items() if v in _TERMINALS} | leaf_of
     graph_edges = frozenset((named[a], named[b]) for a, b in all_edges)
     return Recipe(name=slug, title=title, spec=spec, published=published, graph_edges=graph_edges)
@@ -347,21 +353,34 @@ def _demonstration(
     return Demonstration(steps=steps, id=rec["recording_id"], agent=f"person_{rec['person_id']}")
 
 
-def _erroneous(rec: Mapping[str, Any], ids: dict[str, str]) -> Demonstration:
-    """A recording with errors as it was performed, labelled: skipped steps left out (those tagged missing as
-    placeholders), the rest in the order listed; a step whose text is not in the graph gets an id of its own
-    (``off_graph_…``, added to ``ids``)."""
-    entries = []
+def _erroneous(rec: Mapping[str, Any], ids: dict[str, str], later: Mapping[Leaf, set[Leaf]]) -> Demonstration:
+    """A recording with errors as it was performed, labelled: the performed steps in the order listed; skipped
+    steps left out, those tagged missing as placeholders before the first performed step that ``later`` (the
+    leaves the published graph puts after each leaf) names for them, else at the end; a step whose text is not
+    in the graph gets an id of its own (``off_graph_…``, added to ``ids``). A step is the leaf of its action
+    and how many of the listed steps so far (itself included) have that action."""
+    performed: list[tuple[Leaf, Step]] = []
+    skipped: list[Leaf] = []
+    listed: Counter[str] = Counter()
     for s in rec["steps"]:
         if s["skipped"] and "missing" not in s["tags"]:
             continue
         text = s["description"]
         if text not in ids:
             ids[text] = "off_graph_" + "_".join(_words(text)[:_SLUG_WORDS])
+        action = ids[text]
+        listed[action] += 1
         if s["skipped"]:
-            entries.append(Step(ids[text], mistake="missing"))
+            skipped.append((action, listed[action]))
         else:
-            entries.append(Step(ids[text], start=s["start"], end=s["end"], mistake=_label(s["tags"])))
+            step = Step(action, start=s["start"], end=s["end"], mistake=_label(s["tags"]))
+            performed.append(((action, listed[action]), step))
+    places: defaultdict[int, list[Step]] = defaultdict(list)
+    for leaf in skipped:
+        after = later.get(leaf, set())
+        place = next((i for i, (done, _) in enumerate(performed) if done in after), len(performed))
+        places[place].append(Step(leaf[0], mistake="missing"))
+    entries = [e for i, (_, step) in enumerate(performed) for e in (*places[i], step)] + places[len(performed)]
     return Demonstration.from_entries(entries, id=f"{rec['recording_id']}!", agent=f"person_{rec['person_id']}")
 
 
