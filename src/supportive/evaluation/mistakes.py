@@ -17,8 +17,8 @@ mistake-detection`` follow). The baselines are:
 
 When the task's true orders are known (``truth``: CaptainCook4D's published task graphs), a reference is
 scored beside them, **published graph**: the precondition check on those orders, learned from nothing. It is
-not a baseline (no robot knows them) but the ceiling of the labelling: how well a detector that knew every
-rule of the task, and flagged each step done before a step it needs, would score against the labels.
+not a baseline (no robot knows them) but a reference for the labels: how a detector that knew every rule of
+the task, and flagged each step done before a step it needs, would score against them.
 
 What counts (the labels of the task file, ``Step.mistake`` and ``Demonstration.skipped``):
 
