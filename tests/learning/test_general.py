@@ -14,7 +14,7 @@ from supportive.io.htn_json import htn_from_dict, htn_to_dict
 from supportive.learning import HTNLearner
 from supportive.learning.general.evidence import contiguity_chance, established_precedences, pair_counts
 from supportive.learning.general.labelling import label_performances
-from supportive.learning.general.top_order import precedence_top_level, seen_top_level
+from supportive.learning.general.top_order import _enumerated, precedence_top_level, seen_top_level
 from supportive.tasks.htn import (
     HTN,
     ActionNode,
@@ -216,6 +216,21 @@ def test_top_level_falls_back_to_the_orders_seen_exactly_beyond_its_state_limit(
     limit = max(1, states + offset)  # about as many states as there are: the boundary
     limited = precedence_top_level(roots, sequences, required, order_support=3, max_states=limit)
     assert limited == (seen_top_level(roots, sequences) if states > limit else unlimited)
+
+
+@given(st.lists(st.permutations(list("abcdef")), min_size=1, max_size=6), st.sets(st.sampled_from("abcdef")))
+def test_a_top_level_asked_for_again_is_the_one_enumerated_afresh(orders: list[list[str]], optional: set[str]) -> None:
+    """The enumerations kept for constraints asked again (the slip search asks for the same ones again and
+    again) are what enumerating afresh gives, state numbers included; asked again, the same is returned."""
+    sequences = [[ord(x) - 97 for x in o if not (x in optional and i % 2)] for i, o in enumerate(orders)]
+    roots = sorted({x for s in sequences for x in s})
+    required = frozenset(r for r in roots if all(r in s for s in sequences))
+    first = precedence_top_level(roots, sequences, required, order_support=2)
+    again = precedence_top_level(list(roots), [list(s) for s in sequences], required, order_support=2)
+    assert again == first and again.edges is first.edges
+    _enumerated.cache_clear()
+    fresh = precedence_top_level(roots, sequences, required, order_support=2)
+    assert (fresh.initial, fresh.terminal, fresh.edges, fresh.free) == (first.initial, first.terminal, first.edges, first.free)
 
 
 def test_evidence_for_orders_and_subtasks() -> None:

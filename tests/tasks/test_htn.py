@@ -116,6 +116,22 @@ def test_cc_htn_never_needs_more_edges_than_the_flat_model(n: int, seed: int, pr
         assert edges < flat
 
 
+@given(
+    st.lists(st.tuples(st.integers(0, 4), st.integers(0, 3), st.integers(0, 4)), max_size=8),
+    st.lists(st.integers(0, 4), max_size=3),
+)
+def test_top_levels_equal_as_languages_hash_alike_whatever_their_counts(
+    edges: list[tuple[int, int, int]], terminal: list[int]
+) -> None:
+    """The hash is worked out once, from the fields compared (initial, terminal, edges): equal top levels
+    hash equal, the counts and the free roots (not compared) play no part."""
+    top = TopLevel(initial=(0,), terminal=tuple(terminal), edges=tuple(edges))
+    other = TopLevel(initial=(0,), terminal=tuple(terminal), edges=tuple(list(edges)), free=frozenset({0}))
+    assert top == other and hash(top) == hash(other) == hash(((0,), tuple(terminal), tuple(edges)))
+    assert {top: 1}[other] == 1
+    assert (TopLevel((0,), tuple(terminal), (*edges, (9, 0, 9))) == top) is False
+
+
 def test_partial_htn_admits_through_its_top_level() -> None:
     top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)))
     htn = HTN("t", (ChainNode((A, B)), C), top)

@@ -116,6 +116,9 @@ class Executions:
         free = htn.top_level.free if htn.top_level is not None else frozenset()
         self._fewest_skips = all(r in free for r, node in enumerate(self.root_nodes) if self.nullables[node])
         self._several_out: dict[int, dict[int, int]] = {}
+        self._several_end: dict[int, bool] = {}
+        self._closures: dict[int, tuple[int, ...]] = {}
+        self._begins: dict[tuple[int, bool], tuple[tuple[tuple[int, int, int], ...], bool]] = {}
         self._by_action: dict[str, tuple[int, ...]] = {}
         for i, (action, _) in enumerate(self.leaves):
             self._by_action[action] = (*self._by_action.get(action, ()), i)
@@ -197,7 +200,7 @@ class Executions:
         firsts = self.firsts_symmetric if symmetric else self.firsts
         moves: dict[int, Progress] = {}
         if state.last < 0:
-            return self._starts_from(state.top, 0, firsts, moves)
+            return self._starts_from(state.top, 0, symmetric, moves)
         within: list[int] = []
         can_end = True
         node = self.leaf_nodes[state.last]
@@ -230,26 +233,44 @@ class Executions:
         after = self.top_successors(state.top).get(root)
         if after is None:
             return moves, False
-        return self._starts_from(after, state.done, firsts, moves)
+        return self._starts_from(after, state.done, symmetric, moves)
 
     def _starts_from(
-        self, top: int, done: int, firsts: list[tuple[int, ...]], moves: dict[int, Progress]
+        self, top: int, done: int, symmetric: bool, moves: dict[int, Progress]
     ) -> tuple[dict[int, Progress], bool]:
-        """Add to ``moves`` the leaves that begin a root from top-level state ``top`` (or from a state that
-        skipping roots that may be performed as nothing leads to); and say whether the task may end there."""
+        """Add to ``moves`` the leaves that begin a root not yet begun (in ``done``) from top-level state
+        ``top`` (or from a state that skipping roots that may be performed as nothing leads to); and say
+        whether the task may end there."""
+        begins, can_end = self._begins_from(top, symmetric)
+        for root_mask, leaf, begun in begins:
+            if not done & root_mask:
+                moves.setdefault(leaf, Progress(begun, done | 1 << leaf, leaf))
+        return moves, can_end
+
+    def _begins_from(self, top: int, symmetric: bool) -> tuple[tuple[tuple[int, int, int], ...], bool]:
+        """For top-level state ``top`` (worked out once): each leaf that may begin a root from it or from a
+        state skipping leads to, as ``(the root's leaves as bits, leaf, the state the root begins in)``, in
+        the order found; and whether the task may end there."""
+        key = (top, symmetric)
+        cached = self._begins.get(key)
+        if cached is not None:
+            return cached
+        firsts = self.firsts_symmetric if symmetric else self.firsts
         can_end = False
         begun: dict[int, list[int]] = {}  # leaf -> the states it may begin its root from, fewest skips first
         for state in self.skip_closure(top):
             can_end |= self.top_ends(state)
             for nxt in self.top_successors(state):
-                if done & self.masks[self.root_nodes[nxt]]:
-                    continue
                 for leaf in firsts[self.root_nodes[nxt]]:
                     begun.setdefault(leaf, []).append(state)
+        begins = []
         for leaf, states in begun.items():
-            begins = states[0] if self._fewest_skips else self._begun_in(states, self.root_of_leaf[leaf])
-            moves.setdefault(leaf, Progress(begins, done | 1 << leaf, leaf))
-        return moves, can_end
+            root = self.root_of_leaf[leaf]
+            begins.append(
+                (self.masks[self.root_nodes[root]], leaf, states[0] if self._fewest_skips else self._begun_in(states, root))
+            )
+        cached = self._begins[key] = (tuple(begins), can_end)
+        return cached
 
     def _begun_in(self, states: Iterable[int], root: int) -> int:
         """The top-level state standing for those of ``states`` (of the states they stand for) that ``root``
@@ -258,15 +279,20 @@ class Executions:
             real for state in states for real in _real(state) if root in self.top_out.get(real, {})
         )
 
-    def skip_closure(self, top: int) -> list[int]:
+    def skip_closure(self, top: int) -> tuple[int, ...]:
         """``top`` and the top-level states reached from it by skipping roots that may be performed as
-        nothing, breadth first: fewer skips first."""
-        seen = [top]
-        for state in seen:  # grows as it goes: a queue
-            for root, dst in self.top_successors(state).items():
-                if self.nullables[self.root_nodes[root]] and dst not in seen:
-                    seen.append(dst)
-        return seen
+        nothing, breadth first: fewer skips first (worked out once per state)."""
+        closure = self._closures.get(top)
+        if closure is None:
+            order = [top]
+            seen = {top}
+            for state in order:  # grows as it goes: a queue
+                for root, dst in self.top_successors(state).items():
+                    if self.nullables[self.root_nodes[root]] and dst not in seen:
+                        seen.add(dst)
+                        order.append(dst)
+            closure = self._closures[top] = tuple(order)
+        return closure
 
     def top_successors(self, top: int) -> dict[int, int]:
         """``root -> state`` of the top-level edges out of ``top``: a state of the top level, or one standing
@@ -286,7 +312,12 @@ class Executions:
     def top_ends(self, top: int) -> bool:
         """Whether the task may end in top-level state ``top`` (one standing for several: when any of them
         may)."""
-        return any(member in self.top_terminal for member in _real(top))
+        if top >= 0:
+            return top in self.top_terminal
+        ends = self._several_end.get(top)
+        if ends is None:
+            ends = self._several_end[top] = any(member in self.top_terminal for member in _real(top))
+        return ends
 
     # ------------------------------------------------------------------ runs
     def advance(self, states: Iterable[Progress], step: Step) -> tuple[Progress, ...]:
@@ -433,9 +464,8 @@ def _real(top: int) -> Iterable[int]:
 
 
 def _bits(mask: int) -> Iterable[int]:
-    index = 0
+    """The positions of the bits set in ``mask``, lowest first."""
     while mask:
-        if mask & 1:
-            yield index
-        mask >>= 1
-        index += 1
+        lowest = mask & -mask
+        yield lowest.bit_length() - 1
+        mask ^= lowest

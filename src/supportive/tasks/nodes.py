@@ -245,6 +245,15 @@ class TopLevel:
     of an execution admits the same orders of the rest as passing through it would (the optional roots of
     a partial order of roots; a hint for counting orders, not part of the language)."""
 
+    def __hash__(self) -> int:
+        return self._hash
+
+    @cached_property
+    def _hash(self) -> int:
+        """The hash of the fields compared (initial, terminal and edge states), worked out once: a top level
+        keys the caches of order counts, and its edges may number hundreds of thousands."""
+        return hash((self.initial, self.terminal, self.edges))
+
     def successors(self) -> dict[int, dict[int, int]]:
         """``state -> {root index -> next state}``: built once per top level and shared by every caller (the
         executions, the likelihood readings and the counts all walk it), so callers must not change it."""

@@ -12,6 +12,7 @@ compare pairwise, the top level falls back to the orders seen, as the ``strict``
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 
 import numpy as np
@@ -23,6 +24,9 @@ __all__ = ["MAX_PAIRWISE_ROOTS", "precedence_top_level", "seen_top_level"]
 
 MAX_PAIRWISE_ROOTS = 1500
 """More roots than this are not compared pairwise (the top level keeps the orders seen)."""
+_ENUMERATIONS_KEPT = 32
+"""How many enumerated top levels are kept for the same constraints asked again (a bound on memory; the
+result never depends on it)."""
 
 
 def precedence_top_level(
@@ -57,7 +61,6 @@ def precedence_top_level(
     # no transitive closure: through a root that may be skipped, an order is only as established as it is
     preds = [0] * len(roots)  # the required roots that must come before each root
     earlier = [0] * len(roots)  # the roots that must come before each root (none may come after it)
-    unlocks = [0] * len(roots)  # the roots each required root comes before
     need = 0
     for i, root in enumerate(roots):
         if root in required:
@@ -66,13 +69,32 @@ def precedence_top_level(
         earlier[v] |= 1 << u
         if roots[u] in required:
             preds[v] |= 1 << u
-            unlocks[u] |= 1 << v
-    if _more_states_than(max_states, preds, earlier):
+    enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), need, max_states)
+    if enumerated is None:
         return seen_top_level(roots, sequences)
-    everything = (1 << len(roots)) - 1
+    edges, terminal = enumerated
+    free = frozenset(i for i, root in enumerate(roots) if root not in required)  # in no one's preds, nor needed
+    return TopLevel(initial=(0,), terminal=terminal, edges=edges, free=free)
+
+
+@functools.lru_cache(maxsize=_ENUMERATIONS_KEPT)
+def _enumerated(
+    n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: int, max_states: int
+) -> tuple[tuple[tuple[int, int, int], ...], tuple[int, ...]] | None:
+    """The edges and terminal states of the top level over ``n`` roots whose required predecessors are
+    ``preds[i]`` and predecessors ``earlier[i]`` (bit masks), ``need`` the required roots; None beyond
+    ``max_states`` states. Its states are numbered in the order the enumeration finds them, so the same
+    constraints give the same numbers (the slip search asks again and again for the same ones: kept)."""
+    if _more_states_than(max_states, preds, earlier):
+        return None
+    unlocks = [0] * n  # the roots each required root comes before
+    for v, required_before in enumerate(preds):
+        for u in _bits(required_before):
+            unlocks[u] |= 1 << v
+    everything = (1 << n) - 1
     # a state carries the roots whose required predecessors are done and the roots that may no longer come
     # (one that must come before a done root): both follow from the roots done, so they grow with each step
-    ready = sum(1 << i for i in range(len(roots)) if not preds[i])
+    ready = sum(1 << i for i in range(n) if not preds[i])
     edges: list[tuple[int, int, int]] = []
     number = {0: 0}
     frontier = [(0, ready, 0)]
@@ -86,7 +108,7 @@ def precedence_top_level(
             after = done | bit
             if after not in number:
                 if len(number) >= max_states:
-                    return seen_top_level(roots, sequences)
+                    return None
                 number[after] = len(number)
                 now_ready = ready
                 unlocked = unlocks[i]
@@ -99,8 +121,17 @@ def precedence_top_level(
                 frontier.append((after, now_ready, barred | earlier[i]))
             edges.append((number[done], i, number[after]))
     terminal = tuple(sorted(n for done, n in number.items() if done & need == need))
-    free = frozenset(i for i, root in enumerate(roots) if root not in required)  # in no one's preds, nor needed
-    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free)
+    return tuple(sorted(edges)), terminal
+
+
+def _bits(mask: int) -> list[int]:
+    """The positions of the bits set in ``mask``, lowest first."""
+    out = []
+    while mask:
+        lowest = mask & -mask
+        out.append(lowest.bit_length() - 1)
+        mask ^= lowest
+    return out
 
 
 def _more_states_than(limit: int, preds: Sequence[int], earlier: Sequence[int]) -> bool:
