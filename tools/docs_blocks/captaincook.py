@@ -46,9 +46,22 @@ def captaincook_edges() -> str:
     return f"{_f(full)} full, {_f(few)} 5-shot\n"
 
 
+def captaincook_edge_errors() -> str:
+    """docs/learning.md: the default learner's wrong task-graph edges, summed over the recipes, by kind, full
+    and 5-shot."""
+    recipes = captaincook_recipes()
+    lines = ["| kind of wrong edge | full | 5-shot |", "|---|---:|---:|"]
+    for kind in recipes[0]["edge_errors"]:
+        full = sum(r["edge_errors"][kind] for r in recipes)
+        few = sum(r["edge_errors_5_shot"][kind] for r in recipes)
+        lines.append(f"| {kind} | {full} | {few} |")
+    return "\n".join(lines) + "\n"
+
+
 BLOCKS: dict[str, Block] = {
     "captaincook-precedence": Block(CAPTAINCOOK, captaincook_precedence),
     "captaincook-edges": Block(CAPTAINCOOK, captaincook_edges),
+    "captaincook-edge-errors": Block(CAPTAINCOOK, captaincook_edge_errors),
     "captaincook-curves-f1": report_table("captaincook", "captaincook-curves.json", "| k | recipes |"),
     "captaincook-curves-own-k": report_table("captaincook", "captaincook-curves.json", "| condition |"),
     "captaincook-curves-queries": report_table(

@@ -371,12 +371,16 @@ def captaincook(
         f"{means.recall:.3f}, F1 {means.f1:.3f}; every learned model admits all its recordings: "
         f"{means.all_admitted}"
     )
-    for setting, scores in (("full", means.edges), ("5-shot", means.few_shot_edges)):
+    for setting, scores, errors in (
+        ("full", means.edges, means.edge_errors),
+        ("5-shot", means.few_shot_edges, means.few_shot_edge_errors),
+    ):
         peers = ", ".join(f"{name} {f1[setting]:.3f}" for name, f1 in PEERS.items() if setting in f1)
         out.print(
             f"task-graph edges ({setting}, the protocol of Differentiable Task Graph Learning): precision "
             f"{scores['precision']:.3f}, recall {scores['recall']:.3f}, F1 {scores['f1']:.3f}; published: {peers}"
         )
+        out.print(f"  wrong edges ({setting}, all recipes): " + "; ".join(f"{n} {kind}" for kind, n in errors.items()))
 
 
 def _without_mistakes(learn_from: LearnFrom) -> None:

@@ -33,7 +33,7 @@ from supportive.tasks.htn import Leaf
 if TYPE_CHECKING:  # imported where used: networkx is a fifth of every command's start-up
     import networkx as nx
 
-__all__ = ["END_NODE", "PEERS", "START_NODE", "GraphEdge", "edge_scores", "reduced_edges"]
+__all__ = ["EDGE_ERRORS", "END_NODE", "PEERS", "START_NODE", "GraphEdge", "edge_errors", "edge_scores", "reduced_edges"]
 
 START_NODE = "START"
 END_NODE = "END"
@@ -47,6 +47,20 @@ PEERS: dict[str, dict[str, float]] = {
     "MSG² (ibid.)": {"full": 0.711},
 }
 """Task-graph F1 on CaptainCook4D published in *Differentiable Task Graph Learning* (Table 1), by setting."""
+
+
+EDGE_ERRORS = (
+    "false: steps the published graph leaves unordered",
+    "false: a shortcut of published orders",
+    "false: against a published order",
+    "false: from START or to END",
+    "missed: reduced away by a learned order through other steps",
+    "missed: an order not learned",
+    "missed: from START or to END",
+)
+"""The kinds of wrong edge :func:`edge_errors` counts: the learned graph's edges the published one lacks (by
+how the published graph relates their two steps), then the published edges the learned graph lacks (by
+whether the learned relation orders their two steps at all)."""
 
 
 def reduced_edges(pairs: Iterable[Pair], steps: Collection[Leaf]) -> frozenset[GraphEdge]:
@@ -78,3 +92,51 @@ def edge_scores(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[
     """Precision, recall and F1 of the learned relation ``pairs`` over ``steps`` against the published graph
     ``truth`` (edges with their ``START``/``END`` ones), by the protocol of the module docstring."""
     return precedence_scores(reduced_edges(pairs, steps), truth)
+
+
+def edge_errors(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[GraphEdge]) -> dict[str, int]:
+    """Where the learned relation ``pairs`` over ``steps`` and the published graph ``truth`` differ, edge by
+    edge after the protocol's reduction, counted by :data:`EDGE_ERRORS` kind (every kind, 0 included).
+
+    A false edge between two steps is read against the published graph's orders (its transitive closure):
+    the graph leaves them unordered (an order the recordings kept that the recipe does not ask for), orders
+    them the same way through other steps (a shortcut), or the other way. A missed edge is one the learned
+    relation orders too but through a step it puts between them (reduced away), or does not order.
+
+    >>> a, b, c = ("a", 1), ("b", 1), ("c", 1)
+    >>> truth = {("START", a), ("START", b), (a, c), (b, c), (c, "END")}
+    >>> errors = edge_errors({(a, b), (b, c)}, [a, b, c], truth)  # a before b: a habit, not in the recipe
+    >>> {kind: n for kind, n in errors.items() if n}
+    {'false: steps the published graph leaves unordered': 1, 'missed: reduced away by a learned order through other steps': 1, 'missed: from START or to END': 1}
+    """
+    import networkx as nx  # here: networkx is a fifth of every command's start-up
+
+    pairs = set(pairs)
+    truth = set(truth)
+    learned = reduced_edges(pairs, steps)
+    ordered: nx.DiGraph[Leaf] = nx.DiGraph()
+    ordered.add_nodes_from(steps)
+    ordered.add_edges_from((a, b) for a, b in pairs if a in ordered and b in ordered)
+    published: nx.DiGraph[Leaf] = nx.DiGraph()
+    published.add_nodes_from(steps)
+    published.add_edges_from((a, b) for a, b in truth if a in published and b in published)
+    learned_closure = nx.transitive_closure_dag(ordered)
+    published_closure = nx.transitive_closure_dag(published)
+    counts = dict.fromkeys(EDGE_ERRORS, 0)
+    for a, b in learned - truth:
+        if isinstance(a, str) or isinstance(b, str):
+            counts[EDGE_ERRORS[3]] += 1
+        elif published_closure.has_edge(a, b):
+            counts[EDGE_ERRORS[1]] += 1
+        elif published_closure.has_edge(b, a):
+            counts[EDGE_ERRORS[2]] += 1
+        else:
+            counts[EDGE_ERRORS[0]] += 1
+    for a, b in truth - learned:
+        if isinstance(a, str) or isinstance(b, str):
+            counts[EDGE_ERRORS[6]] += 1
+        elif learned_closure.has_edge(a, b):
+            counts[EDGE_ERRORS[4]] += 1
+        else:
+            counts[EDGE_ERRORS[5]] += 1
+    return counts

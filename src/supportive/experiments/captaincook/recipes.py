@@ -8,13 +8,14 @@ recording (``full``) and from the first :data:`FEW_SHOT` (``5-shot``).
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from supportive.errors import DatasetError
 from supportive.io.captaincook import Recipe
-from supportive.learning.graph_edges import edge_scores
+from supportive.learning.graph_edges import EDGE_ERRORS, edge_errors, edge_scores
 from supportive.learning.learner import learn
 from supportive.learning.precedence import PrecedenceScore, implied_precedences, precedence_scores
 
@@ -39,6 +40,8 @@ class RecipeReport:
         edges: The task graph of those precedences against the published graph, edge by edge
             (:func:`~supportive.learning.graph_edges.edge_scores`).
         few_shot_edges: The same, learned from the first :data:`FEW_SHOT` recordings.
+        edge_errors: The wrong edges of ``edges`` by kind (:func:`~supportive.learning.graph_edges.edge_errors`).
+        few_shot_edge_errors: The same for ``few_shot_edges``.
         admits_demonstrations: True when the learned hierarchy admits every demonstration it did not set
             aside as a deviation (invariant 1).
         deviations: Demonstrations with a step set aside as a slip.
@@ -55,6 +58,8 @@ class RecipeReport:
     few_shot_edges: PrecedenceScore
     admits_demonstrations: bool
     deviations: int = 0
+    edge_errors: dict[str, int] = field(default_factory=dict)
+    few_shot_edge_errors: dict[str, int] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, object]:
         """Plain-data form (one row of ``supportive captaincook --json``)."""
@@ -72,6 +77,8 @@ class RecipeReport:
             "f1": self.score.f1,
             "edges": _as_dict(self.edges),
             "edges_5_shot": _as_dict(self.few_shot_edges),
+            "edge_errors": dict(self.edge_errors),
+            "edge_errors_5_shot": dict(self.few_shot_edge_errors),
         }
 
 
@@ -95,6 +102,7 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
     few = learn(recipe.spec.with_demonstrations(recipe.spec.demonstrations[:FEW_SHOT]), **options).htn_
     deviating = {d.demonstration for d in learner.deviations_}
     demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
+    implied, few_implied = implied_precedences(htn), implied_precedences(few)
     return RecipeReport(
         recipe=recipe.name,
         demonstrations=len(recipe.spec.demonstrations),
@@ -102,11 +110,13 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
         known_paths=learner.task_graph_.path_count(),
         complete=htn.complete,
         roots=len(htn.roots),
-        score=precedence_scores(implied_precedences(htn), recipe.published),
-        edges=edge_scores(implied_precedences(htn), recipe.steps, recipe.graph_edges),
-        few_shot_edges=edge_scores(implied_precedences(few), recipe.steps, recipe.graph_edges),
+        score=precedence_scores(implied, recipe.published),
+        edges=edge_scores(implied, recipe.steps, recipe.graph_edges),
+        few_shot_edges=edge_scores(few_implied, recipe.steps, recipe.graph_edges),
         admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
         deviations=len(deviating),
+        edge_errors=edge_errors(implied, recipe.steps, recipe.graph_edges),
+        few_shot_edge_errors=edge_errors(few_implied, recipe.steps, recipe.graph_edges),
     )
 
 
@@ -120,7 +130,8 @@ def captaincook_report(
 @dataclass(frozen=True)
 class RecipeMeans:
     """Means over recipes of their scores, and whether every learned model admits all its recordings;
-    ``edges`` and ``few_shot_edges`` are the means of the task-graph protocol's precision, recall and F1."""
+    ``edges`` and ``few_shot_edges`` are the means of the task-graph protocol's precision, recall and F1,
+    ``edge_errors`` and ``few_shot_edge_errors`` the wrong edges summed over the recipes, by kind."""
 
     recipes: int
     precision: float
@@ -129,6 +140,8 @@ class RecipeMeans:
     all_admitted: bool
     edges: dict[str, float]
     few_shot_edges: dict[str, float]
+    edge_errors: dict[str, int] = field(default_factory=dict)
+    few_shot_edge_errors: dict[str, int] = field(default_factory=dict)
 
 
 def recipe_means(reports: Sequence[RecipeReport]) -> RecipeMeans:
@@ -148,7 +161,16 @@ def recipe_means(reports: Sequence[RecipeReport]) -> RecipeMeans:
         all_admitted=all(r.admits_demonstrations for r in reports),
         edges=_means([r.edges for r in reports]),
         few_shot_edges=_means([r.few_shot_edges for r in reports]),
+        edge_errors=_summed([r.edge_errors for r in reports]),
+        few_shot_edge_errors=_summed([r.few_shot_edge_errors for r in reports]),
     )
+
+
+def _summed(counts: Sequence[Mapping[str, int]]) -> dict[str, int]:
+    total: Counter[str] = Counter()
+    for row in counts:
+        total.update(row)
+    return {kind: total[kind] for kind in EDGE_ERRORS}
 
 
 def _means(scores: Sequence[PrecedenceScore]) -> dict[str, float]:
