@@ -17,6 +17,7 @@ from supportive.tasks.htn import (
     ActionNode,
     ChainNode,
     CliqueNode,
+    Counts,
     Leaf,
     Node,
     TopLevel,
@@ -130,6 +131,15 @@ def test_top_levels_equal_as_languages_hash_alike_whatever_their_counts(
     assert top == other and hash(top) == hash(other) == hash(((0,), tuple(terminal), tuple(edges)))
     assert {top: 1}[other] == 1
     assert (TopLevel((0,), tuple(terminal), (*edges, (9, 0, 9))) == top) is False
+
+
+def test_a_top_level_with_other_counts_is_the_same_language_sharing_its_successors() -> None:
+    top = TopLevel(initial=(0,), terminal=(3,), edges=((0, 0, 1), (1, 1, 3), (0, 1, 2), (2, 0, 3)), free=frozenset({1}))
+    counts = Counts(first=(2, 1), after=((0, 2), (1, 0)))
+    counted = top.with_counts(counts)
+    assert counted == top and counted.counts == counts and top.counts is None and counted.free == top.free
+    assert counted.successors() is top.successors() and hash(counted) == hash(top)
+    assert counted.count_orderings() == top.count_orderings() == 2
 
 
 def test_partial_htn_admits_through_its_top_level() -> None:

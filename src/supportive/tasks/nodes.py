@@ -17,7 +17,7 @@ from __future__ import annotations
 import dataclasses
 from collections import Counter
 from collections.abc import Callable, Collection, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any, Literal, TypeAlias
 
@@ -247,6 +247,16 @@ class TopLevel:
 
     def __hash__(self) -> int:
         return self._hash
+
+    def with_counts(self, counts: Counts | None) -> TopLevel:
+        """This top level with other ``counts`` (the same language): what is worked out from its edges (its
+        successors and hash; their order, when it was) is worked out here once and shared."""
+        other = replace(self, counts=counts)
+        other.__dict__["_successors"] = self._successors
+        other.__dict__["_hash"] = self._hash
+        if "_successors_first" in self.__dict__:
+            other.__dict__["_successors_first"] = self.__dict__["_successors_first"]
+        return other
 
     @cached_property
     def _hash(self) -> int:

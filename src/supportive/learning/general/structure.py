@@ -93,7 +93,7 @@ def fit_structure(
         top = precedence_top_level(
             decomposition.roots, decomposition.sequences, required, order_support=settings.support_needed
         )
-        top = TopLevel(top.initial, top.terminal, top.edges, annotated.top_counts(), top.free)
+        top = top.with_counts(annotated.top_counts())
     return FittedStructure(roots, top)
 
 

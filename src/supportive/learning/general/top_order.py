@@ -70,21 +70,16 @@ def precedence_top_level(
         if roots[u] in required:
             preds[v] |= 1 << u
     enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), need, max_states)
-    if enumerated is None:
-        return seen_top_level(roots, sequences)
-    edges, terminal = enumerated
-    free = frozenset(i for i, root in enumerate(roots) if root not in required)  # in no one's preds, nor needed
-    return TopLevel(initial=(0,), terminal=terminal, edges=edges, free=free)
+    return seen_top_level(roots, sequences) if enumerated is None else enumerated
 
 
 @functools.lru_cache(maxsize=_ENUMERATIONS_KEPT)
-def _enumerated(
-    n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: int, max_states: int
-) -> tuple[tuple[tuple[int, int, int], ...], tuple[int, ...]] | None:
-    """The edges and terminal states of the top level over ``n`` roots whose required predecessors are
-    ``preds[i]`` and predecessors ``earlier[i]`` (bit masks), ``need`` the required roots; None beyond
-    ``max_states`` states. Its states are numbered in the order the enumeration finds them, so the same
-    constraints give the same numbers (the slip search asks again and again for the same ones: kept)."""
+def _enumerated(n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: int, max_states: int) -> TopLevel | None:
+    """The top level over ``n`` roots whose required predecessors are ``preds[i]`` and predecessors
+    ``earlier[i]`` (bit masks), ``need`` the required roots (the others free: in no one's ``preds``, nor
+    needed); None beyond ``max_states`` states. Its states are numbered in the order the enumeration finds
+    them, so the same constraints give the same numbers (the slip search asks again and again for the same
+    ones: kept, with what is worked out from them)."""
     if _more_states_than(max_states, preds, earlier):
         return None
     unlocks = [0] * n  # the roots each required root comes before
@@ -120,8 +115,9 @@ def _enumerated(
                         now_ready |= low
                 frontier.append((after, now_ready, barred | earlier[i]))
             edges.append((number[done], i, number[after]))
-    terminal = tuple(sorted(n for done, n in number.items() if done & need == need))
-    return tuple(sorted(edges)), terminal
+    terminal = tuple(sorted(state for done, state in number.items() if done & need == need))
+    free = frozenset(i for i in range(n) if not need >> i & 1)
+    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free)
 
 
 def _bits(mask: int) -> list[int]:
