@@ -24,7 +24,7 @@ __all__ = ["MAX_PAIRWISE_ROOTS", "precedence_top_level", "seen_top_level"]
 
 MAX_PAIRWISE_ROOTS = 1500
 """More roots than this are not compared pairwise (the top level keeps the orders seen)."""
-_ENUMERATIONS_KEPT = 32
+_ENUMERATIONS_KEPT = 16
 """How many enumerated top levels are kept for the same constraints asked again (a bound on memory; the
 result never depends on it)."""
 
