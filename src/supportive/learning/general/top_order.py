@@ -61,6 +61,7 @@ def precedence_top_level(
     # no transitive closure: through a root that may be skipped, an order is only as established as it is
     preds = [0] * len(roots)  # the required roots that must come before each root
     earlier = [0] * len(roots)  # the roots that must come before each root (none may come after it)
+    unlocks = [0] * len(roots)  # the roots each required root comes before
     need = 0
     for i, root in enumerate(roots):
         if root in required:
@@ -69,23 +70,22 @@ def precedence_top_level(
         earlier[v] |= 1 << u
         if roots[u] in required:
             preds[v] |= 1 << u
-    enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), need, max_states)
+            unlocks[u] |= 1 << v
+    enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), tuple(unlocks), need, max_states)
     return seen_top_level(roots, sequences) if enumerated is None else enumerated
 
 
 @functools.lru_cache(maxsize=_ENUMERATIONS_KEPT)
-def _enumerated(n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: int, max_states: int) -> TopLevel | None:
+def _enumerated(
+    n: int, preds: tuple[int, ...], earlier: tuple[int, ...], unlocks: tuple[int, ...], need: int, max_states: int
+) -> TopLevel | None:
     """The top level over ``n`` roots whose required predecessors are ``preds[i]`` and predecessors
-    ``earlier[i]`` (bit masks), ``need`` the required roots (the others free: in no one's ``preds``, nor
-    needed); None beyond ``max_states`` states. Its states are numbered in the order the enumeration finds
+    ``earlier[i]`` (bit masks; ``unlocks[u]``: the roots required root ``u`` comes before), ``need`` the
+    required roots (the others free: in no one's ``preds``, nor needed); None beyond ``max_states`` states. Its states are numbered in the order the enumeration finds
     them, so the same constraints give the same numbers (the slip search asks again and again for the same
     ones: kept, with what is worked out from them)."""
     if _more_states_than(max_states, preds, earlier):
         return None
-    unlocks = [0] * n  # the roots each required root comes before
-    for v, required_before in enumerate(preds):
-        for u in _bits(required_before):
-            unlocks[u] |= 1 << v
     everything = (1 << n) - 1
     # a state carries the roots whose required predecessors are done and the roots that may no longer come
     # (one that must come before a done root): both follow from the roots done, so they grow with each step
@@ -118,16 +118,6 @@ def _enumerated(n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: 
     terminal = tuple(sorted(state for done, state in number.items() if done & need == need))
     free = frozenset(i for i in range(n) if not need >> i & 1)
     return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free)
-
-
-def _bits(mask: int) -> list[int]:
-    """The positions of the bits set in ``mask``, lowest first."""
-    out = []
-    while mask:
-        lowest = mask & -mask
-        out.append(lowest.bit_length() - 1)
-        mask ^= lowest
-    return out
 
 
 def _more_states_than(limit: int, preds: Sequence[int], earlier: Sequence[int]) -> bool:
