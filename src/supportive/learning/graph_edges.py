@@ -73,9 +73,7 @@ def reduced_edges(pairs: Iterable[Pair], steps: Collection[Leaf]) -> frozenset[G
     """
     import networkx as nx  # here: networkx is a fifth of every command's start-up
 
-    graph: nx.DiGraph[Leaf] = nx.DiGraph()
-    graph.add_nodes_from(steps)
-    graph.add_edges_from((a, b) for a, b in pairs if a in graph and b in graph)
+    graph = _step_graph(pairs, steps)
     if not nx.is_directed_acyclic_graph(graph):
         raise LearningError("the learned precedences have a cycle: no task graph")
     reduced = nx.transitive_reduction(graph)
@@ -114,14 +112,8 @@ def edge_errors(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[
     pairs = set(pairs)
     truth = set(truth)
     learned = reduced_edges(pairs, steps)
-    ordered: nx.DiGraph[Leaf] = nx.DiGraph()
-    ordered.add_nodes_from(steps)
-    ordered.add_edges_from((a, b) for a, b in pairs if a in ordered and b in ordered)
-    published: nx.DiGraph[Leaf] = nx.DiGraph()
-    published.add_nodes_from(steps)
-    published.add_edges_from((a, b) for a, b in truth if a in published and b in published)
-    learned_closure = nx.transitive_closure_dag(ordered)
-    published_closure = nx.transitive_closure_dag(published)
+    learned_closure = nx.transitive_closure_dag(_step_graph(pairs, steps))
+    published_closure = nx.transitive_closure_dag(_step_graph(truth, steps))
     counts = dict.fromkeys(EDGE_ERRORS, 0)
     for a, b in learned - truth:
         if isinstance(a, str) or isinstance(b, str):
@@ -140,3 +132,14 @@ def edge_errors(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[
         else:
             counts[EDGE_ERRORS[5]] += 1
     return counts
+
+
+def _step_graph(pairs: Iterable[tuple[Leaf | str, Leaf | str]], steps: Collection[Leaf]) -> nx.DiGraph[Leaf]:
+    """``pairs`` as a graph over ``steps`` (pairs naming anything else, ``START`` and ``END`` included, left
+    out)."""
+    import networkx as nx  # here: networkx is a fifth of every command's start-up
+
+    graph: nx.DiGraph[Leaf] = nx.DiGraph()
+    graph.add_nodes_from(steps)
+    graph.add_edges_from((a, b) for a, b in pairs if a in graph and b in graph)
+    return graph
