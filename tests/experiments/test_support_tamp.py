@@ -81,12 +81,11 @@ def test_report_puts_the_thesis_beside(runs: tuple[Path, Path]) -> None:
         assert words in text
 
 
-def test_one_trial_is_the_same_whoever_runs_it() -> None:
+def test_a_trial_measures_only_the_readings_asked_for() -> None:
+    """(That a trial gives the same results whoever runs it, twice in one process, is the determinism test's.)"""
     trial = make_trials(1, 11, readings=["duration"])[0]
-    first, second = run_trial(trial), run_trial(trial)
-    first.pop("timing"), second.pop("timing")
-    assert first == second
-    assert all(list(cell["supported"]) == ["duration"] for s in first["scenarios"].values() for cell in s.values())
+    result = run_trial(trial)
+    assert all(list(cell["supported"]) == ["duration"] for s in result["scenarios"].values() for cell in s.values())
 
 
 def test_the_staged_floor_is_the_plan_with_handling_and_hand_travel_only() -> None:

@@ -312,6 +312,15 @@ def board_server(tmp_path: Path, server_factory: Callable[..., Server]) -> Serve
     return server_factory(f"sqlite:///{tmp_path / 'board.db'}")
 
 
+@pytest.fixture(scope="module")
+def untouched_board(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
+    """A fresh board that the tests using it only look at (none claims, reports or stops it): one server
+    for a test module's tests (on each worker that runs some), instead of one each."""
+    server = start_server(f"sqlite:///{tmp_path_factory.mktemp('untouched') / 'board.db'}")
+    yield server
+    server.stop()
+
+
 @pytest.fixture
 def open_page(browser: Browser) -> Iterator[Callable[..., Page]]:
     """``open_page(url, token, viewport=None)``: the page signed in with the token given in its address (as

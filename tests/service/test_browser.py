@@ -89,9 +89,9 @@ def test_completion_propagates_and_the_done_subtree_folds(
     snap(watcher, "observer")
 
 
-def test_a_wrong_token_asks_to_sign_in(browser: Browser, board_server: Any) -> None:
+def test_a_wrong_token_asks_to_sign_in(browser: Browser, untouched_board: Any) -> None:
     page = browser.new_page()
-    page.goto(f"{board_server.url}/#token=wrong")
+    page.goto(f"{untouched_board.url}/#token=wrong")
     expect(page.locator("#signin-error")).to_have_text("unknown token")
     expect(page.get_by_test_id("live")).to_have_text("signed out")  # the service is up: not "offline"
     expect(page.get_by_test_id("goal")).to_have_text("Sign in with an agent's token to see the board.")
@@ -101,26 +101,26 @@ def test_a_wrong_token_asks_to_sign_in(browser: Browser, board_server: Any) -> N
     page.close()
 
 
-def test_the_token_leaves_the_address_after_sign_in(open_page: Callable[..., Page], board_server: Any) -> None:
-    page = open_page(board_server.url, "tok-alice")
+def test_the_token_leaves_the_address_after_sign_in(open_page: Callable[..., Page], untouched_board: Any) -> None:
+    page = open_page(untouched_board.url, "tok-alice")
     assert "token" not in page.url and "tok-alice" not in page.url
     page.reload()  # kept for this tab only, so a reload stays signed in
     expect(page.get_by_test_id("me")).to_have_text("alice (human, lead)")
     assert "tok-alice" not in page.url
 
 
-def test_the_signed_out_page_is_neither_offline_nor_loading_and_has_an_icon(browser: Browser, board_server: Any) -> None:
+def test_the_signed_out_page_is_neither_offline_nor_loading_and_has_an_icon(browser: Browser, untouched_board: Any) -> None:
     """Issue 26: the signed-out page showed a red "offline" badge and "Loading…" while the server was up, and
     /favicon.ico was a 404."""
     page = browser.new_page()
     missing: list[str] = []
     page.on("response", lambda response: missing.append(response.url) if response.status >= 400 else None)
-    page.goto(f"{board_server.url}/")
+    page.goto(f"{untouched_board.url}/")
     expect(page.get_by_test_id("token")).to_be_visible()
     expect(page.get_by_test_id("live")).to_have_text("signed out")
     assert "off" not in (page.get_by_test_id("live").get_attribute("class") or "").split()
     expect(page.get_by_test_id("goal")).not_to_contain_text("Loading")
-    icon = httpx.get(f"{board_server.url}/favicon.ico", timeout=10)
+    icon = httpx.get(f"{untouched_board.url}/favicon.ico", timeout=10)
     assert icon.status_code == 200 and icon.headers["content-type"] == "image/vnd.microsoft.icon"
     assert icon.content[:4] == b"\x00\x00\x01\x00"  # an ICO file's header
     assert missing == []

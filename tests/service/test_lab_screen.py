@@ -269,9 +269,9 @@ def test_the_screen_shows_the_board_as_it_is(
 
 
 def test_a_fresh_board_says_there_is_no_hand_data_yet(
-    open_page: Callable[..., Page], board_server: Any, headers: Headers, snap: Callable[..., Any]
+    open_page: Callable[..., Page], untouched_board: Any, headers: Headers, snap: Callable[..., Any]
 ) -> None:
-    page = open_page(board_server.url, "tok-screen")
+    page = open_page(untouched_board.url, "tok-screen")
     wait_until_shown(page, 0)
     expect(page.get_by_test_id("social-empty")).to_be_visible()
     expect(page.get_by_test_id("social-empty")).to_have_text("No hand data yet")
@@ -279,18 +279,18 @@ def test_a_fresh_board_says_there_is_no_hand_data_yet(
     expect(page.get_by_test_id("goal")).to_contain_text("waiting for the first contact events")
     for agent in CLAIMERS:
         expect(page.get_by_test_id(f"now-{agent}-doing")).to_have_text("no subtask claimed")
-    board, _ = board_of(board_server.url, headers)
+    board, _ = board_of(untouched_board.url, headers)
     assert all(n.id in rendered(page) for n in board.nodes)  # nothing done: the whole chair, open
     snap(page, "lab-screen-fresh")
 
 
 def test_agents_colours_stay_apart_with_colour_blindness(
-    open_page: Callable[..., Page], board_server: Any
+    open_page: Callable[..., Page], untouched_board: Any
 ) -> None:
     """Under protanopia, deuteranopia and tritanopia (full severity, Machado et al. via colorspacious), every
     two agents' colours, and each against the grey of done work, stay at least 10 apart in CAM02-UCS. The
     palette's first six colours are checked (the page's order), through a board with six claiming agents."""
-    page = open_page(board_server.url, "tok-screen")
+    page = open_page(untouched_board.url, "tok-screen")
     palette = page.evaluate("async () => (await import('/static/model.js')).PALETTE")[:6]
     found = colours(page)
     assert list(found.values()) == [p.lower() for p in palette[: len(found)]]
@@ -342,10 +342,10 @@ def test_off_script_steps_are_flagged_and_a_payload_without_surprise_still_shows
     payload: dict[str, Any],
     flagged: bool,
     open_page: Callable[..., Page],
-    board_server: Any,
+    untouched_board: Any,
     snap: Callable[..., Any],
 ) -> None:
-    page = open_page(board_server.url, "tok-screen")
+    page = open_page(untouched_board.url, "tok-screen")
 
     def answer(route: Route) -> None:
         route.fulfill(json=payload)
@@ -444,24 +444,24 @@ def test_claiming_the_whole_task_or_a_lead_only_subtask_asks_first(
     expect(robot.get_by_test_id(f"claim-{seat.id}")).to_have_count(0)  # an assistant is not offered it
 
 
-def test_the_api_docs_work_offline(open_page: Callable[..., Page], board_server: Any, browser: Any) -> None:
+def test_the_api_docs_work_offline(open_page: Callable[..., Page], untouched_board: Any, browser: Any) -> None:
     """Every request the docs page makes goes to the board's own address (anything else is refused), and
     Swagger UI still lists every operation."""
     page = browser.new_page()
     elsewhere: list[str] = []
 
     def only_here(route: Route) -> None:
-        if route.request.url.startswith(board_server.url):
+        if route.request.url.startswith(untouched_board.url):
             route.continue_()
         else:
             elsewhere.append(route.request.url)
             route.abort()
 
     page.route("**/*", only_here)
-    page.goto(f"{board_server.url}/docs")
+    page.goto(f"{untouched_board.url}/docs")
     operations = page.locator(".opblock")
     expect(operations.first).to_be_visible(timeout=15_000)
-    schema = httpx.get(f"{board_server.url}/openapi.json").json()
+    schema = httpx.get(f"{untouched_board.url}/openapi.json").json()
     count = sum(len(methods) for methods in schema["paths"].values())
     expect(operations).to_have_count(count)
     expect(page.locator(".opblock-summary-path", has_text="/api/board").first).to_be_visible()
