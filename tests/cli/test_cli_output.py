@@ -20,6 +20,7 @@ import pytest
 from supportive.cli import app
 from supportive.examples import load
 from supportive.experiments.captaincook.recipes import RecipeReport
+from supportive.experiments.statistics import format_ci, mean_ci
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = Path(sys.executable).parent / "supportive"
@@ -92,6 +93,11 @@ def test_captaincook_never_cuts_a_number(
         for row in rows:
             for value in (row["precision"], row["recall"], row["f1"]):
                 assert f"{value:.3f}" in seen or f"{value:.3f}," in seen, (row["recipe"], columns, value)
+    wide = " ".join(in_process("captaincook", columns=200).split())
+    for setting, key in (("full", "edges"), ("5-shot", "edges_5_shot")):  # the mean F1 with its interval
+        interval = format_ci(mean_ci([r[key]["f1"] for r in rows], bounds=(0.0, 1.0)))
+        assert f"({setting}, the protocol of Differentiable Task Graph Learning)" in wide
+        assert f"F1 {interval} (95 % interval over the recipes)" in wide, (setting, interval)
 
 
 def test_the_demo_wraps_at_words_and_cuts_nothing(in_process: InProcess) -> None:

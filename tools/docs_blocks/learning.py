@@ -185,6 +185,44 @@ def learner_settings_chosen() -> str:
     )
 
 
+def generalisation_intervals() -> str:
+    """docs/learning.md: how sure the default learner's task-graph F1 is — its 95 % interval over the recipes,
+    and the paired difference from the strict learner — and whether DO's published mean or a zero difference
+    lies inside."""
+    from supportive.experiments.statistics import format_ci
+    from supportive.learning.graph_edges import PEERS
+
+    edges = _gen()["captaincook"]["auto"]["edges"]
+    peer = PEERS["DO (Seminara et al. 2024)"]
+    shown, inside, differs = [], [], []
+    for setting in ("full", "5-shot"):
+        f1, interval, paired = edges[setting]["f1"], edges[setting]["f1_interval"], edges[setting]["f1_minus_strict"]
+        shown.append(
+            f"{setting} {format_ci({'mean': f1, **interval})} (minus strict, per recipe: "
+            f"{format_ci(paired, signed=True)})"
+        )
+        inside.append(interval["low"] <= peer[setting] <= interval["high"])
+        differs.append(not paired["low"] <= 0.0 <= paired["high"])
+    peer_words = (
+        "DO's published means lie inside both intervals"
+        if all(inside)
+        else "DO's published mean lies outside " + ("both intervals" if not any(inside) else "one interval")
+    )
+    strict_words = (
+        "the paired difference from our strict learner includes zero in both settings"
+        if not any(differs)
+        else "the paired difference from our strict learner excludes zero in "
+        + ("both settings" if all(differs) else "one setting")
+    )
+    undecided = all(inside) and not any(differs)
+    return (
+        "How sure these means are (95 % intervals, Student's t over the 24 recipes, from the recorded run): "
+        f"{'; '.join(shown)}. {peer_words[0].upper()}{peer_words[1:]}, and {strict_words}"
+        + (": these recipes show the default neither better nor worse than either." if undecided else ".")
+        + "\n"
+    )
+
+
 def learner_settings_clean() -> str:
     """docs/learning.md (inline): what the chosen setting reported on clean data."""
     row = _ls()["settings"][_ls()["chosen"]]
@@ -198,6 +236,7 @@ def learner_settings_clean() -> str:
 BLOCKS: dict[str, Block] = {
     "generalisation-table": Block(_GEN, generalisation_table),
     "generalisation-verdicts": Block(f"{_GEN}; {CAPTAINCOOK}", generalisation_verdicts),
+    "generalisation-intervals": Block(_GEN, generalisation_intervals),
     "generalisation-subtasks": Block(_GEN, generalisation_subtasks, inline=True),
     "generalisation-time": run_time("generalisation"),
     "learner-settings-table": report_table("learner-settings", "learner-settings.json", "| setting |"),

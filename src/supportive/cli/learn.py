@@ -334,6 +334,7 @@ def captaincook(
     recording out and detect its order errors and missing steps step by step (the other labels, which a step
     sequence cannot show, are counted apart), beside a precondition check and an unseen-bigram rule."""
     from supportive.experiments.captaincook.recipes import captaincook_report, recipe_means
+    from supportive.experiments.statistics import format_ci
     from supportive.io.captaincook import load_captaincook
     from supportive.learning.graph_edges import PEERS
     from supportive.render.tables import fitted_table
@@ -378,7 +379,8 @@ def captaincook(
         peers = ", ".join(f"{name} {f1[setting]:.3f}" for name, f1 in PEERS.items() if setting in f1)
         out.print(
             f"task-graph edges ({setting}, the protocol of Differentiable Task Graph Learning): precision "
-            f"{scores['precision']:.3f}, recall {scores['recall']:.3f}, F1 {scores['f1']:.3f}; published: {peers}"
+            f"{scores['precision']:.3f}, recall {scores['recall']:.3f}, F1 {format_ci(means.edge_f1[setting])} "
+            f"(95 % interval over the recipes); published: {peers}"
         )
         out.print(f"  wrong edges ({setting}, all recipes): " + "; ".join(f"{n} {kind}" for kind, n in errors.items()))
 

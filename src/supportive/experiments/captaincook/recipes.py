@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from supportive.errors import DatasetError
+from supportive.experiments.statistics import mean_ci
 from supportive.io.captaincook import Recipe
 from supportive.learning.graph_edges import EDGE_ERRORS, edge_errors, edge_scores
 from supportive.learning.learner import learn
@@ -131,7 +132,9 @@ def captaincook_report(
 class RecipeMeans:
     """Means over recipes of their scores, and whether every learned model admits all its recordings;
     ``edges`` and ``few_shot_edges`` are the means of the task-graph protocol's precision, recall and F1,
-    ``edge_errors`` and ``few_shot_edge_errors`` the wrong edges summed over the recipes, by kind."""
+    ``edge_f1`` their F1 with its 95 % interval over the recipes (:func:`~supportive.experiments.statistics.mean_ci`,
+    by setting: ``full``, ``5-shot``), ``edge_errors`` and ``few_shot_edge_errors`` the wrong edges summed over
+    the recipes, by kind."""
 
     recipes: int
     precision: float
@@ -140,6 +143,7 @@ class RecipeMeans:
     all_admitted: bool
     edges: dict[str, float]
     few_shot_edges: dict[str, float]
+    edge_f1: dict[str, dict[str, Any]] = field(default_factory=dict)
     edge_errors: dict[str, int] = field(default_factory=dict)
     few_shot_edge_errors: dict[str, int] = field(default_factory=dict)
 
@@ -161,6 +165,10 @@ def recipe_means(reports: Sequence[RecipeReport]) -> RecipeMeans:
         all_admitted=all(r.admits_demonstrations for r in reports),
         edges=_means([r.edges for r in reports]),
         few_shot_edges=_means([r.few_shot_edges for r in reports]),
+        edge_f1={
+            "full": mean_ci([r.edges.f1 for r in reports], bounds=(0.0, 1.0)),
+            "5-shot": mean_ci([r.few_shot_edges.f1 for r in reports], bounds=(0.0, 1.0)),
+        },
         edge_errors=_summed([r.edge_errors for r in reports]),
         few_shot_edge_errors=_summed([r.few_shot_edge_errors for r in reports]),
     )

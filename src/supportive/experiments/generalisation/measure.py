@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from supportive.experiments.captaincook.recipes import FEW_SHOT
+from supportive.experiments.statistics import mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate import random_structure
 from supportive.io.captaincook import load_captaincook
@@ -154,12 +155,23 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                     for data in ("error_free", "with_errors")
                     for metric in ("precision", "recall", "all_precision")
                 },
-                "edges": {
-                    setting: {
-                        metric: round(float(np.mean([r[mode]["edges"][setting][metric] for r in recipes])), 4)
-                        for metric in ("precision", "recall", "f1")
-                    }
-                    for setting in ("full", "5-shot")
-                },
+                "edges": {setting: _edge_summary(recipes, mode, setting) for setting in ("full", "5-shot")},
             }
     return out
+
+
+def _edge_summary(recipes: Sequence[Mapping[str, Any]], mode: str, setting: str) -> dict[str, Any]:
+    """The task-graph protocol's means over the recipes, with how sure the F1 is: its 95 % interval over the
+    recipes (``f1_interval``; a recipe is a draw of the benchmark) and, but for the strict learner, the mean
+    paired difference from strict per recipe with its interval (``f1_minus_strict``)."""
+    f1 = [float(r[mode]["edges"][setting]["f1"]) for r in recipes]
+    summary: dict[str, Any] = {
+        metric: round(float(np.mean([r[mode]["edges"][setting][metric] for r in recipes])), 4)
+        for metric in ("precision", "recall", "f1")
+    }
+    interval = mean_ci(f1, digits=4, bounds=(0.0, 1.0))
+    summary["f1_interval"] = {"low": interval["low"], "high": interval["high"]}
+    if mode != "strict":
+        strict = [float(r["strict"]["edges"][setting]["f1"]) for r in recipes]
+        summary["f1_minus_strict"] = mean_ci([a - b for a, b in zip(f1, strict, strict=True)], digits=4)
+    return summary

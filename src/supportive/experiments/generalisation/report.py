@@ -11,6 +11,7 @@ from supportive.experiments.captaincook.recipes import FEW_SHOT
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS, LEARNERS, SIZES, SLIP_CLEAN, SLIPPED
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.statistics import format_ci
 from supportive.experiments.tables import markdown_table
 from supportive.experiments.templates import render, section
 from supportive.learning.graph_edges import PEERS
@@ -79,17 +80,19 @@ def _scores_table(captaincook: Mapping[str, Any]) -> list[str]:
 
 
 def _edges_table(captaincook: Mapping[str, Any]) -> list[str]:
-    """Per learner: task-graph edge precision / recall / F1, from all error-free recordings and 5-shot."""
-    rows = [
-        [mode]
-        + [
-            f"{m['edges'][setting]['precision']:.3f} / {m['edges'][setting]['recall']:.3f} / "
-            f"**{m['edges'][setting]['f1']:.3f}**"
-            for setting in ("full", "5-shot")
-        ]
-        for mode, m in captaincook.items()
-    ]
-    return markdown_table(["learner", "full: P / R / F1", "5-shot: P / R / F1"], rows)
+    """Per learner: task-graph edge precision / recall / F1 (with the F1's 95 % interval over the recipes),
+    and the paired F1 difference from the strict learner, from all error-free recordings and 5-shot."""
+    rows = []
+    for mode, m in captaincook.items():
+        row = [mode]
+        for setting in ("full", "5-shot"):
+            edges = m["edges"][setting]
+            interval = {"mean": edges["f1"], **edges["f1_interval"]}
+            row.append(f"{edges['precision']:.3f} / {edges['recall']:.3f} / **{format_ci(interval)}**")
+            row.append(format_ci(edges["f1_minus_strict"], signed=True) if "f1_minus_strict" in edges else "–")
+        rows.append(row)
+    header = ["learner", "full: P / R / F1 [95 % CI]", "F1 − strict", "5-shot: P / R / F1 [95 % CI]", "F1 − strict"]
+    return markdown_table(header, rows)
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
