@@ -1,5 +1,6 @@
-"""The generalisation experiment's task-graph summary: each learner's mean F1 over the recipes with its 95 %
-interval, and the paired difference from the strict learner, worked out here from Student's t directly."""
+"""The generalisation experiment's CaptainCook4D summary: each learner's mean task-graph F1 over the recipes
+with its 95 % interval and the paired difference from the strict learner, and its held-out admission with an
+interval over the recipes (a ratio of means), worked out here from Student's t directly."""
 
 from __future__ import annotations
 
@@ -17,13 +18,14 @@ from supportive.experiments.generalisation.measure import LEARNERS, summarize
 SCORE = st.floats(0.0, 1.0, allow_nan=False)
 
 
-def recipe(index: int, f1: dict[str, tuple[float, float]]) -> dict[str, Any]:
-    """A recipe trial's result with the given (full, 5-shot) edge F1 per learner; the rest are fillers."""
-    record: dict[str, Any] = {"index": index, "kind": "recipe", "recipe": f"r{index}", "held_out": 2}
+def recipe(index: int, f1: dict[str, tuple[float, float]], admitted: int = 1, held_out: int = 2) -> dict[str, Any]:
+    """A recipe trial's result with the given (full, 5-shot) edge F1 per learner and held-out recordings
+    admitted of those held out (every learner alike); the rest are fillers."""
+    record: dict[str, Any] = {"index": index, "kind": "recipe", "recipe": f"r{index}", "held_out": held_out}
     for mode in LEARNERS:
         scores = {"precision": 0.5, "recall": 0.5, "all_precision": 0.5}
         edges = {s: {"precision": 0.5, "recall": 0.5, "f1": f} for s, f in zip(("full", "5-shot"), f1[mode], strict=True)}
-        record[mode] = {"admitted": 1, "error_free": scores, "with_errors": scores, "edges": edges}
+        record[mode] = {"admitted": admitted, "error_free": scores, "with_errors": scores, "edges": edges}
     return record
 
 
@@ -60,3 +62,17 @@ def test_one_recipe_gives_no_interval() -> None:
     edges = summarize([recipe(0, {m: (0.8, 0.7) for m in LEARNERS})])["captaincook"]["auto"]["edges"]
     assert edges["5-shot"]["f1"] == 0.7 and edges["5-shot"]["f1_interval"] == {"low": None, "high": None}
     assert edges["5-shot"]["f1_minus_strict"] == {"mean": 0.0, "low": None, "high": None, "n": 1}
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.integers(1, 9).flatmap(lambda n: st.tuples(st.integers(0, n), st.just(n))), min_size=2, max_size=24))
+def test_the_admission_interval_is_over_the_recipes(counts: list[tuple[int, int]]) -> None:
+    results = [recipe(i, {m: (0.5, 0.5) for m in LEARNERS}, *pair) for i, pair in enumerate(counts)]
+    auto = summarize(results)["captaincook"]["auto"]
+    admitted, held = [float(a) for a, _ in counts], [float(n) for _, n in counts]
+    share = sum(admitted) / sum(held)
+    assert auto["admission"] == pytest.approx(share, abs=1e-4)
+    residuals = [a - share * n for a, n in zip(admitted, held, strict=True)]
+    half = stats.t.ppf(0.975, len(counts) - 1) * statistics.stdev(residuals) / math.sqrt(len(counts)) / statistics.fmean(held)
+    assert auto["admission_interval"]["low"] == pytest.approx(max(0.0, share - half), abs=1e-4)
+    assert auto["admission_interval"]["high"] == pytest.approx(min(1.0, share + half), abs=1e-4)

@@ -114,6 +114,7 @@ def generalisation_verdicts() -> str:
 
     met = all(round(ours[s], 3) >= _ISSUE_23_F1[s] for s in ours)
     admission, kept = captaincook["auto"]["admission"], captaincook["general"]["admission"]
+    interval = captaincook["auto"]["admission_interval"]
     synthetic = _gen()["synthetic"]["uniform"]["auto"]
     return (
         f"— {side(peer)} the published Direct Optimization model's ({peer['full']:.3f} / {peer['5-shot']:.3f}) and "
@@ -128,6 +129,7 @@ def generalisation_verdicts() -> str:
             if kept > admission
             else ""
         )
+        + f"; 95% interval over the recipes {interval['low']:.1%}–{interval['high']:.1%}"
         + f") — **{'met' if admission >= _ISSUE_13_ADMISSION else 'not met'}**. Generated tasks from 4 demonstrations: "
         f"recall {synthetic['recall']:.3f} at precision {synthetic['precision']:.3f} — "
         + (

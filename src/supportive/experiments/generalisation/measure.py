@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from supportive.experiments.captaincook.recipes import FEW_SHOT
-from supportive.experiments.statistics import mean_ci
+from supportive.experiments.statistics import mean_ci, ratio_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate import random_structure
 from supportive.io.captaincook import load_captaincook
@@ -119,7 +119,9 @@ def _recipe(index: int) -> dict[str, Any]:
 
 
 def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """Means per profile and learner; CaptainCook admission and precedence scores per learner."""
+    """Means per profile and learner; CaptainCook admission (with its 95 % interval over the recipes) and
+    precedence and task-graph scores per learner (the task-graph F1 with its interval, see
+    :func:`_edge_summary`)."""
     synthetic = [r for r in results if r["kind"] == "synthetic"]
     recipes = [r for r in results if r["kind"] == "recipe"]
     out: dict[str, Any] = {"synthetic": {}, "slips": {}, "captaincook": {}, "tasks": [dict(r) for r in results]}
@@ -150,6 +152,9 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 "held_out": held,
                 "admitted": admitted,
                 "admission": round(admitted / held, 4),
+                "admission_interval": _interval(
+                    ratio_ci([float(r[mode]["admitted"]) for r in recipes], [float(r["held_out"]) for r in recipes], digits=4)
+                ),
                 **{
                     f"{data}_{metric}": round(float(np.mean([r[mode][data][metric] for r in recipes])), 4)
                     for data in ("error_free", "with_errors")
@@ -158,6 +163,13 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 "edges": {setting: _edge_summary(recipes, mode, setting) for setting in ("full", "5-shot")},
             }
     return out
+
+
+def _interval(summary: Mapping[str, Any]) -> dict[str, Any]:
+    """The bounds of a :func:`~supportive.experiments.statistics.mean_ci`-like summary (its mean is reported
+    beside it already), within 0–1."""
+    low, high = summary["low"], summary["high"]
+    return {"low": None if low is None else max(0.0, low), "high": None if high is None else min(1.0, high)}
 
 
 def _edge_summary(recipes: Sequence[Mapping[str, Any]], mode: str, setting: str) -> dict[str, Any]:
@@ -169,8 +181,7 @@ def _edge_summary(recipes: Sequence[Mapping[str, Any]], mode: str, setting: str)
         metric: round(float(np.mean([r[mode]["edges"][setting][metric] for r in recipes])), 4)
         for metric in ("precision", "recall", "f1")
     }
-    interval = mean_ci(f1, digits=4, bounds=(0.0, 1.0))
-    summary["f1_interval"] = {"low": interval["low"], "high": interval["high"]}
+    summary["f1_interval"] = _interval(mean_ci(f1, digits=4, bounds=(0.0, 1.0)))
     if mode != "strict":
         strict = [float(r["strict"]["edges"][setting]["f1"]) for r in recipes]
         summary["f1_minus_strict"] = mean_ci([a - b for a, b in zip(f1, strict, strict=True)], digits=4)

@@ -66,17 +66,25 @@ def _slips_table(slips: Mapping[str, Any]) -> list[str]:
 
 
 def _scores_table(captaincook: Mapping[str, Any]) -> list[str]:
-    """Per learner: held-out recordings admitted, and precedence precision / recall with and without errors."""
+    """Per learner: held-out recordings admitted (the share with its 95 % interval over the recipes), and
+    precedence precision / recall with and without errors."""
     header = [
-        "learner", "admitted", "P (error-free)", "R (error-free)", "P (with errors)", "R (with errors)",
+        "learner", "admitted [95 % CI]", "P (error-free)", "R (error-free)", "P (with errors)", "R (with errors)",
         "P (with errors, all pairs)",
     ]
     keys = ("error_free_precision", "error_free_recall", "with_errors_precision", "with_errors_recall", "with_errors_all_precision")
     rows = [
-        [mode, f"{m['admitted']}/{m['held_out']} ({m['admission']:.1%})", *(f"{m[k]:.3f}" for k in keys)]
+        [mode, f"{m['admitted']}/{m['held_out']} ({_share(m)})", *(f"{m[k]:.3f}" for k in keys)]
         for mode, m in captaincook.items()
     ]
     return markdown_table(header, rows)
+
+
+def _share(learner: Mapping[str, Any]) -> str:
+    """The held-out share admitted, with its interval when there is one: ``58.6 % [48.0, 69.2]``."""
+    share = f"{learner['admission']:.1%}"
+    low, high = learner["admission_interval"]["low"], learner["admission_interval"]["high"]
+    return share if low is None or high is None else f"{share} [{100 * low:.1f}, {100 * high:.1f}]"
 
 
 def _edges_table(captaincook: Mapping[str, Any]) -> list[str]:
