@@ -211,9 +211,9 @@ def generalisation_intervals() -> str:
         else "DO's published mean lies outside " + ("both intervals" if not any(inside) else "one interval")
     )
     strict_words = (
-        "the paired difference from our strict learner includes zero in both settings"
+        "the interval of the paired difference from our strict learner holds zero in both settings"
         if not any(differs)
-        else "the paired difference from our strict learner excludes zero in "
+        else "the interval of the paired difference from our strict learner leaves out zero in "
         + ("both settings" if all(differs) else "one setting")
     )
     undecided = all(inside) and not any(differs)

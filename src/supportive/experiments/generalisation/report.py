@@ -81,7 +81,7 @@ def _scores_table(captaincook: Mapping[str, Any]) -> list[str]:
 
 
 def _share(learner: Mapping[str, Any]) -> str:
-    """The held-out share admitted, with its interval when there is one: ``58.6 % [48.0, 69.2]``."""
+    """The held-out share admitted, with its interval when there is one: ``58.6% [42.8, 74.4]``."""
     share = f"{learner['admission']:.1%}"
     low, high = learner["admission_interval"]["low"], learner["admission_interval"]["high"]
     return share if low is None or high is None else f"{share} [{100 * low:.1f}, {100 * high:.1f}]"
