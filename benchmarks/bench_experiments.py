@@ -42,6 +42,7 @@ def main() -> None:
     parser.add_argument("--output", type=Path, default=Path(__file__).parent / "results" / "experiments.json")
     parser.add_argument("--skip-all", action="store_true", help="do not time reproduce all")
     args = parser.parse_args()
+    before = load()
     parallel, parallel_metrics = timed("active-learning", 2)
     serial, serial_metrics = timed("active-learning", 1)
     if parallel_metrics != serial_metrics:
@@ -54,6 +55,8 @@ def main() -> None:
             "workers_2_seconds": round(parallel, 2),
             "in_process_seconds": round(serial, 2),
             "dask_speedup": round(serial / parallel, 2),
+            "load_before": before,
+            "load_after": load(),
             "target_seconds": TARGET_SECONDS,
             "meets_target": parallel < TARGET_SECONDS,
         },

@@ -65,17 +65,18 @@ _SCALE = {"ms": 1e3, "us": 1e6, "k": 1e-3, "pct": 100.0}
 
 
 def filled(template: str, data: Mapping[str, Any]) -> str:
-    """``template`` with each ``{a.b.c|unit:format}`` replaced by ``data["a"]["b"]["c"]``, scaled by the unit
-    (``ms``, ``us``: seconds to milli-/microseconds; ``k``: thousands; ``pct``: a share in per cent) and formatted.
+    """``template`` with each ``{a.b.c|unit:format}`` replaced by ``data["a"]["b"]["c"]`` (a number picks an
+    item of a list: ``{load.0}``), scaled by the unit (``ms``, ``us``: seconds to milli-/microseconds; ``k``:
+    thousands; ``pct``: a share in per cent) and formatted.
 
-    >>> filled("{x.y|ms:.1f} ms, {n:,}", {"x": {"y": 0.01234}, "n": 1904})
-    '12.3 ms, 1,904'
+    >>> filled("{x.y|ms:.1f} ms, {n:,}, load {load.0:.1f}", {"x": {"y": 0.01234}, "n": 1904, "load": [1.93, 2.0]})
+    '12.3 ms, 1,904, load 1.9'
     """
 
     def value(match: re.Match[str]) -> str:
         item: Any = data
         for key in match["path"].split("."):
-            item = item[key]
+            item = item[int(key)] if isinstance(item, list) else item[key]
         if match["unit"]:
             item = item * _SCALE[match["unit"]]
         return format(item, match["format"] or "")
