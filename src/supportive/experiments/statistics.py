@@ -53,17 +53,25 @@ def mean_ci(
     return {"mean": round(mean, digits), "low": low, "high": high, "n": len(values)}
 
 
-def ratio_ci(numerators: Sequence[float], denominators: Sequence[float], digits: int = 6) -> dict[str, Any]:
+def ratio_ci(
+    numerators: Sequence[float],
+    denominators: Sequence[float],
+    digits: int = 6,
+    bounds: tuple[float, float] | None = None,
+) -> dict[str, Any]:
     """The ratio of the means of paired samples, mean(numerators) / mean(denominators), with a 95% confidence
     interval by the delta method (the standard error of the ratio estimator: the sample standard deviation
     of ``y − R x`` over √n, divided by mean(x); Student's t), as plain JSON like :func:`mean_ci`.
 
-    Everything is ``None`` when the denominators' mean is 0; the bounds are ``None`` for fewer than two pairs.
+    Everything is ``None`` when the denominators' mean is 0; the bounds are ``None`` for fewer than two pairs,
+    and clipped to ``bounds`` when given (a share lies in 0–1).
 
     >>> ratio_ci([1.0, 2.0, 3.0], [2.0, 4.0, 6.0])
     {'mean': 0.5, 'low': 0.5, 'high': 0.5, 'n': 3}
     >>> r = ratio_ci([1.0, 3.0, 2.0, 2.0], [4.0, 4.0, 5.0, 3.0]); r["low"] < r["mean"] == 0.5 < r["high"]
     True
+    >>> ratio_ci([1.0, 0.0, 2.0], [1.0, 2.0, 2.0], bounds=(0.0, 1.0))["low"]
+    0.0
     """
     if len(numerators) != len(denominators):
         raise ExperimentError("ratio_ci: numerators and denominators must pair up")
@@ -77,7 +85,10 @@ def ratio_ci(numerators: Sequence[float], denominators: Sequence[float], digits:
     if n > 1:
         residuals = [b - ratio * a for a, b in zip(denominators, numerators, strict=True)]
         half = float(stats.t.ppf(0.975, n - 1)) * statistics.stdev(residuals) / math.sqrt(n) / abs(x)
-        low, high = round(ratio - half, digits), round(ratio + half, digits)
+        low, high = ratio - half, ratio + half
+        if bounds is not None:
+            low, high = max(bounds[0], low), min(bounds[1], high)
+        low, high = round(low, digits), round(high, digits)
     return {"mean": round(ratio, digits), "low": low, "high": high, "n": n}
 
 

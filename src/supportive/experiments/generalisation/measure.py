@@ -152,8 +152,13 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 "held_out": held,
                 "admitted": admitted,
                 "admission": round(admitted / held, 4),
-                "admission_interval": _interval(
-                    ratio_ci([float(r[mode]["admitted"]) for r in recipes], [float(r["held_out"]) for r in recipes], digits=4)
+                "admission_interval": _bounds(
+                    ratio_ci(
+                        [float(r[mode]["admitted"]) for r in recipes],
+                        [float(r["held_out"]) for r in recipes],
+                        digits=4,
+                        bounds=(0.0, 1.0),
+                    )
                 ),
                 **{
                     f"{data}_{metric}": round(float(np.mean([r[mode][data][metric] for r in recipes])), 4)
@@ -165,11 +170,10 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     return out
 
 
-def _interval(summary: Mapping[str, Any]) -> dict[str, Any]:
+def _bounds(summary: Mapping[str, Any]) -> dict[str, Any]:
     """The bounds of a :func:`~supportive.experiments.statistics.mean_ci`-like summary (its mean is reported
-    beside it already), within 0–1."""
-    low, high = summary["low"], summary["high"]
-    return {"low": None if low is None else max(0.0, low), "high": None if high is None else min(1.0, high)}
+    beside it already)."""
+    return {"low": summary["low"], "high": summary["high"]}
 
 
 def _edge_summary(recipes: Sequence[Mapping[str, Any]], mode: str, setting: str) -> dict[str, Any]:
@@ -181,7 +185,7 @@ def _edge_summary(recipes: Sequence[Mapping[str, Any]], mode: str, setting: str)
         metric: round(float(np.mean([r[mode]["edges"][setting][metric] for r in recipes])), 4)
         for metric in ("precision", "recall", "f1")
     }
-    summary["f1_interval"] = _interval(mean_ci(f1, digits=4, bounds=(0.0, 1.0)))
+    summary["f1_interval"] = _bounds(mean_ci(f1, digits=4, bounds=(0.0, 1.0)))
     if mode != "strict":
         strict = [float(r["strict"]["edges"][setting]["f1"]) for r in recipes]
         summary["f1_minus_strict"] = mean_ci([a - b for a, b in zip(f1, strict, strict=True)], digits=4)

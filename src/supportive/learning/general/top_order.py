@@ -81,9 +81,10 @@ def _enumerated(
 ) -> TopLevel | None:
     """The top level over ``n`` roots whose required predecessors are ``preds[i]`` and predecessors
     ``earlier[i]`` (bit masks; ``unlocks[u]``: the roots required root ``u`` comes before), ``need`` the
-    required roots (the others free: in no one's ``preds``, nor needed); None beyond ``max_states`` states. Its states are numbered in the order the enumeration finds
-    them, so the same constraints give the same numbers (the slip search asks again and again for the same
-    ones: kept, with what is worked out from them)."""
+    required roots (the others free: in no one's ``preds``, nor needed); None beyond ``max_states`` states.
+    Its states are numbered in the order the enumeration finds them, so the same constraints give the same
+    numbers (the slip search asks again and again for the same ones: kept, with what is worked out from
+    them)."""
     if _more_states_than(max_states, preds, earlier):
         return None
     everything = (1 << n) - 1
