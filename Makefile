@@ -122,6 +122,8 @@ docs-results: $(VENV)/.dev
 	cp out/reproduce/learner-settings/metrics.json docs/results/learner-settings.json
 	cp out/reproduce/learner-settings/run.json docs/results/learner-settings-run.json
 	cp out/reproduce/mistake-detection/metrics.json docs/results/mistake-detection.json
+	cp out/reproduce/selection-settings/metrics.json docs/results/selection-settings.json
+	cp out/reproduce/selection-settings/run.json docs/results/selection-settings-run.json
 	$(BIN)/supportive captaincook --json > out/captaincook.json
 	mv out/captaincook.json docs/results/captaincook.json
 	$(BIN)/python tools/docs_numbers.py

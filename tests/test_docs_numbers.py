@@ -107,6 +107,7 @@ RECORDED = {
     "generalisation": "generalisation.json",
     "learner-settings": "learner-settings.json",
     "mistake-detection": "mistake-detection.json",
+    "selection-settings": "selection-settings.json",
 }
 
 
@@ -159,6 +160,21 @@ def test_the_learner_defaults_are_the_setting_the_recorded_run_chose() -> None:
         assert parameters[name].default == float(value), name
 
 
+def test_the_selection_defaults_are_the_policy_the_recorded_run_chose() -> None:
+    """docs/learning.md says when and with how many folds the default learner compares its readings was chosen
+    by `reproduce selection-settings`: the recorded run's policy is what ``HTNLearner`` defaults to."""
+    import inspect
+
+    from supportive.learning import HTNLearner
+
+    metrics = _recorded("selection-settings.json")
+    assert isinstance(metrics, dict) and metrics["chosen"]
+    policy = metrics["policies"][metrics["chosen"]]
+    parameters = inspect.signature(HTNLearner.__init__).parameters
+    assert parameters["selection_folds"].default == policy["folds"]
+    assert parameters["selection_demonstrations"].default == policy["demonstrations"]
+
+
 def test_the_caregiver_prose_holds_on_the_recorded_run() -> None:
     """docs/caregiver.md: Eq. 3.2 over the whole trajectory helps the goal-directed novice the generated sentence
     names less than either shorter memory does (the *Deviation: memory* paragraph's claim)."""
@@ -186,6 +202,7 @@ RECORDED_RUNS = [
     pytest.param("support-tamp", RECORDED["support-tamp"], marks=_MINUTES),
     pytest.param("generalisation", RECORDED["generalisation"], marks=_MINUTES),
     pytest.param("learner-settings", RECORDED["learner-settings"], marks=_MINUTES),
+    pytest.param("selection-settings", RECORDED["selection-settings"], marks=_MINUTES),
 ]
 
 

@@ -1,5 +1,5 @@
-"""generalisation and learner-settings (docs/learning.md): docs/results/generalisation.json and
-learner-settings.json."""
+"""generalisation, learner-settings and selection-settings (docs/learning.md): docs/results/generalisation.json,
+learner-settings.json and selection-settings.json."""
 
 from __future__ import annotations
 
@@ -15,6 +15,7 @@ from .runs import run_time
 
 _GEN = "docs/results/generalisation.json (supportive reproduce generalisation)"
 _LS = "docs/results/learner-settings.json (supportive reproduce learner-settings)"
+_SS = "docs/results/selection-settings.json (supportive reproduce selection-settings)"
 
 
 def _gen() -> dict[str, Any]:
@@ -235,6 +236,37 @@ def learner_settings_clean() -> str:
     )
 
 
+def selection_settings_chosen() -> str:
+    """docs/learning.md: the best policy, how far the conventional one and never comparing are behind it (and
+    whether within one standard error), which was kept, and what likelihood alone would pick at what cost in
+    recall."""
+    from supportive.experiments.selection_settings.measure import CONVENTIONAL, best_policy, policy_name
+
+    metrics: dict[str, Any] = read_json(RESULTS / "selection-settings.json")
+    policies, best, chosen, recall = metrics["policies"], metrics["best"], metrics["chosen"], metrics["recall"]
+
+    def behind(name: str) -> str:
+        row = policies[name]
+        within = "within" if row["gap"] <= row["error"] else "beyond"
+        return f"{row['gap']:.4f} nats behind it, {within} one standard error ({row['error']:.4f})"
+
+    conventional, never = policy_name(*CONVENTIONAL), policy_name(CONVENTIONAL[0], None)
+    text = (
+        f"The best policy that keeps the recall is `{best}` ({policies[best]['gain']:+.3f} nats per fresh "
+        f"execution over keeping `general`, the mean over the rows); the conventional `{conventional}` is "
+        f"{behind(conventional)}, and not comparing at all is {behind(never)}. Kept: `{chosen}`."
+    )
+    likelihood = best_policy({name: {**row, "qualifies": True} for name, row in policies.items()})
+    assert likelihood is not None
+    if not policies[likelihood]["qualifies"]:
+        text += (
+            f" On likelihood alone `{likelihood}` would win ({policies[likelihood]['gain']:+.3f}), at the cost of "
+            f"issue #13's recall: from 4 demonstrations of `uniform` tasks it admits "
+            f"{policies[likelihood]['recall']:.3f} of the fresh executions, `general` {recall['general']:.3f}."
+        )
+    return text + "\n"
+
+
 BLOCKS: dict[str, Block] = {
     "generalisation-table": Block(_GEN, generalisation_table),
     "generalisation-verdicts": Block(f"{_GEN}; {CAPTAINCOOK}", generalisation_verdicts),
@@ -245,4 +277,11 @@ BLOCKS: dict[str, Block] = {
     "learner-settings-chosen": Block(_LS, learner_settings_chosen),
     "learner-settings-clean": Block(_LS, learner_settings_clean, inline=True),
     "learner-settings-time": run_time("learner-settings"),
+    "selection-settings-gains": report_table("selection-settings", "selection-settings.json", "| demonstrations | 2 folds"),
+    "selection-settings-admitted": report_table(
+        "selection-settings", "selection-settings.json", "| demonstrations | general"
+    ),
+    "selection-settings-policies": report_table("selection-settings", "selection-settings.json", "| compare from"),
+    "selection-settings-chosen": Block(_SS, selection_settings_chosen),
+    "selection-settings-time": run_time("selection-settings"),
 }

@@ -39,7 +39,7 @@ def run_time(name: str) -> Block:
     return Block(f"docs/results/{name}-run.json (supportive reproduce {name}: run.json)", make, inline=True)
 
 
-TIMED = ("learner-settings", "generalisation", "support-tamp", "active-learning")
+TIMED = ("learner-settings", "selection-settings", "generalisation", "support-tamp", "active-learning")
 """The experiments whose recorded run kept its ``run.json`` (``docs/results/NAME-run.json``)."""
 
 

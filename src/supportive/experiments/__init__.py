@@ -5,7 +5,7 @@ numbers side by side. A trial's wall-clock measurements, under its reserved ``"t
 
 >>> from supportive.experiments import names, run_experiment
 >>> names()
-('active-learning', 'active-learning-blocks', 'captaincook', 'captaincook-prediction', 'caregiver', 'edge-reduction', 'generalisation', 'goal-inference', 'learner-settings', 'mistake-detection', 'support-tamp', 'transfer')
+('active-learning', 'active-learning-blocks', 'captaincook', 'captaincook-prediction', 'caregiver', 'edge-reduction', 'generalisation', 'goal-inference', 'learner-settings', 'mistake-detection', 'selection-settings', 'support-tamp', 'transfer')
 >>> result = run_experiment("edge-reduction", trials=2, progress=False)
 >>> "1.99" in result.report and "2.84" in result.report
 True

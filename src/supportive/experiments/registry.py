@@ -68,6 +68,7 @@ _BUILTINS = (
     "supportive.experiments.captaincook_prediction",
     "supportive.experiments.generalisation",
     "supportive.experiments.learner_settings",
+    "supportive.experiments.selection_settings",
     "supportive.experiments.mistake_detection",
     "supportive.experiments.transfer",
     "supportive.experiments.caregiver",

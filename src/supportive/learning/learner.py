@@ -114,7 +114,10 @@ class HTNLearner(Estimator):
         selection_folds: ``auto``: folds of the cross-validation that chooses the reading (leave one out with
             fewer demonstrations); at least 2.
         selection_demonstrations: ``auto``: the fewest demonstrations the readings are compared on (with
-            fewer, ``general`` is kept); at least 2.
+            fewer, ``general`` is kept); at least 2. Both defaults are the policy ``supportive reproduce
+            selection-settings`` keeps on generated tasks: the conventional 5-fold cross-validation from 5
+            demonstrations, which no policy keeping issue #13's recall beats there by more than one
+            standard error (docs/learning.md).
         alternatives: Most alternative hierarchies to look for when the result is partial (0: none); the
             strict learner finds up to this many restrictions, the others one hierarchy admitting all the
             result admits (docs/learning.md, "Module layout").

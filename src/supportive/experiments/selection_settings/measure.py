@@ -1,0 +1,239 @@
+"""Selection-settings trials: one generated task, ``n`` demonstrations sampled uniformly from its valid
+executions, learned by the ``general`` reading and by ``auto`` comparing the readings with every number of
+folds of :data:`FOLDS`; each learned hierarchy scored on fresh executions of the same task.
+
+The score is the one the comparison itself estimates (:func:`~supportive.learning.selection.held_out_log_likelihoods`):
+the log-likelihood of an execution when every execution a hierarchy admits is equally likely, a refused one
+explained as noise. A trial gives, per hierarchy, the mean over the fresh executions and how many it admitted.
+
+A **policy** is a pair of settings: ``selection_folds`` and ``selection_demonstrations`` (compare from this
+many demonstrations on; below, the ``general`` reading is kept). Its gain at ``n`` demonstrations is
+``auto``'s score minus ``general``'s when ``n`` reaches its threshold, else 0. The procedure
+(:func:`choose`): among the policies that cost no recall at :data:`RECALL_DEMONSTRATIONS` demonstrations of
+``uniform`` tasks, where issue #13 fixed the default learner's recall, the best mean gain over the numbers of
+demonstrations of the grid — or the :data:`CONVENTIONAL` policy when it is within one standard error of that.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import statistics
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from supportive.experiments.statistics import mean_ci
+from supportive.experiments.trials import Trial, spawn_trials
+from supportive.generate.mistakes import PROFILES, random_known_task
+from supportive.learning import HTNLearner
+from supportive.learning.selection import held_out_log_likelihoods
+
+__all__ = [
+    "CONVENTIONAL",
+    "DEFAULT_TRIALS",
+    "DEMONSTRATIONS",
+    "FOLDS",
+    "FRESH",
+    "RECALL_DEMONSTRATIONS",
+    "SIZES",
+    "TASKS",
+    "best_policy",
+    "choose",
+    "make_trials",
+    "policy_name",
+    "run_trial",
+    "summarize",
+]
+
+DEMONSTRATIONS = (2, 3, 4, 5, 6, 8, 10, 12, 16, 20)
+"""Numbers of demonstrations a task is learned from; also the thresholds a policy may compare from."""
+FOLDS = (2, 3, 5, 10)
+"""Folds of the comparison swept (leave one out where there are fewer demonstrations)."""
+SIZES = (6, 12)
+"""Steps per task (inclusive range), as in ``learner-settings``."""
+TASKS = 100
+"""Generated tasks per profile and number of demonstrations (a full run)."""
+FRESH = 50
+"""Fresh executions of each task the learned hierarchies are scored on."""
+RECALL_DEMONSTRATIONS = 4
+"""Issue #13 fixed the default learner's recall on ``uniform`` tasks learned from this many demonstrations."""
+DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS)
+"""Trials of a full run."""
+CONVENTIONAL = (5, 5)
+"""``selection_folds`` and ``selection_demonstrations`` by convention: 5-fold cross-validation (the usual
+choice; Hastie, Tibshirani and Friedman, *The Elements of Statistical Learning*, §7.10), compared from as many
+demonstrations as folds. Kept unless a policy predicts fresh executions better by more than one standard
+error (:func:`choose`)."""
+
+
+def policy_name(folds: int, demonstrations: int | None) -> str:
+    """``selection_folds=5 selection_demonstrations=5``, or ``never compare`` (``demonstrations`` None)."""
+    if demonstrations is None:
+        return "never compare"
+    return f"selection_folds={folds} selection_demonstrations={demonstrations}"
+
+
+def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
+    """Trials cycle through profile × number of demonstrations (a full run has :data:`TASKS` of each)."""
+    cells = list(itertools.product(PROFILES, DEMONSTRATIONS))
+    return spawn_trials(seed, [{"profile": p, "demonstrations": n} for p, n in (cells[i % len(cells)] for i in range(trials))])
+
+
+def run_trial(trial: Trial) -> dict[str, Any]:
+    """Generate the task, its demonstrations and fresh executions; learn and score ``general`` and ``auto``
+    under every number of folds."""
+    rng = trial.rng()
+    profile, n = trial.params["profile"], int(trial.params["demonstrations"])
+    task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
+    demos = [task.sample(rng) for _ in range(n)]
+    fresh = [task.sample(rng) for _ in range(FRESH)]
+    general = HTNLearner(mode="general", alternatives=0).fit(demos)
+    out: dict[str, Any] = {
+        "index": trial.index, "profile": profile, "demonstrations": n,
+        "general": _score(general, fresh), "folds": {},
+    }
+    for folds in FOLDS:
+        auto = HTNLearner(mode="auto", alternatives=0, selection_folds=folds, selection_demonstrations=2).fit(demos)
+        assert auto.selection_ is not None
+        out["folds"][str(folds)] = {**_score(auto, fresh), "chosen": auto.selection_.chosen}
+    return out
+
+
+def _score(learner: HTNLearner, fresh: Sequence[Sequence[str]]) -> dict[str, Any]:
+    """Mean held-out log-likelihood (nats) of the fresh executions under the learned hierarchy, and how many
+    it admits."""
+    scored = held_out_log_likelihoods(learner.htn_, fresh, learner.slip_rate)
+    return {"log_likelihood": round(statistics.fmean(v for v, _ in scored), 6), "admitted": sum(ok for _, ok in scored)}
+
+
+def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """Per number of folds and of demonstrations: the gain of comparing over ``general`` (mean and 95 %
+    interval over the tasks, and per profile); the share of fresh executions each admits; every policy's mean
+    gain over the grid and recall at :data:`RECALL_DEMONSTRATIONS`; the chosen policy (:func:`choose`)."""
+    present = sorted({int(r["demonstrations"]) for r in results})
+    gains: dict[str, dict[str, Any]] = {}
+    admitted: dict[str, dict[str, float | None]] = {"general": {}}
+    for folds in FOLDS:
+        key = str(folds)
+        gains[key] = {}
+        admitted[key] = {}
+        for n in present:
+            cell = [r for r in results if r["demonstrations"] == n]
+            differences = [r["folds"][key]["log_likelihood"] - r["general"]["log_likelihood"] for r in cell]
+            by_profile = {
+                p: round(statistics.fmean(d for d, r in zip(differences, cell, strict=True) if r["profile"] == p), 6)
+                for p in PROFILES
+                if any(r["profile"] == p for r in cell)
+            }
+            gains[key][str(n)] = {**mean_ci(differences), "profiles": by_profile}
+            admitted[key][str(n)] = _share(cell, key)
+    for n in present:
+        admitted["general"][str(n)] = _share([r for r in results if r["demonstrations"] == n], "general")
+    uniform = [r for r in results if r["demonstrations"] == RECALL_DEMONSTRATIONS and r["profile"] == "uniform"]
+    recall = {name: _share(uniform, name) for name in admitted}
+    policies = _policies(results, recall)
+    return {
+        "gains": gains,
+        "admitted": admitted,
+        "recall": recall,
+        "policies": policies,
+        "best": best_policy(policies),
+        "chosen": choose(policies),
+        "tasks": [dict(r) for r in results],
+    }
+
+
+def _share(cell: Sequence[Mapping[str, Any]], reading: str) -> float | None:
+    """The share of the cell's fresh executions that ``reading`` (``general`` or a number of folds) admitted
+    (None for an empty cell)."""
+    if not cell:
+        return None
+    admitted: int = sum(r["general"]["admitted"] if reading == "general" else r["folds"][reading]["admitted"] for r in cell)
+    return round(admitted / (FRESH * len(cell)), 6)
+
+
+def _policies(
+    results: Sequence[Mapping[str, Any]], recall: Mapping[str, float | None]
+) -> dict[str, dict[str, Any]]:
+    """Every policy: its mean gain over the numbers of demonstrations run, its recall at
+    :data:`RECALL_DEMONSTRATIONS` (``uniform`` tasks), whether that is no less than ``general``'s, and how far it
+    is behind the best policy that keeps the recall (``gap``) with the standard error of that difference
+    (``error``; the tasks of a row are paired, the rows independent)."""
+    per_task: dict[str, dict[int, list[float]]] = {}
+    out: dict[str, dict[str, Any]] = {}
+    for folds, threshold in itertools.product(FOLDS, (*DEMONSTRATIONS, None)):
+        name = policy_name(folds, threshold)
+        if name in out:
+            continue
+        per_task[name] = _policy_gains(results, folds, threshold)
+        at_recall = threshold is not None and threshold <= RECALL_DEMONSTRATIONS
+        kept = recall[str(folds)] if at_recall else recall["general"]
+        out[name] = {
+            "folds": folds if threshold is not None else None,
+            "demonstrations": threshold,
+            "gain": round(_mean_gain(per_task[name]), 6),
+            "recall": kept,
+            "qualifies": kept is None or recall["general"] is None or kept >= recall["general"],
+        }
+    best = best_policy(out)
+    for name, row in out.items():
+        gap, error = _difference(per_task[best], per_task[name]) if best is not None else (0.0, 0.0)
+        row["gap"], row["error"] = round(gap, 6), round(error, 6)
+    return out
+
+
+def _policy_gains(results: Sequence[Mapping[str, Any]], folds: int, threshold: int | None) -> dict[int, list[float]]:
+    """Per number of demonstrations, each task's gain under the policy (0 where it keeps ``general``), in the
+    order of ``results``."""
+    rows: dict[int, list[float]] = {}
+    for r in results:
+        n = int(r["demonstrations"])
+        compares = threshold is not None and n >= threshold
+        gain = r["folds"][str(folds)]["log_likelihood"] - r["general"]["log_likelihood"] if compares else 0.0
+        rows.setdefault(n, []).append(gain)
+    return rows
+
+
+def _mean_gain(rows: Mapping[int, Sequence[float]]) -> float:
+    """The mean over the rows of the mean gain of each."""
+    return statistics.fmean(statistics.fmean(row) for row in rows.values()) if rows else 0.0
+
+
+def _difference(first: Mapping[int, Sequence[float]], second: Mapping[int, Sequence[float]]) -> tuple[float, float]:
+    """``first``'s score minus ``second``'s and the standard error of that difference: the tasks of a row paired,
+    the rows independent (the variance of a mean of row means)."""
+    if not first:
+        return 0.0, 0.0
+    variance = 0.0
+    for n, row in first.items():
+        differences = [a - b for a, b in zip(row, second[n], strict=True)]
+        variance += statistics.variance(differences) / len(differences) if len(differences) > 1 else 0.0
+    return _mean_gain(first) - _mean_gain(second), math.sqrt(variance) / len(first)
+
+
+def _cost(row: Mapping[str, Any]) -> tuple[int, int]:
+    """How much work a policy asks (smaller is cheaper): never comparing, then fewer folds, then comparing from
+    more demonstrations."""
+    if row["demonstrations"] is None:
+        return (0, 0)
+    return (1, row["folds"] * 100 - row["demonstrations"])
+
+
+def best_policy(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
+    """The best mean gain among the policies that keep the recall (ties: the cheaper); None when none does."""
+    qualified = [name for name, row in policies.items() if row["qualifies"]]
+    return min(qualified, key=lambda name: (-policies[name]["gain"], _cost(policies[name])), default=None)
+
+
+def choose(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
+    """The procedure that picks the defaults: among the policies that admit no fewer fresh executions of
+    ``uniform`` tasks from :data:`RECALL_DEMONSTRATIONS` demonstrations than the ``general`` reading (issue #13's
+    recall is kept), the one with the best mean gain over the grid (ties: the cheaper) — unless the
+    :data:`CONVENTIONAL` policy is within one standard error of it (``gap`` ≤ ``error``): then the convention
+    is kept, for these tasks cannot tell the two apart. None when no policy keeps the recall."""
+    best = best_policy(policies)
+    conventional = policies.get(policy_name(*CONVENTIONAL))
+    if best is None or conventional is None or not conventional["qualifies"]:
+        return best
+    within = conventional["gap"] <= conventional["error"] or math.isclose(conventional["gap"], conventional["error"])
+    return policy_name(*CONVENTIONAL) if within else best
