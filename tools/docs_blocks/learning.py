@@ -267,6 +267,28 @@ def selection_settings_chosen() -> str:
     return text + "\n"
 
 
+def selection_settings_losses() -> str:
+    """docs/learning.md: where comparing loses from 6 demonstrations on, under the kept policy's folds: which
+    readings it keeps instead of ``general`` on how many tasks, and what each then gains or loses."""
+    from supportive.experiments.selection_settings.measure import CONVENTIONAL
+
+    metrics: dict[str, Any] = read_json(RESULTS / "selection-settings.json")
+    folds = str(CONVENTIONAL[0])
+    rows = [r for r in metrics["tasks"] if r["demonstrations"] >= 6]
+    gains: dict[str, list[float]] = {}
+    for r in rows:
+        chosen = r["folds"][folds]["chosen"]
+        if chosen != "general":
+            gains.setdefault(chosen, []).append(r["folds"][folds]["log_likelihood"] - r["general"]["log_likelihood"])
+    kept = sorted(gains.items(), key=lambda item: -len(item[1]))
+    return (
+        f"From 6 demonstrations on, with {folds} folds, the comparison keeps another reading than `general` on "
+        f"{sum(len(g) for g in gains.values())} of the {len(rows):,} tasks: "
+        + "; ".join(f"`{name}` on {len(g)}, {mean(g):+.2f} nats per fresh execution" for name, g in kept)
+        + ".\n"
+    )
+
+
 BLOCKS: dict[str, Block] = {
     "generalisation-table": Block(_GEN, generalisation_table),
     "generalisation-verdicts": Block(f"{_GEN}; {CAPTAINCOOK}", generalisation_verdicts),
@@ -283,5 +305,6 @@ BLOCKS: dict[str, Block] = {
     ),
     "selection-settings-policies": report_table("selection-settings", "selection-settings.json", "| compare from"),
     "selection-settings-chosen": Block(_SS, selection_settings_chosen),
+    "selection-settings-losses": Block(_SS, selection_settings_losses),
     "selection-settings-time": run_time("selection-settings"),
 }
