@@ -6,7 +6,8 @@
 * ``supportive reproduce all --workers 2`` (every experiment, every reading, full runs; issue 18's target:
   under 15 minutes on 2 cores). The machine may be shared, so the load average is recorded before and after
   (``os.getloadavg``: runnable processes, 1, 5 and 15 minutes); a load above the core count means other work
-  competed for the cores. ``--skip-all`` leaves this part out.
+  competed for the cores. ``--skip-all`` leaves this part out, as ``make bench`` does (``make bench-reproduce-all``
+  runs it).
 """
 
 from __future__ import annotations
