@@ -13,7 +13,7 @@ puts one mistake into some of them, of one of three kinds:
 * ``dropped``: a step left out.
 
 Each returns what was put in (:class:`Injected`), so a detector's findings can be scored against it. The
-``learner-settings`` and ``mistake-detection`` experiments are built on these.
+``learner-settings``, ``selection-settings`` and ``mistake-detection`` experiments are built on these.
 
 >>> task = random_known_task("partial order", 6, seed=1)
 >>> rng = np.random.default_rng(0)
