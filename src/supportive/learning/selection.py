@@ -78,8 +78,10 @@ class Selection:
     Attributes:
         chosen: The reading kept.
         reason: ``"held-out likelihood"`` (saying, when another reading scored best, by how much and the
-            standard error it was within), ``"the readings agree"``, ``"every execution was demonstrated"``
-            or ``"too few demonstrations"``.
+            standard error it was within, and, when the reading kept is not ``general``, by how much it
+            predicted the held-out demonstrations better than ``general`` and that difference's standard
+            error), ``"the readings agree"``, ``"every execution was demonstrated"`` or ``"too few
+            demonstrations"``.
         scores: Mean held-out log-likelihood per demonstration (nats) of each reading, when compared.
         admitted: Held-out demonstrations each reading admitted, when compared.
         folds: Folds of the cross-validation (0 when none was run).
@@ -249,10 +251,14 @@ def select_reading(
     scores = {name: sum(held) / len(actions) for name, held in values.items()}
     best = max(full, key=lambda name: (scores[name], -CANDIDATES.index(name)))
     chosen = next(name for name in full if _within_one_error(values[name], values[best]))
-    reason = "held-out likelihood"
+    notes = []
     if chosen != best:
         gap, error = _gap(values[chosen], values[best])
-        reason += f" ({best} best by {gap:.3f} nats, within one standard error, {error:.3f})"
+        notes.append(f"{best} best by {gap:.3f} nats, within one standard error, {error:.3f}")
+    if chosen != READINGS[0]:
+        gain, error = _gap(values[READINGS[0]], values[chosen])
+        notes.append(f"{chosen} better than {READINGS[0]} by {gain:.3f} nats, standard error {error:.3f}")
+    reason = "held-out likelihood" + (f" ({'; '.join(notes)})" if notes else "")
     if chosen != READINGS[0] and same_executions(full[chosen], general):
         reason += f"; {chosen} admits the same executions as {READINGS[0]}"
         return Selection(READINGS[0], reason, scores, admitted, k)
