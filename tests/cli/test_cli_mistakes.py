@@ -10,6 +10,10 @@ import pytest
 from tests.conftest import CliRunner
 
 from supportive import examples
+from supportive.errors import TaskFileError
+from supportive.evaluation.mistakes import STRUCTURE_REFERENCE, evaluate_mistakes
+from supportive.learning.precedence import implied_precedences
+from supportive.tasks.htn import HTN
 
 
 def test_the_bundled_example_scores_the_detector_beside_both_baselines(cli: CliRunner) -> None:
@@ -19,11 +23,44 @@ def test_the_bundled_example_scores_the_detector_beside_both_baselines(cli: CliR
     spec = examples.load("tea-mistakes")
     assert report["held_out"] == len(spec.demonstrations)
     methods = report["methods"]
-    assert set(methods) == {"progress-aware", "precondition", "unseen bigram"}
+    assert set(methods) == {"progress-aware", "precondition", "unseen bigram", "given structure"}
     detector = methods["progress-aware"]
     assert detector["positives"] == 4  # one skipped step, two too early, one repeated
     assert detector["clean_flagged"] == 0.0  # no step of the twelve correct demonstrations is called a mistake
     assert detector["f1"] >= max(methods["precondition"]["f1"], methods["unseen bigram"]["f1"])
+
+
+def test_the_files_structure_is_scored_as_a_reference_and_only_when_there_is_one(cli: CliRunner, tmp_path: Path) -> None:
+    spec = examples.load("tea-mistakes")
+    assert spec.structure is not None
+    truth = implied_precedences(HTN(spec.name, (spec.structure,)))
+    expected = evaluate_mistakes(spec, truth=truth, reference=STRUCTURE_REFERENCE).methods[STRUCTURE_REFERENCE]
+    code, out, _ = cli(["evaluate", "tea-mistakes", "--mistakes", "--json"])
+    reference = json.loads(out)["methods"][STRUCTURE_REFERENCE]
+    assert code == 0 and reference == expected.as_dict()
+    # Knowing the rules finds both steps done too early and calls no step of a correct demonstration a mistake;
+    # a repeated step breaks no order, so it is not found.
+    assert reference["kinds"]["order"]["recall"] == 1.0 and reference["clean_flagged"] == 0.0
+    assert reference["kinds"]["repeated"]["recall"] == 0.0
+    source = examples.path("tea-mistakes").read_text(encoding="utf-8")
+    path = tmp_path / "tea.yaml"
+    path.write_text(_without_structure(source), encoding="utf-8")
+    code, out, _ = cli(["evaluate", str(path), "--mistakes", "--json"])
+    assert code == 0 and STRUCTURE_REFERENCE not in json.loads(out)["methods"]
+
+
+def _without_structure(source: str) -> str:
+    """The task file with its ``structure:`` block (up to the next top-level key) taken out."""
+    lines = source.splitlines(keepends=True)
+    start = next(i for i, line in enumerate(lines) if line.startswith("structure:"))
+    end = next(i for i in range(start + 1, len(lines)) if lines[i][:1].isalpha())
+    return "".join(lines[:start] + lines[end:])
+
+
+def test_the_reference_may_not_take_a_methods_name() -> None:
+    spec = examples.load("tea-mistakes")
+    with pytest.raises(TaskFileError, match="the reference cannot be called 'precondition'"):
+        evaluate_mistakes(spec, truth=set(), reference="precondition")
 
 
 @pytest.mark.parametrize(

@@ -251,7 +251,9 @@ def evaluate(
         raise TaskFileError("cross-validation needs at least two demonstrations", path=file, place="demonstrations")
     if mistakes:
         from supportive.cli.mistakes import print_mistakes
-        from supportive.evaluation.mistakes import evaluate_mistakes
+        from supportive.evaluation.mistakes import STRUCTURE_REFERENCE, evaluate_mistakes
+        from supportive.learning.precedence import implied_precedences
+        from supportive.tasks.htn import HTN
 
         if folds not in ("auto", "loo") or plot is not None:
             raise OptionError("--mistakes leaves one demonstration out and draws nothing: drop --folds and --plot")
@@ -261,8 +263,16 @@ def evaluate(
                 path=file,
                 place="demonstrations",
             )
+        truth = None if spec.structure is None else implied_precedences(HTN(spec.name, (spec.structure,)))
         with progress_bar(f"mistakes {printable(spec.name)}", len(spec.demonstrations)) as advance, about(file):
-            found = evaluate_mistakes(spec, thresholds=(_threshold(threshold),), learn_from=learn_from.value, progress=advance)
+            found = evaluate_mistakes(
+                spec,
+                thresholds=(_threshold(threshold),),
+                learn_from=learn_from.value,
+                truth=truth,
+                reference=STRUCTURE_REFERENCE,
+                progress=advance,
+            )
         print_mistakes(found, printable(spec.name), as_json=as_json)
         return
     _without_mistakes(learn_from)

@@ -15,10 +15,11 @@ mistake-detection`` follow). The baselines are:
 * **unseen bigram**: a step is a mistake when no training demonstration goes from the previous step (or the
   start) to it.
 
-When the task's true orders are known (``truth``: CaptainCook4D's published task graphs), a reference is
-scored beside them, **published graph**: the precondition check on those orders, learned from nothing. It is
-not a baseline (no robot knows them) but a reference for the labels: how a detector that knew every rule of
-the task, and flagged each step done before a step it needs, would score against them.
+When the task's true orders are known, a reference is scored beside them: the precondition check on those
+orders, learned from nothing — **published graph** for CaptainCook4D's published task graphs, **given
+structure** for a task file's ``structure:`` (``supportive evaluate FILE --mistakes``). It is not a baseline
+(no robot knows them) but a reference for the labels: how a detector that knew every rule of the task, and
+flagged each step done before a step it needs, would score against them.
 
 What counts (the labels of the task file, ``Step.mistake`` and ``Demonstration.skipped``):
 
@@ -61,6 +62,7 @@ __all__ = [
     "LEARN_FROM",
     "METHODS",
     "REFERENCE",
+    "STRUCTURE_REFERENCE",
     "VISIBLE",
     "MethodScores",
     "MistakeEvaluation",
@@ -77,7 +79,10 @@ DETECTOR = "progress-aware"
 METHODS = (DETECTOR, "precondition", "unseen bigram")
 """The methods compared, the detector first."""
 REFERENCE = "published graph"
-"""The reference scored when the task's true orders are given (:func:`evaluate_mistakes`'s ``truth``)."""
+"""The reference scored when the task's true orders are given (:func:`evaluate_mistakes`'s ``truth``), under
+this name unless another is given: CaptainCook4D's published graphs."""
+STRUCTURE_REFERENCE = "given structure"
+"""The name the reference is scored under when the true orders are a task file's ``structure``."""
 VISIBLE = ("order", "missing", "repeated", "unknown", "true")
 """Labels a step sequence can show (``true``: a mistake of unknown kind)."""
 _KIND_OF_LABEL = {"out-of-order": "order", "missing": "missing", "repeated": "repeated", "unknown-step": "unknown"}
@@ -204,6 +209,7 @@ def evaluate_mistakes(
     settings: Mapping[str, Any] | None = None,
     learn_from: str = "all",
     truth: Collection[tuple[Leaf, Leaf]] | None = None,
+    reference: str = REFERENCE,
     progress: Callable[[], None] | None = None,
 ) -> MistakeEvaluation:
     """Leave each demonstration out in turn and score every method's flags on it (see the module docstring).
@@ -219,7 +225,9 @@ def evaluate_mistakes(
         learn_from: ``all`` (every other demonstration) or ``correct`` (the others with no label a step sequence
             can show); see the module docstring.
         truth: The task's true orders, when known: pairs ``(a, b)`` of leaves ``(action, occurrence)``, ``a``
-            a step ``b`` needs done first; the :data:`REFERENCE` is then scored on them.
+            a step ``b`` needs done first; the precondition check on them is then scored as well.
+        reference: The name that check is reported under (:data:`REFERENCE`, or :data:`STRUCTURE_REFERENCE`
+            for a task file's structure); not one of the methods' names.
         progress: Called once per held-out demonstration.
 
     Raises:
@@ -236,6 +244,8 @@ def evaluate_mistakes(
         raise TaskFileError("give at least one threshold")
     if learn_from not in LEARN_FROM:
         raise TaskFileError(f"learn from {' or '.join(LEARN_FROM)}, not {learn_from!r}")
+    if reference in METHODS:
+        raise TaskFileError(f"the reference cannot be called {reference!r}: a method has that name")
     correct = [not _shows_mistake(d) for d in demos]
     if learn_from == "correct" and sum(correct) < 2:
         raise TaskFileError(
@@ -243,9 +253,9 @@ def evaluate_mistakes(
             f"{sum(correct)} of the {len(demos)} show no skipped step and no mistake a step sequence can show"
         )
     result = MistakeEvaluation(spec.name, tuple(thresholds), learn_from)
-    reference = None if truth is None else _true_precondition(truth, spec)
-    if reference is not None:
-        result.methods[REFERENCE] = MethodScores()
+    checked = None if truth is None else _true_precondition(truth, spec)
+    if checked is not None:
+        result.methods[reference] = MethodScores()
     wanted = frozenset(positives)
     for held in range(len(demos)):
         training = [d for i, d in enumerate(demos) if i != held and (learn_from == "all" or correct[i])]
@@ -257,8 +267,8 @@ def evaluate_mistakes(
             _score(demo, _detector(MistakeDetector(hmm, threshold=threshold))(demo), scores, wanted)
         _score(demo, _precondition([d.actions for d in training])(demo), result.methods["precondition"], wanted)
         _score(demo, _unseen_bigram([d.actions for d in training])(demo), result.methods["unseen bigram"], wanted)
-        if reference is not None:
-            _score(demo, reference(demo), result.methods[REFERENCE], wanted)
+        if checked is not None:
+            _score(demo, checked(demo), result.methods[reference], wanted)
         if progress is not None:
             progress()
     return result
@@ -308,7 +318,7 @@ def _precondition(training: Sequence[Sequence[str]]) -> Callable[[Demonstration]
 
 
 def _true_precondition(truth: Collection[tuple[Leaf, Leaf]], spec: TaskSpec) -> Callable[[Demonstration], list[Flag]]:
-    """The :data:`REFERENCE`: flag a step when a step it needs by ``truth`` is not done (as often)."""
+    """The reference: flag a step when a step it needs by ``truth`` is not done (as often)."""
     known = set(spec.action_ids())
     needs: dict[Leaf, list[Leaf]] = {}
     for first, then in sorted(truth):
