@@ -42,6 +42,8 @@ def test_the_files_structure_is_scored_as_a_reference_and_only_when_there_is_one
     # a repeated step breaks no order, so it is not found.
     assert reference["kinds"]["order"]["recall"] == 1.0 and reference["clean_flagged"] == 0.0
     assert reference["kinds"]["repeated"]["recall"] == 0.0
+    code, out, err = cli(["evaluate", "tea-mistakes", "--mistakes"])
+    assert code == 0 and "given structure: a reference, not a method" in " ".join((out + err).split())
     source = examples.path("tea-mistakes").read_text(encoding="utf-8")
     path = tmp_path / "tea.yaml"
     path.write_text(_without_structure(source), encoding="utf-8")

@@ -41,12 +41,15 @@ def test_a_trial_scores_general_and_every_number_of_folds_on_fresh_executions() 
         assert 0 <= score["admitted"] <= FRESH and score["log_likelihood"] < 0
 
 
-def _result(profile: str, n: int, general: float, auto: dict[int, float], admitted: dict[int, int]) -> dict[str, Any]:
+def _result(
+    profile: str, n: int, general: float, auto: dict[int, float], *, general_admits: int = FRESH, auto_admits: int = FRESH
+) -> dict[str, Any]:
+    """A trial's result as :func:`run_trial` gives it, with these held-out log-likelihoods and admissions."""
     return {
         "profile": profile,
         "demonstrations": n,
-        "general": {"log_likelihood": general, "admitted": admitted.get(0, FRESH)},
-        "folds": {str(k): {"log_likelihood": auto[k], "admitted": admitted.get(k, FRESH), "chosen": "x"} for k in FOLDS},
+        "general": {"log_likelihood": general, "admitted": general_admits},
+        "folds": {str(k): {"log_likelihood": auto[k], "admitted": auto_admits, "chosen": "x"} for k in FOLDS},
     }
 
 
@@ -66,10 +69,12 @@ def test_a_policys_gain_and_its_distance_from_the_best_are_worked_out_task_by_ta
     # The oracle: a policy's gain on each task (what its learner scores minus general's, 0 where it keeps
     # general), the mean of each row, then the mean over the rows; the distance from the best policy is the
     # same for the task-by-task differences, its variance that of a mean of independent row means.
-    results = [_result(p, n, g, dict(zip(FOLDS, auto, strict=True)), {}) for p, n, g, auto in tasks]
+    tasks = [("uniform", RECALL_DEMONSTRATIONS, -5.0, [-5.0] * len(FOLDS)), *tasks]  # the recall is measured
+    results = [_result(p, n, g, dict(zip(FOLDS, auto, strict=True))) for p, n, g, auto in tasks]
     summary = summarize(results)
     policies = summary["policies"]
     rows = sorted({n for _, n, _, _ in tasks})
+    assert all(row["gain"] <= policies[summary["best"]]["gain"] for row in policies.values() if row["qualifies"])
 
     def per_task(k: int | None, m: int | None) -> dict[int, np.ndarray]:
         return {
@@ -93,8 +98,7 @@ def test_a_policys_gain_and_its_distance_from_the_best_are_worked_out_task_by_ta
 
 def test_a_policy_comparing_where_it_costs_recall_does_not_qualify() -> None:
     folds = dict.fromkeys(FOLDS, -2.0)  # comparing gains a nat on every task...
-    fewer = {k: FRESH - 10 for k in FOLDS}  # ...but admits fewer fresh executions
-    results = [_result(p, n, -3.0, folds, fewer) for p in PROFILES for n in DEMONSTRATIONS]
+    results = [_result(p, n, -3.0, folds, auto_admits=FRESH - 10) for p in PROFILES for n in DEMONSTRATIONS]  # ...but admits fewer
     summary = summarize(results)
     assert summary["recall"]["general"] == 1.0 and summary["recall"][str(FOLDS[0])] == (FRESH - 10) / FRESH
     for k in FOLDS:
@@ -104,6 +108,26 @@ def test_a_policy_comparing_where_it_costs_recall_does_not_qualify() -> None:
     # conventional policy gains as much, so it is kept.
     assert summary["best"] == policy_name(FOLDS[0], RECALL_DEMONSTRATIONS + 1)
     assert summary["chosen"] == policy_name(*CONVENTIONAL)
+
+
+def test_the_distance_from_the_best_and_its_error_by_hand() -> None:
+    # With 2 folds comparing gains 1 and 3 nats on the tasks of 2 demonstrations, 0 and 2 on those of 3, 0 on
+    # the one of 4. Compared from 2 on: (2 + 1 + 0) / 3 = 1. From 3 on: (0 + 1 + 0) / 3, behind by 2/3; the
+    # paired differences are the first row's gains (1, 3: variance 2) and 0 elsewhere: error sqrt(2 / 2) / 3.
+    gains = {2: (1.0, 3.0), 3: (0.0, 2.0)}
+    other = dict.fromkeys(FOLDS[1:], -10.0)  # the other folds lose: never best
+    results = [
+        _result("uniform" if n == 3 else "ikea", n, -5.0, {FOLDS[0]: -5.0 + gain, **other})
+        for n, pair in gains.items()
+        for gain in pair
+    ]
+    results.append(_result("uniform", RECALL_DEMONSTRATIONS, -5.0, dict.fromkeys(FOLDS, -5.0)))
+    summary = summarize(results)
+    policies = summary["policies"]
+    assert summary["best"] == policy_name(FOLDS[0], 2)
+    assert policies[policy_name(FOLDS[0], 2)]["gain"] == 1.0
+    row = policies[policy_name(FOLDS[0], 3)]
+    assert (row["gain"], row["gap"], row["error"]) == (round(1 / 3, 6), round(2 / 3, 6), round((2 / 2) ** 0.5 / 3, 6))
 
 
 def _policy(

@@ -84,4 +84,4 @@ def test_a_tighter_reading_kept_says_by_how_much_it_beat_general() -> None:
     selection = learner.selection_
     assert selection is not None and learner.reading_ == "strict"
     assert math.isclose(selection.scores["strict"] - selection.scores["general"], math.log(6 / 5))
-    assert selection.reason == f"held-out likelihood (strict better than general by {math.log(6 / 5):.3f} nats, standard error 0.000)"
+    assert selection.reason == f"held-out likelihood (strict against general: +{math.log(6 / 5):.3f} nats, standard error 0.000)"

@@ -240,14 +240,20 @@ def selection_settings_chosen() -> str:
     """docs/learning.md: the best policy, how far the conventional one and never comparing are behind it (and
     whether within one standard error), which was kept, and what likelihood alone would pick at what cost in
     recall."""
-    from supportive.experiments.selection_settings.measure import CONVENTIONAL, best_policy, policy_name
+    from supportive.experiments.selection_settings.measure import (
+        CONVENTIONAL,
+        RECALL_DEMONSTRATIONS,
+        best_policy,
+        policy_name,
+        within_one_error,
+    )
 
     metrics: dict[str, Any] = read_json(RESULTS / "selection-settings.json")
     policies, best, chosen, recall = metrics["policies"], metrics["best"], metrics["chosen"], metrics["recall"]
 
     def behind(name: str) -> str:
         row = policies[name]
-        within = "within" if row["gap"] <= row["error"] else "beyond"
+        within = "within" if within_one_error(row) else "beyond"
         return f"{row['gap']:.4f} nats behind it, {within} one standard error ({row['error']:.4f})"
 
     conventional, never = policy_name(*CONVENTIONAL), policy_name(CONVENTIONAL[0], None)
@@ -261,7 +267,7 @@ def selection_settings_chosen() -> str:
     if not policies[likelihood]["qualifies"]:
         text += (
             f" On likelihood alone `{likelihood}` would win ({policies[likelihood]['gain']:+.3f}), at the cost of "
-            f"issue #13's recall: from 4 demonstrations of `uniform` tasks it admits "
+            f"issue #13's recall: from {RECALL_DEMONSTRATIONS} demonstrations of `uniform` tasks it admits "
             f"{policies[likelihood]['recall']:.3f} of the fresh executions, `general` {recall['general']:.3f}."
         )
     return text + "\n"
@@ -270,10 +276,11 @@ def selection_settings_chosen() -> str:
 def selection_settings_losses() -> str:
     """docs/learning.md: where comparing loses from 6 demonstrations on, under the kept policy's folds: which
     readings it keeps instead of ``general`` on how many tasks, and what each then gains or loses."""
-    from supportive.experiments.selection_settings.measure import CONVENTIONAL
-
     metrics: dict[str, Any] = read_json(RESULTS / "selection-settings.json")
-    folds = str(CONVENTIONAL[0])
+    kept_folds = metrics["policies"][metrics["chosen"]]["folds"]
+    if kept_folds is None:
+        return "The policy kept never compares the readings.\n"
+    folds = str(kept_folds)
     rows = [r for r in metrics["tasks"] if r["demonstrations"] >= 6]
     gains: dict[str, list[float]] = {}
     for r in rows:

@@ -8,7 +8,7 @@ import json
 from typing import Any
 
 from supportive.cli.output import out, say
-from supportive.evaluation.mistakes import KIND_HEADERS, MistakeEvaluation, kind_rows
+from supportive.evaluation.mistakes import KIND_HEADERS, METHODS, MistakeEvaluation, kind_rows
 from supportive.render.tables import fitted_table
 
 __all__ = ["print_mistakes"]
@@ -39,6 +39,8 @@ def print_mistakes(evaluation: MistakeEvaluation, title: str, *, as_json: bool, 
     ]
     headers = ["method", "precision", "recall", "F1", "flagged on clean", "not-visible labels flagged"]
     out.print(fitted_table(out, "mistakes (overall)", headers, rows, numeric=range(1, 6)))
+    for name in (name for name in methods if name not in METHODS):
+        say(f"{name}: a reference, not a method: the precondition check on the task's true orders (it is told them)")
     out.print(fitted_table(out, "per kind", list(KIND_HEADERS), kind_rows(methods), numeric=range(2, 7)))
     delay = methods["progress-aware"]["missing_delay"]
     if delay["found"]:

@@ -78,9 +78,9 @@ class Selection:
     Attributes:
         chosen: The reading kept.
         reason: ``"held-out likelihood"`` (saying, when another reading scored best, by how much and the
-            standard error it was within, and, when the reading kept is not ``general``, by how much it
-            predicted the held-out demonstrations better than ``general`` and that difference's standard
-            error), ``"the readings agree"``, ``"every execution was demonstrated"`` or ``"too few
+            standard error it was within, and, when the reading kept is not ``general``, its mean held-out
+            log-likelihood minus ``general``'s and that difference's standard error), ``"the readings
+            agree"``, ``"every execution was demonstrated"`` or ``"too few
             demonstrations"``.
         scores: Mean held-out log-likelihood per demonstration (nats) of each reading, when compared.
         admitted: Held-out demonstrations each reading admitted, when compared.
@@ -255,11 +255,12 @@ def select_reading(
     if chosen != best:
         gap, error = _gap(values[chosen], values[best])
         notes.append(f"{best} best by {gap:.3f} nats, within one standard error, {error:.3f}")
-    if chosen != READINGS[0]:
+    kept_instead = chosen != READINGS[0] and not same_executions(full[chosen], general)
+    if kept_instead:
         gain, error = _gap(values[READINGS[0]], values[chosen])
-        notes.append(f"{chosen} better than {READINGS[0]} by {gain:.3f} nats, standard error {error:.3f}")
+        notes.append(f"{chosen} against {READINGS[0]}: {gain:+.3f} nats, standard error {error:.3f}")
     reason = "held-out likelihood" + (f" ({'; '.join(notes)})" if notes else "")
-    if chosen != READINGS[0] and same_executions(full[chosen], general):
+    if chosen != READINGS[0] and not kept_instead:
         reason += f"; {chosen} admits the same executions as {READINGS[0]}"
         return Selection(READINGS[0], reason, scores, admitted, k)
     return Selection(chosen, reason, scores, admitted, k)

@@ -43,6 +43,7 @@ __all__ = [
     "policy_name",
     "run_trial",
     "summarize",
+    "within_one_error",
 ]
 
 DEMONSTRATIONS = (2, 3, 4, 5, 6, 8, 10, 12, 16, 20)
@@ -66,9 +67,9 @@ demonstrations as folds. Kept unless a policy predicts fresh executions better b
 error (:func:`choose`)."""
 
 
-def policy_name(folds: int, demonstrations: int | None) -> str:
-    """``selection_folds=5 selection_demonstrations=5``, or ``never compare`` (``demonstrations`` None)."""
-    if demonstrations is None:
+def policy_name(folds: int | None, demonstrations: int | None) -> str:
+    """``selection_folds=5 selection_demonstrations=5``, or ``never compare`` (either None)."""
+    if folds is None or demonstrations is None:
         return "never compare"
     return f"selection_folds={folds} selection_demonstrations={demonstrations}"
 
@@ -131,13 +132,13 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         admitted["general"][str(n)] = _share([r for r in results if r["demonstrations"] == n], "general")
     uniform = [r for r in results if r["demonstrations"] == RECALL_DEMONSTRATIONS and r["profile"] == "uniform"]
     recall = {name: _share(uniform, name) for name in admitted}
-    policies = _policies(results, recall)
+    policies, best = _policies(results, recall)
     return {
         "gains": gains,
         "admitted": admitted,
         "recall": recall,
         "policies": policies,
-        "best": best_policy(policies),
+        "best": best,
         "chosen": choose(policies),
         "tasks": [dict(r) for r in results],
     }
@@ -154,41 +155,43 @@ def _share(cell: Sequence[Mapping[str, Any]], reading: str) -> float | None:
 
 def _policies(
     results: Sequence[Mapping[str, Any]], recall: Mapping[str, float | None]
-) -> dict[str, dict[str, Any]]:
+) -> tuple[dict[str, dict[str, Any]], str | None]:
     """Every policy: its mean gain over the numbers of demonstrations run, its recall at
-    :data:`RECALL_DEMONSTRATIONS` (``uniform`` tasks), whether that is no less than ``general``'s, and how far it
-    is behind the best policy that keeps the recall (``gap``) with the standard error of that difference
-    (``error``; the tasks of a row are paired, the rows independent)."""
+    :data:`RECALL_DEMONSTRATIONS` (``uniform`` tasks), whether that is no less than ``general``'s (never, when the
+    run learned no such task: the recall is then not measured), and how far it is behind the best policy that
+    keeps the recall (``gap``) with the standard error of that difference (``error``; the tasks of a row are
+    paired, the rows independent). Also the best (:func:`best_policy`)."""
+    settings = [*itertools.product(FOLDS, DEMONSTRATIONS), (None, None)]
     per_task: dict[str, dict[int, list[float]]] = {}
     out: dict[str, dict[str, Any]] = {}
-    for folds, threshold in itertools.product(FOLDS, (*DEMONSTRATIONS, None)):
+    for folds, threshold in settings:
         name = policy_name(folds, threshold)
-        if name in out:
-            continue
         per_task[name] = _policy_gains(results, folds, threshold)
-        at_recall = threshold is not None and threshold <= RECALL_DEMONSTRATIONS
+        at_recall = folds is not None and threshold is not None and threshold <= RECALL_DEMONSTRATIONS
         kept = recall[str(folds)] if at_recall else recall["general"]
         out[name] = {
-            "folds": folds if threshold is not None else None,
+            "folds": folds,
             "demonstrations": threshold,
             "gain": round(_mean_gain(per_task[name]), 6),
             "recall": kept,
-            "qualifies": kept is None or recall["general"] is None or kept >= recall["general"],
+            "qualifies": kept is not None and recall["general"] is not None and kept >= recall["general"],
         }
     best = best_policy(out)
     for name, row in out.items():
         gap, error = _difference(per_task[best], per_task[name]) if best is not None else (0.0, 0.0)
         row["gap"], row["error"] = round(gap, 6), round(error, 6)
-    return out
+    return out, best
 
 
-def _policy_gains(results: Sequence[Mapping[str, Any]], folds: int, threshold: int | None) -> dict[int, list[float]]:
-    """Per number of demonstrations, each task's gain under the policy (0 where it keeps ``general``), in the
-    order of ``results``."""
+def _policy_gains(
+    results: Sequence[Mapping[str, Any]], folds: int | None, threshold: int | None
+) -> dict[int, list[float]]:
+    """Per number of demonstrations, each task's gain under the policy (0 where it keeps ``general``; always
+    for never comparing, ``folds`` None), in the order of ``results``."""
     rows: dict[int, list[float]] = {}
     for r in results:
         n = int(r["demonstrations"])
-        compares = threshold is not None and n >= threshold
+        compares = folds is not None and threshold is not None and n >= threshold
         gain = r["folds"][str(folds)]["log_likelihood"] - r["general"]["log_likelihood"] if compares else 0.0
         rows.setdefault(n, []).append(gain)
     return rows
@@ -211,18 +214,24 @@ def _difference(first: Mapping[int, Sequence[float]], second: Mapping[int, Seque
     return _mean_gain(first) - _mean_gain(second), math.sqrt(variance) / len(first)
 
 
-def _cost(row: Mapping[str, Any]) -> tuple[int, int]:
+def _cost(row: Mapping[str, Any]) -> tuple[int, int, int]:
     """How much work a policy asks (smaller is cheaper): never comparing, then fewer folds, then comparing from
     more demonstrations."""
     if row["demonstrations"] is None:
-        return (0, 0)
-    return (1, row["folds"] * 100 - row["demonstrations"])
+        return (0, 0, 0)
+    return (1, row["folds"], -row["demonstrations"])
 
 
 def best_policy(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
     """The best mean gain among the policies that keep the recall (ties: the cheaper); None when none does."""
     qualified = [name for name, row in policies.items() if row["qualifies"]]
     return min(qualified, key=lambda name: (-policies[name]["gain"], _cost(policies[name])), default=None)
+
+
+def within_one_error(row: Mapping[str, Any]) -> bool:
+    """Whether a policy is within one standard error of the best (``gap`` ≤ ``error``; exactly one error away
+    counts as within, rounding apart)."""
+    return bool(row["gap"] <= row["error"] or math.isclose(row["gap"], row["error"]))
 
 
 def choose(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
@@ -235,5 +244,4 @@ def choose(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
     conventional = policies.get(policy_name(*CONVENTIONAL))
     if best is None or conventional is None or not conventional["qualifies"]:
         return best
-    within = conventional["gap"] <= conventional["error"] or math.isclose(conventional["gap"], conventional["error"])
-    return policy_name(*CONVENTIONAL) if within else best
+    return policy_name(*CONVENTIONAL) if within_one_error(conventional) else best

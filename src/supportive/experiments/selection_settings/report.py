@@ -54,6 +54,11 @@ def report(metrics: Mapping[str, Any]) -> str:
 def _conventional_gap(metrics: Mapping[str, Any]) -> str:
     """How far the conventional policy is behind the best, against one standard error of that difference."""
     row = metrics["policies"][policy_name(*CONVENTIONAL)]
+    if metrics["recall"]["general"] is None:
+        return (
+            f"The recall at {RECALL_DEMONSTRATIONS} demonstrations was not measured (this run learned no `uniform` "
+            f"task from {RECALL_DEMONSTRATIONS}), so no policy qualifies."
+        )
     if metrics["best"] is None or not row["qualifies"]:
         return "The conventional policy costs recall."
     return f"The conventional policy is {row['gap']:.4f} nats behind it, one standard error {row['error']:.4f}."
@@ -89,7 +94,7 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     """The chosen policy and its mean gain."""
     chosen = metrics["chosen"]
     if chosen is None:
-        return [("selection settings", "none qualifies", "–")]
+        return [("selection settings chosen", "none qualifies", "–")]
     return [("selection settings chosen", chosen, f"{metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution")]
 
 

@@ -78,18 +78,18 @@ def _enumerated(
     n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: int, max_states: int
 ) -> TopLevel | None:
     """The top level over ``n`` roots whose required predecessors are ``preds[i]`` and predecessors
-    ``earlier[i]`` (bit masks), ``need`` the required roots (the others free: in no one's ``preds``, nor needed); None beyond ``max_states`` states.
-    Its states are numbered in the order the enumeration finds them, so the same constraints give the same
-    numbers (the slip search asks again and again for the same ones: kept, with what is worked out from
-    them)."""
+    ``earlier[i]`` (bit masks), ``need`` the required roots (the others free: in no one's ``preds``, nor
+    needed); None beyond ``max_states`` states. Its states are numbered in the order the enumeration finds
+    them, so the same constraints give the same numbers (the slip search asks again and again for the same
+    ones: kept, with what is worked out from them)."""
     if _more_states_than(max_states, preds, earlier):
         return None
     everything = (1 << n) - 1
     unlocks = [0] * n  # the roots each required root comes before
-    for v, required in enumerate(preds):
-        while required:
-            low = required & -required
-            required ^= low
+    for v, pending in enumerate(preds):
+        while pending:
+            low = pending & -pending
+            pending ^= low
             unlocks[low.bit_length() - 1] |= 1 << v
     # a state carries the roots whose required predecessors are done and the roots that may no longer come
     # (one that must come before a done root): both follow from the roots done, so they grow with each step
