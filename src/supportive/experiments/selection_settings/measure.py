@@ -22,6 +22,9 @@ import statistics
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+# issue #13 fixed the default learner's recall on `uniform` tasks learned from this many demonstrations; the
+# generalisation experiment's row holds it there
+from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.statistics import mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import PROFILES, random_known_task
@@ -56,8 +59,6 @@ TASKS = 100
 """Generated tasks per profile and number of demonstrations (a full run)."""
 FRESH = 50
 """Fresh executions of each task the learned hierarchies are scored on."""
-RECALL_DEMONSTRATIONS = 4
-"""Issue #13 fixed the default learner's recall on ``uniform`` tasks learned from this many demonstrations."""
 DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS)
 """Trials of a full run."""
 CONVENTIONAL = (5, 5)

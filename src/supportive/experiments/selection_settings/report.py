@@ -17,6 +17,7 @@ from supportive.experiments.selection_settings.measure import (
     SIZES,
     policy_name,
 )
+from supportive.experiments.statistics import format_ci
 from supportive.experiments.tables import markdown_table
 from supportive.experiments.templates import render
 
@@ -37,7 +38,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         recall_demonstrations=str(RECALL_DEMONSTRATIONS),
         gains=markdown_table(
             ["demonstrations", *(f"{k} folds" for k in FOLDS)],
-            [[n, *(_interval(gains[str(k)][n]) for k in FOLDS)] for n in rows],
+            [[n, *(format_ci(gains[str(k)][n], signed=True) for k in FOLDS)] for n in rows],
         ),
         admitted=markdown_table(
             ["demonstrations", "general", *(f"auto, {k} folds" for k in FOLDS)],
@@ -62,13 +63,6 @@ def _conventional_gap(metrics: Mapping[str, Any]) -> str:
     if metrics["best"] is None or not row["qualifies"]:
         return "The conventional policy costs recall."
     return f"The conventional policy is {row['gap']:.4f} nats behind it, one standard error {row['error']:.4f}."
-
-
-def _interval(cell: Mapping[str, Any]) -> str:
-    """``+0.373 [+0.203, +0.543]``, or the mean alone without an interval."""
-    if cell["low"] is None:
-        return f"{cell['mean']:+.3f}"
-    return f"{cell['mean']:+.3f} [{cell['low']:+.3f}, {cell['high']:+.3f}]"
 
 
 def _policies(metrics: Mapping[str, Any]) -> list[str]:

@@ -61,6 +61,7 @@ def precedence_top_level(
     # no transitive closure: through a root that may be skipped, an order is only as established as it is
     preds = [0] * len(roots)  # the required roots that must come before each root
     earlier = [0] * len(roots)  # the roots that must come before each root (none may come after it)
+    unlocks = [0] * len(roots)  # the roots each required root comes before
     need = 0
     for i, root in enumerate(roots):
         if root in required:
@@ -69,28 +70,24 @@ def precedence_top_level(
         earlier[v] |= 1 << u
         if roots[u] in required:
             preds[v] |= 1 << u
-    enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), need, max_states)
+            unlocks[u] |= 1 << v
+    enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), tuple(unlocks), need, max_states)
     return seen_top_level(roots, sequences) if enumerated is None else enumerated
 
 
 @functools.lru_cache(maxsize=_ENUMERATIONS_KEPT)
 def _enumerated(
-    n: int, preds: tuple[int, ...], earlier: tuple[int, ...], need: int, max_states: int
+    n: int, preds: tuple[int, ...], earlier: tuple[int, ...], unlocks: tuple[int, ...], need: int, max_states: int
 ) -> TopLevel | None:
     """The top level over ``n`` roots whose required predecessors are ``preds[i]`` and predecessors
-    ``earlier[i]`` (bit masks), ``need`` the required roots (the others free: in no one's ``preds``, nor
-    needed); None beyond ``max_states`` states. Its states are numbered in the order the enumeration finds
-    them, so the same constraints give the same numbers (the slip search asks again and again for the same
-    ones: kept, with what is worked out from them)."""
+    ``earlier[i]`` (bit masks; ``unlocks[u]``: the roots required root ``u`` comes before), ``need`` the
+    required roots (the others free: in no one's ``preds``, nor needed); None beyond ``max_states`` states.
+    Its states are numbered in the order the enumeration finds them, so the same constraints give the same
+    numbers (the slip search asks again and again for the same ones: kept, with what is worked out from
+    them)."""
     if _more_states_than(max_states, preds, earlier):
         return None
     everything = (1 << n) - 1
-    unlocks = [0] * n  # the roots each required root comes before
-    for v, pending in enumerate(preds):
-        while pending:
-            low = pending & -pending
-            pending ^= low
-            unlocks[low.bit_length() - 1] |= 1 << v
     # a state carries the roots whose required predecessors are done and the roots that may no longer come
     # (one that must come before a done root): both follow from the roots done, so they grow with each step
     ready = sum(1 << i for i in range(n) if not preds[i])
