@@ -239,8 +239,22 @@ def test_evidence_for_orders_and_subtasks() -> None:
     assert established[0, 2] and not established[0, 1] and not established[1, 2]  # witnessed only
     assert established_precedences(before, together, order_support=2)[0, 1]
     arrays = [np.array(s) for s in ([0, 1, 2, 3], [2, 3, 0, 1], [0, 1, 3, 2])]
-    assert contiguity_chance(arrays, frozenset({0, 1}), 4) == pytest.approx((2 / 3) ** 6)
+    assert contiguity_chance(arrays, frozenset({0, 1}), 4) == pytest.approx((3 / 6) ** 3)  # s = u = 2: 3 runs of 6
     assert contiguity_chance(arrays[:1], frozenset({0, 1}), 4) == 1.0
+
+
+@given(st.integers(1, 4), st.integers(1, 3))
+def test_contiguity_chance_is_the_share_of_sibling_orders_keeping_the_run(run: int, free: int) -> None:
+    """Brute force: over every order of ``run`` would-be subtask steps and ``free`` siblings, the share in
+    which the run's steps are adjacent equals the chance of one demonstration (steps 0 … run-1 the run; two
+    demonstrations put every free step once before and once after the run, so each is free, and keep it
+    contiguous, so their own chance is counted too)."""
+    steps = list(range(run + free))
+    orders = list(itertools.permutations(steps))
+    kept = sum(max(o.index(i) for i in range(run)) - min(o.index(i) for i in range(run)) == run - 1 for o in orders)
+    around = [np.array(steps), np.array(list(range(run, run + free)) + list(range(run)))]
+    chance = contiguity_chance(around, frozenset(range(run)), run + free)
+    assert chance == pytest.approx((kept / len(orders)) ** 2)
 
 
 def test_seen_top_level_admits_only_what_was_seen() -> None:
