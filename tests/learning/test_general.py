@@ -243,7 +243,7 @@ def test_evidence_for_orders_and_subtasks() -> None:
     assert contiguity_chance(arrays[:1], frozenset({0, 1}), 4) == 1.0
 
 
-@given(st.integers(1, 4), st.integers(1, 3))
+@pytest.mark.parametrize(("run", "free"), list(itertools.product(range(1, 5), range(1, 4))))
 def test_contiguity_chance_is_the_share_of_sibling_orders_keeping_the_run(run: int, free: int) -> None:
     """Brute force: over every order of ``run`` would-be subtask steps and ``free`` siblings, the share in
     which the run's steps are adjacent equals the chance of one demonstration (steps 0 … run-1 the run; two
@@ -255,6 +255,18 @@ def test_contiguity_chance_is_the_share_of_sibling_orders_keeping_the_run(run: i
     around = [np.array(steps), np.array(list(range(run, run + free)) + list(range(run)))]
     chance = contiguity_chance(around, frozenset(range(run)), run + free)
     assert chance == pytest.approx((kept / len(orders)) ** 2)
+
+
+def test_rows_with_one_step_of_the_run_or_none_free_add_no_evidence() -> None:
+    """A demonstration performing one step of the would-be subtask, or with no free step, keeps it contiguous
+    whatever the order: its factor is exactly 1, so free steps seen only there leave the chance at exactly 1
+    (no evidence either way, :func:`~supportive.learning.general.evidence.supported`)."""
+    one_step = [np.array(s) for s in ([0, 1], [2, 0], [0, 2])]  # 2 is free, but only where 1 is missing
+    assert contiguity_chance(one_step, frozenset({0, 1}), 3) == 1.0
+    with_free = [np.array(s) for s in ([0, 1, 2, 3], [2, 3, 0, 1], [0, 1, 3, 2])]
+    assert contiguity_chance([*with_free, np.array([0, 1])], frozenset({0, 1}), 4) == contiguity_chance(
+        with_free, frozenset({0, 1}), 4
+    )
 
 
 def test_seen_top_level_admits_only_what_was_seen() -> None:

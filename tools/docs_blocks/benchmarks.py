@@ -47,7 +47,7 @@ def learn_benchmark() -> str:
 def admission_benchmark() -> str:
     """docs/learning.md: the share of valid executions admitted as clean demonstrations grow, per profile."""
     result = read_json(BENCHMARKS / "admission.json")
-    early = result["subtasks_from_2"]
+    early = result["early_subtasks"]
     sizes = list(result["mean_share_of_valid_executions_admitted"])
     tasks = sum(result["tasks"].values())
 
@@ -61,11 +61,14 @@ def admission_benchmark() -> str:
         *(row(f"… {profile} ({count})", result["by_profile"][profile]) for profile, count in result["tasks"].items()),
         row("steps set aside as slips (all tasks)", result["steps_set_aside"], "{}"),
         row("own demonstrations admitted", result["own_demonstrations_admitted"]),
-        row("valid executions admitted, subtasks from 2 demonstrations", early["mean_share_of_valid_executions_admitted"]),
+        row(
+            f"valid executions admitted, subtasks from {early['subtask_demonstrations']} demonstrations",
+            early["mean_share_of_valid_executions_admitted"],
+        ),
     ]
     return "\n".join(rows) + (
-        f"\n\nOn average over the tasks the default learner's share is {_verdict(result['drops'])}; "
-        f"with subtasks from 2 demonstrations it is {_verdict(early['drops'])}.\n"
+        f"\n\nOn average over the tasks the default learner's share is {_verdict(result['drops'])}; with "
+        f"subtasks from {early['subtask_demonstrations']} demonstrations it is {_verdict(early['drops'])}.\n"
     )
 
 
@@ -73,7 +76,7 @@ def _verdict(drops: list[dict[str, float]]) -> str:
     """Whether a curve never falls, or where it does."""
     if not drops:
         return "non-decreasing in the number of demonstrations"
-    falls = ", ".join(f"from {d['from']:g} to {d['to']:g} demonstrations by {-d['by']:.3f}" for d in drops)
+    falls = ", ".join(f"from {d['start']} to {d['end']} demonstrations by {-d['by']:.3f}" for d in drops)
     return f"**not** non-decreasing: it falls {falls}"
 
 
