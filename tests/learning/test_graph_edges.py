@@ -16,6 +16,7 @@ from supportive.learning.graph_edges import (
     END_NODE,
     START_NODE,
     GraphEdge,
+    compare_edges,
     edge_errors,
     edge_scores,
     reduced_edges,
@@ -101,3 +102,5 @@ def test_every_wrong_edge_is_counted_once_under_the_kind_its_orders_give(
     score = edge_scores(pairs, steps, truth)
     assert sum(expected[k] for k in EDGE_ERRORS[:4]) == score.learned - score.true_positives
     assert sum(expected[k] for k in EDGE_ERRORS[4:]) == score.published - score.true_positives
+    both = compare_edges(pairs, steps, truth)
+    assert (both.score, both.errors) == (score, expected)

@@ -24,6 +24,7 @@ Scored against itself this way, a published graph gets 1.0 unless it holds an ed
 from __future__ import annotations
 
 from collections.abc import Collection, Iterable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from supportive.errors import LearningError
@@ -33,7 +34,18 @@ from supportive.tasks.htn import Leaf
 if TYPE_CHECKING:  # imported where used: networkx is a fifth of every command's start-up
     import networkx as nx
 
-__all__ = ["EDGE_ERRORS", "END_NODE", "PEERS", "START_NODE", "GraphEdge", "edge_errors", "edge_scores", "reduced_edges"]
+__all__ = [
+    "EDGE_ERRORS",
+    "END_NODE",
+    "PEERS",
+    "START_NODE",
+    "EdgeComparison",
+    "GraphEdge",
+    "compare_edges",
+    "edge_errors",
+    "edge_scores",
+    "reduced_edges",
+]
 
 START_NODE = "START"
 END_NODE = "END"
@@ -107,11 +119,32 @@ def edge_errors(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[
     >>> {kind: n for kind, n in errors.items() if n}
     {'false: steps the published graph leaves unordered': 1, 'missed: reduced away by a learned order through other steps': 1, 'missed: from START or to END': 1}
     """
+    relation = set(pairs)
+    return _errors(reduced_edges(relation, steps), relation, steps, set(truth))
+
+
+@dataclass(frozen=True)
+class EdgeComparison:
+    """A learned relation against a published graph: :func:`edge_scores` and :func:`edge_errors` of it."""
+
+    score: PrecedenceScore
+    errors: dict[str, int]
+
+
+def compare_edges(pairs: Iterable[Pair], steps: Collection[Leaf], truth: Iterable[GraphEdge]) -> EdgeComparison:
+    """:func:`edge_scores` and :func:`edge_errors` of the learned relation ``pairs`` over ``steps`` against
+    ``truth``, the relation reduced once for both."""
+    relation, published = set(pairs), set(truth)
+    learned = reduced_edges(relation, steps)
+    return EdgeComparison(precedence_scores(learned, published), _errors(learned, relation, steps, published))
+
+
+def _errors(
+    learned: frozenset[GraphEdge], pairs: set[Pair], steps: Collection[Leaf], truth: set[GraphEdge]
+) -> dict[str, int]:
+    """:func:`edge_errors` of ``pairs`` whose reduced graph is ``learned``."""
     import networkx as nx  # here: networkx is a fifth of every command's start-up
 
-    pairs = set(pairs)
-    truth = set(truth)
-    learned = reduced_edges(pairs, steps)
     learned_closure = nx.transitive_closure_dag(_step_graph(pairs, steps))
     published_closure = nx.transitive_closure_dag(_step_graph(truth, steps))
     counts = dict.fromkeys(EDGE_ERRORS, 0)

@@ -16,7 +16,7 @@ from typing import Any
 from supportive.errors import DatasetError
 from supportive.experiments.statistics import mean_ci
 from supportive.io.captaincook import Recipe
-from supportive.learning.graph_edges import EDGE_ERRORS, edge_errors, edge_scores
+from supportive.learning.graph_edges import EDGE_ERRORS, compare_edges
 from supportive.learning.learner import learn
 from supportive.learning.precedence import PrecedenceScore, implied_precedences, precedence_scores
 
@@ -103,7 +103,9 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
     few = learn(recipe.spec.with_demonstrations(recipe.spec.demonstrations[:FEW_SHOT]), **options).htn_
     deviating = {d.demonstration for d in learner.deviations_}
     demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
-    implied, few_implied = implied_precedences(htn), implied_precedences(few)
+    implied = implied_precedences(htn)
+    full = compare_edges(implied, recipe.steps, recipe.graph_edges)
+    few_shot = compare_edges(implied_precedences(few), recipe.steps, recipe.graph_edges)
     return RecipeReport(
         recipe=recipe.name,
         demonstrations=len(recipe.spec.demonstrations),
@@ -112,12 +114,12 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
         complete=htn.complete,
         roots=len(htn.roots),
         score=precedence_scores(implied, recipe.published),
-        edges=edge_scores(implied, recipe.steps, recipe.graph_edges),
-        few_shot_edges=edge_scores(few_implied, recipe.steps, recipe.graph_edges),
+        edges=full.score,
+        few_shot_edges=few_shot.score,
         admits_demonstrations=all(htn.admits(demo.actions) for demo in demos),
         deviations=len(deviating),
-        edge_errors=edge_errors(implied, recipe.steps, recipe.graph_edges),
-        few_shot_edge_errors=edge_errors(few_implied, recipe.steps, recipe.graph_edges),
+        edge_errors=full.errors,
+        few_shot_edge_errors=few_shot.errors,
     )
 
 
