@@ -236,6 +236,24 @@ def learner_settings_clean() -> str:
     )
 
 
+CLEAN_BANDS = ((1, 9), (10, 19), (20, 49), (50, 99), (100, 200))
+"""Bands of the number of clean demonstrations :func:`learner_settings_clean_by_n` reports apart (the clean
+tasks draw it uniformly from 1–200, so an overall rate is mostly that of many demonstrations)."""
+
+
+def learner_settings_clean_by_n() -> str:
+    """docs/learning.md (inline): the chosen setting's clean tasks with a slip reported, by number of
+    demonstrations, from the recorded trials."""
+    chosen = _ls()["chosen"]
+    clean = [t for t in _ls()["tasks"] if t["case"] == "none"]
+    parts = []
+    for low, high in CLEAN_BANDS:
+        band = [t for t in clean if low <= t["demonstrations"] <= high]
+        flagged = sum(t["settings"][chosen]["wrong_tasks"] for t in band)
+        parts.append(f"{low}–{high} demonstrations: {flagged} of {len(band):,}")
+    return "; ".join(parts)
+
+
 def selection_settings_chosen() -> str:
     """docs/learning.md: the best policy, how far the conventional one and never comparing are behind it (and
     whether within one standard error), which was kept, and what likelihood alone would pick at what cost in
@@ -305,6 +323,7 @@ BLOCKS: dict[str, Block] = {
     "learner-settings-table": report_table("learner-settings", "learner-settings.json", "| setting |"),
     "learner-settings-chosen": Block(_LS, learner_settings_chosen),
     "learner-settings-clean": Block(_LS, learner_settings_clean, inline=True),
+    "learner-settings-clean-by-n": Block(_LS, learner_settings_clean_by_n, inline=True),
     "learner-settings-time": run_time("learner-settings"),
     "selection-settings-gains": report_table("selection-settings", "selection-settings.json", "| demonstrations | 2 folds"),
     "selection-settings-admitted": report_table(
