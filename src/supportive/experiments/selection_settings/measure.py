@@ -56,9 +56,10 @@ FOLDS = (2, 3, 5, 10)
 SIZES = (6, 12)
 """Steps per task (inclusive range), as in ``learner-settings``."""
 TASKS = 100
-"""Generated tasks per profile and number of demonstrations (a full run)."""
+"""Generated tasks per profile and number of demonstrations (a full run): a sample size, which sets how
+precisely the gains are measured, not a setting of any learner (a run of fewer trials keeps the proportions)."""
 FRESH = 50
-"""Fresh executions of each task the learned hierarchies are scored on."""
+"""Fresh executions of each task the learned hierarchies are scored on: a sample size, like :data:`TASKS`."""
 DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS)
 """Trials of a full run."""
 CONVENTIONAL = (5, 5)
