@@ -7,9 +7,9 @@ fall as n grows (on average over the tasks): more clean data must never make the
 orders. A curve, not a test: each point is the mean over the tasks at that n, with the number of steps the
 learner set aside as slips (0 on clean data) and the share of the demonstrations it admits (1).
 
-Beside the default learner, the same learner making subtasks from :data:`EARLY_SUBTASKS` demonstrations on
-(``subtask_demonstrations``; the default is 4), a setting without the step the default's curve takes where
-it starts making subtasks (docs/learning.md).
+Beside the default learner, the same learner making subtasks from :data:`COMPARED_SUBTASKS` demonstrations
+on (``subtask_demonstrations``; the default is 2, chosen by ``supportive reproduce selection-settings``): the
+former default, whose curve stepped down where it started making subtasks (docs/learning.md).
 """
 
 from __future__ import annotations
@@ -35,9 +35,9 @@ TASKS_PER_PROFILE = 8
 """Random tasks per profile: a sample size (the curve's precision), not a setting of the learner."""
 STEPS = 7
 """Steps per task: few enough that every valid execution can be listed by brute force."""
-EARLY_SUBTASKS = 2
-"""``subtask_demonstrations`` of the comparison curve: the fewest demonstrations that can show a run
-contiguous more than once."""
+COMPARED_SUBTASKS = 4
+"""``subtask_demonstrations`` of the comparison curve: issue #13's value, the default before
+``selection-settings`` chose one."""
 
 
 class Drop(TypedDict):
@@ -64,7 +64,7 @@ def main() -> None:
     curve: dict[str, dict[int, list[float]]] = {}
     slips: dict[int, int] = dict.fromkeys(SIZES, 0)
     own: dict[int, list[float]] = {n: [] for n in SIZES}
-    early: dict[int, list[float]] = {n: [] for n in SIZES}
+    compared: dict[int, list[float]] = {n: [] for n in SIZES}
     for profile in ("ikea", "uniform", "partial order"):
         curve[profile] = {n: [] for n in SIZES}
         for _ in range(TASKS_PER_PROFILE):
@@ -76,11 +76,11 @@ def main() -> None:
                 curve[profile][n].append(share_admitted(learner.htn_, valid))
                 slips[n] += len(learner.deviations_)
                 own[n].append(share_admitted(learner.htn_, demos[:n]))
-                early_htn = HTNLearner(subtask_demonstrations=EARLY_SUBTASKS).fit(demos[:n]).htn_
-                early[n].append(share_admitted(early_htn, valid))
+                compared_htn = HTNLearner(subtask_demonstrations=COMPARED_SUBTASKS).fit(demos[:n]).htn_
+                compared[n].append(share_admitted(compared_htn, valid))
     means = {n: float(np.mean([x for p in curve for x in curve[p][n]])) for n in SIZES}
     drops = _drops(means)
-    early_means = {n: float(np.mean(early[n])) for n in SIZES}
+    compared_means = {n: float(np.mean(compared[n])) for n in SIZES}
     result = {
         "benchmark": "admission",
         "machine": {"python": platform.python_version(), "processor": platform.machine()},
@@ -92,10 +92,10 @@ def main() -> None:
         "steps_set_aside": {str(n): k for n, k in slips.items()},
         "own_demonstrations_admitted": {str(n): round(float(np.mean(v)), 4) for n, v in own.items()},
         "drops": drops,
-        "early_subtasks": {
-            "subtask_demonstrations": EARLY_SUBTASKS,
-            "mean_share_of_valid_executions_admitted": {str(n): round(v, 4) for n, v in early_means.items()},
-            "drops": _drops(early_means),
+        "compared_threshold": {
+            "subtask_demonstrations": COMPARED_SUBTASKS,
+            "mean_share_of_valid_executions_admitted": {str(n): round(v, 4) for n, v in compared_means.items()},
+            "drops": _drops(compared_means),
         },
         "seconds": round(time.perf_counter() - started, 1),
     }
@@ -104,7 +104,7 @@ def main() -> None:
     print("n:        " + " ".join(f"{n:6d}" for n in SIZES))
     print("admitted: " + " ".join(f"{means[n]:6.3f}" for n in SIZES))
     print("set aside:" + " ".join(f"{slips[n]:6d}" for n in SIZES))
-    print(f"from {EARLY_SUBTASKS}:   " + " ".join(f"{early_means[n]:6.3f}" for n in SIZES))
+    print(f"from {COMPARED_SUBTASKS}:   " + " ".join(f"{compared_means[n]:6.3f}" for n in SIZES))
     falls = "".join(f"; {d['start']}→{d['end']}: {d['by']:+.3f}" for d in drops)
     print(f"non-decreasing on average: {not drops}{falls}")
 

@@ -24,6 +24,7 @@ from supportive.experiments.selection_settings.measure import (
     summarize,
 )
 from supportive.generate.mistakes import PROFILES
+from supportive.learning import HTNLearner
 
 
 def test_a_full_run_has_the_same_number_of_tasks_in_every_cell() -> None:
@@ -37,19 +38,25 @@ def test_a_trial_scores_general_and_every_number_of_folds_on_fresh_executions() 
     result = run_trial(trial)
     assert result == run_trial(trial)
     assert set(result["folds"]) == {str(k) for k in FOLDS}
-    for score in (result["general"], *result["folds"].values()):
+    for score in (result["general"], *result["folds"].values(), *result["subtasks"].values()):
         assert 0 <= score["admitted"] <= FRESH and score["log_likelihood"] < 0
+    # general, from this many demonstrations, is one of the two ways subtasks.py compares
+    default = "made" if HTNLearner().subtask_demonstrations <= 5 else "none"
+    assert result["subtasks"][default] == result["general"]
 
 
 def _result(
     profile: str, n: int, general: float, auto: dict[int, float], *, general_admits: int = FRESH, auto_admits: int = FRESH
 ) -> dict[str, Any]:
-    """A trial's result as :func:`run_trial` gives it, with these held-out log-likelihoods and admissions."""
+    """A trial's result as :func:`run_trial` gives it, with these held-out log-likelihoods and admissions (the
+    general reading's with and without subtasks both ``general``'s)."""
+    score = {"log_likelihood": general, "admitted": general_admits}
     return {
         "profile": profile,
         "demonstrations": n,
-        "general": {"log_likelihood": general, "admitted": general_admits},
+        "general": score,
         "folds": {str(k): {"log_likelihood": auto[k], "admitted": auto_admits, "chosen": "x"} for k in FOLDS},
+        "subtasks": {"made": score, "none": score},
     }
 
 

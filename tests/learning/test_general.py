@@ -154,13 +154,16 @@ def test_rare_steps_and_missing_steps_are_slips_when_rare_enough() -> None:
     assert not c.optional, "a step one slip left out stays required"
 
 
-def test_few_demonstrations_keep_only_established_orders() -> None:
+def test_fewer_demonstrations_than_subtask_demonstrations_keep_only_established_orders() -> None:
     two = [list("abcd"), list("acbd")]
-    htn = HTNLearner().fit(two).htn_
+    htn = HTNLearner(subtask_demonstrations=3).fit(two).htn_
     assert not htn.complete and htn.top_level is not None
     # a before d has a step consistently between them; nothing else is established by two demonstrations
     assert htn.admits(list("bacd")) and not htn.admits(list("dabc"))
-    assert HTNLearner().fit([list("abcd")]).htn_.roots[0].kind == "chain"  # one demonstration: one chain
+    assert HTNLearner(subtask_demonstrations=3).fit([list("abcd")]).htn_.roots[0].kind == "chain"  # one: one chain
+    # By default subtasks are made from two demonstrations on: a, then b and c in any order, then d
+    made = HTNLearner().fit(two).htn_
+    assert made.complete and made.count_orderings() == 2 and not made.admits(list("bacd"))
 
 
 def test_glasses_learn_the_partial_order_they_show() -> None:

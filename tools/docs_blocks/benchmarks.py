@@ -47,7 +47,7 @@ def learn_benchmark() -> str:
 def admission_benchmark() -> str:
     """docs/learning.md: the share of valid executions admitted as clean demonstrations grow, per profile."""
     result = read_json(BENCHMARKS / "admission.json")
-    early = result["early_subtasks"]
+    compared = result["compared_threshold"]
     sizes = list(result["mean_share_of_valid_executions_admitted"])
     tasks = sum(result["tasks"].values())
 
@@ -62,13 +62,13 @@ def admission_benchmark() -> str:
         row("steps set aside as slips (all tasks)", result["steps_set_aside"], "{}"),
         row("own demonstrations admitted", result["own_demonstrations_admitted"]),
         row(
-            f"valid executions admitted, subtasks from {early['subtask_demonstrations']} demonstrations",
-            early["mean_share_of_valid_executions_admitted"],
+            f"valid executions admitted, subtasks from {compared['subtask_demonstrations']} demonstrations",
+            compared["mean_share_of_valid_executions_admitted"],
         ),
     ]
     return "\n".join(rows) + (
         f"\n\nOn average over the tasks the default learner's share is {_verdict(result['drops'])}; with "
-        f"subtasks from {early['subtask_demonstrations']} demonstrations it is {_verdict(early['drops'])}.\n"
+        f"subtasks from {compared['subtask_demonstrations']} demonstrations it is {_verdict(compared['drops'])}.\n"
     )
 
 

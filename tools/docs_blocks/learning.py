@@ -291,6 +291,25 @@ def selection_settings_chosen() -> str:
     return text + "\n"
 
 
+def selection_settings_subtasks_chosen() -> str:
+    """docs/learning.md: the ``subtask_demonstrations`` the procedure picks, how far issue #13's 4 is behind
+    the best, and what the learner defaults to."""
+    from supportive.experiments.selection_settings.gains import within_one_error
+    from supportive.experiments.selection_settings.measure import RECALL_DEMONSTRATIONS
+    from supportive.learning import HTNLearner
+
+    subtasks: dict[str, Any] = read_json(RESULTS / "selection-settings.json")["subtasks"]
+    rows, best, chosen = subtasks["thresholds"], subtasks["best"], subtasks["chosen"]
+    issue = rows[str(RECALL_DEMONSTRATIONS)]
+    within = "within" if within_one_error(issue) else "beyond"
+    return (
+        f"The best threshold is {best} ({rows[str(best)]['gain']:+.3f} nats per fresh execution over never making "
+        f"subtasks, the mean over the rows); issue #13's {RECALL_DEMONSTRATIONS} is {issue['gap']:.4f} nats "
+        f"behind it, {within} one standard error ({issue['error']:.4f}). Chosen: {chosen}; `HTNLearner` "
+        f"defaults to {HTNLearner().subtask_demonstrations}.\n"
+    )
+
+
 def selection_settings_losses() -> str:
     """docs/learning.md: where comparing loses from 6 demonstrations on, under the kept policy's folds: which
     readings it keeps instead of ``general`` on how many tasks, and what each then gains or loses."""
@@ -331,6 +350,13 @@ BLOCKS: dict[str, Block] = {
     ),
     "selection-settings-policies": report_table("selection-settings", "selection-settings.json", "| compare from"),
     "selection-settings-chosen": Block(_SS, selection_settings_chosen),
+    "selection-settings-subtask-gains": report_table(
+        "selection-settings", "selection-settings.json", "| demonstrations | gain of making subtasks"
+    ),
+    "selection-settings-thresholds": report_table(
+        "selection-settings", "selection-settings.json", "| subtask_demonstrations |"
+    ),
+    "selection-settings-subtasks-chosen": Block(_SS, selection_settings_subtasks_chosen),
     "selection-settings-losses": Block(_SS, selection_settings_losses),
     "selection-settings-time": run_time("selection-settings"),
 }

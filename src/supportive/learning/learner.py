@@ -110,7 +110,9 @@ class HTNLearner(Estimator):
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).
         subtask_demonstrations: ``general``: from how many demonstrations on contiguous runs are made
             subtasks (chains and cliques); with fewer, the steps are kept in the orders the evidence
-            establishes (a partial order, as a partial hierarchy's top level).
+            establishes (a partial order, as a partial hierarchy's top level); at least 1 (1 and 2 alike: one
+            demonstration is one chain). Default 2: the threshold ``supportive reproduce selection-settings``
+            picks on generated tasks by held-out likelihood (docs/learning.md).
         selection_folds: ``auto``: folds of the cross-validation that chooses the reading (leave one out with
             fewer demonstrations); at least 2.
         selection_demonstrations: ``auto``: the fewest demonstrations the readings are compared on (with
@@ -146,10 +148,10 @@ class HTNLearner(Estimator):
     >>> learner = HTNLearner(mode="strict").fit(two)
     >>> learner.htn_.complete, learner.htn_.roots[0].kind
     (True, 'chain')
-    >>> HTNLearner().fit(two).htn_.complete  # two demonstrations: only orders, no subtasks yet
-    False
-    >>> HTNLearner().fit(two * 2).htn_.roots[0].kind  # four: knife, then carrots and celery in any order
+    >>> HTNLearner().fit(two).htn_.roots[0].kind  # knife, then carrots and celery in any order (Figure 2.8)
     'chain'
+    >>> HTNLearner(subtask_demonstrations=3).fit(two).htn_.complete  # fewer than 3: only orders, no subtasks
+    False
     """
 
     htn_: HTN
@@ -172,7 +174,7 @@ class HTNLearner(Estimator):
         max_slip_candidates: int = 48,
         evidence: float = 0.05,
         order_support: int | None = None,
-        subtask_demonstrations: int = 4,
+        subtask_demonstrations: int = 2,
         selection_folds: int = 5,
         selection_demonstrations: int = 5,
         alternatives: int = 8,

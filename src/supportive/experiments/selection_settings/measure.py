@@ -12,12 +12,14 @@ many demonstrations on; below, the ``general`` reading is kept). Its gain at ``n
 (:func:`choose`): among the policies that cost no recall at :data:`RECALL_DEMONSTRATIONS` demonstrations of
 ``uniform`` tasks, where issue #13 fixed the default learner's recall, the best mean gain over the numbers of
 demonstrations of the grid — or the :data:`CONVENTIONAL` policy when it is within one standard error of that.
+
+Each trial also scores the ``general`` reading making subtasks and making none, from which
+:mod:`.subtasks` picks ``subtask_demonstrations`` — the same tasks, fresh executions and score.
 """
 
 from __future__ import annotations
 
 import itertools
-import math
 import statistics
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -25,6 +27,8 @@ from typing import Any
 # issue #13 fixed the default learner's recall on `uniform` tasks learned from this many demonstrations; the
 # generalisation experiment's row holds it there
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
+from supportive.experiments.selection_settings.gains import mean_gain, paired_difference, within_one_error
+from supportive.experiments.selection_settings.subtasks import summarize_thresholds
 from supportive.experiments.statistics import mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import PROFILES, random_known_task
@@ -84,7 +88,7 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
 
 def run_trial(trial: Trial) -> dict[str, Any]:
     """Generate the task, its demonstrations and fresh executions; learn and score ``general`` and ``auto``
-    under every number of folds."""
+    under every number of folds, and ``general`` making subtasks and making none."""
     rng = trial.rng()
     profile, n = trial.params["profile"], int(trial.params["demonstrations"])
     task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
@@ -99,6 +103,10 @@ def run_trial(trial: Trial) -> dict[str, Any]:
         auto = HTNLearner(mode="auto", alternatives=0, selection_folds=folds, selection_demonstrations=2).fit(demos)
         assert auto.selection_ is not None
         out["folds"][str(folds)] = {**_score(auto, fresh), "chosen": auto.selection_.chosen}
+    # the general reading making subtasks from the first demonstration on, and making none (subtasks.py)
+    made = HTNLearner(mode="general", alternatives=0, subtask_demonstrations=1).fit(demos)
+    none = HTNLearner(mode="general", alternatives=0, subtask_demonstrations=n + 1).fit(demos)
+    out["subtasks"] = {"made": _score(made, fresh), "none": _score(none, fresh)}
     return out
 
 
@@ -142,6 +150,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         "policies": policies,
         "best": best,
         "chosen": choose(policies),
+        "subtasks": summarize_thresholds(results, DEMONSTRATIONS, FRESH),
         "tasks": [dict(r) for r in results],
     }
 
@@ -174,13 +183,13 @@ def _policies(
         out[name] = {
             "folds": folds,
             "demonstrations": threshold,
-            "gain": round(_mean_gain(per_task[name]), 6),
+            "gain": round(mean_gain(per_task[name]), 6),
             "recall": kept,
             "qualifies": kept is not None and recall["general"] is not None and kept >= recall["general"],
         }
     best = best_policy(out)
     for name, row in out.items():
-        gap, error = _difference(per_task[best], per_task[name]) if best is not None else (0.0, 0.0)
+        gap, error = paired_difference(per_task[best], per_task[name]) if best is not None else (0.0, 0.0)
         row["gap"], row["error"] = round(gap, 6), round(error, 6)
     return out, best
 
@@ -199,23 +208,6 @@ def _policy_gains(
     return rows
 
 
-def _mean_gain(rows: Mapping[int, Sequence[float]]) -> float:
-    """The mean over the rows of the mean gain of each."""
-    return statistics.fmean(statistics.fmean(row) for row in rows.values()) if rows else 0.0
-
-
-def _difference(first: Mapping[int, Sequence[float]], second: Mapping[int, Sequence[float]]) -> tuple[float, float]:
-    """``first``'s score minus ``second``'s and the standard error of that difference: the tasks of a row paired,
-    the rows independent (the variance of a mean of row means)."""
-    if not first:
-        return 0.0, 0.0
-    variance = 0.0
-    for n, row in first.items():
-        differences = [a - b for a, b in zip(row, second[n], strict=True)]
-        variance += statistics.variance(differences) / len(differences) if len(differences) > 1 else 0.0
-    return _mean_gain(first) - _mean_gain(second), math.sqrt(variance) / len(first)
-
-
 def _cost(row: Mapping[str, Any]) -> tuple[int, int, int]:
     """How much work a policy asks (smaller is cheaper): never comparing, then fewer folds, then comparing from
     more demonstrations."""
@@ -228,12 +220,6 @@ def best_policy(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
     """The best mean gain among the policies that keep the recall (ties: the cheaper); None when none does."""
     qualified = [name for name, row in policies.items() if row["qualifies"]]
     return min(qualified, key=lambda name: (-policies[name]["gain"], _cost(policies[name])), default=None)
-
-
-def within_one_error(row: Mapping[str, Any]) -> bool:
-    """Whether a policy is within one standard error of the best (``gap`` ≤ ``error``; exactly one error away
-    counts as within, rounding apart)."""
-    return bool(row["gap"] <= row["error"] or math.isclose(row["gap"], row["error"]))
 
 
 def choose(policies: Mapping[str, Mapping[str, Any]]) -> str | None:

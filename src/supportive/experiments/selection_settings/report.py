@@ -49,7 +49,36 @@ def report(metrics: Mapping[str, Any]) -> str:
         best=f"`{metrics['best']}`" if metrics["best"] else "none qualifies",
         conventional_gap=_conventional_gap(metrics),
         chosen=metrics["chosen"] or "none qualifies",
+        **_subtasks(metrics["subtasks"]),
     )
+
+
+def _subtasks(subtasks: Mapping[str, Any]) -> dict[str, object]:
+    """The template's fields on ``subtask_demonstrations``: what making subtasks gains per number of
+    demonstrations, every threshold's mean gain, and the one chosen."""
+    gains, admitted, rows = subtasks["gains"], subtasks["admitted"], subtasks["thresholds"]
+    present = [str(n) for n in DEMONSTRATIONS if str(n) in gains]
+
+    def threshold(k: str) -> list[str]:
+        row = rows[k]
+        gain = f"{row['gain']:+.3f}" + ("" if row["qualifies"] else " ✗")
+        return [f"**{k}**" if int(k) == subtasks["chosen"] else k, gain, f"{row['gap']:.3f}", f"{row['error']:.3f}"]
+
+    return {
+        "subtask_gains": markdown_table(
+            ["demonstrations", "gain of making subtasks", "admitted, subtasks", "admitted, none"],
+            [
+                [n, format_ci(gains[n], signed=True), f"{admitted[n]['made']:.3f}", f"{admitted[n]['none']:.3f}"]
+                for n in present
+            ],
+        ),
+        "thresholds": markdown_table(
+            ["subtask_demonstrations", "mean gain", "behind the best", "standard error"],
+            [threshold(str(k)) for k in DEMONSTRATIONS if str(k) in rows],
+        ),
+        "subtask_best": str(subtasks["best"]) if subtasks["best"] is not None else "none qualifies",
+        "subtask_chosen": str(subtasks["chosen"]) if subtasks["chosen"] is not None else "none qualifies",
+    }
 
 
 def _conventional_gap(metrics: Mapping[str, Any]) -> str:
@@ -85,19 +114,37 @@ def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
 
 
 def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
-    """The chosen policy and its mean gain."""
-    chosen = metrics["chosen"]
-    if chosen is None:
-        return [("selection settings chosen", "none qualifies", "–")]
-    return [("selection settings chosen", chosen, f"{metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution")]
+    """The chosen policy and threshold, and their mean gains."""
+    chosen, subtasks = metrics["chosen"], metrics["subtasks"]
+    rows: list[HeadlineRow] = [
+        ("selection settings chosen", chosen, f"{metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution")
+        if chosen is not None
+        else ("selection settings chosen", "none qualifies", "–")
+    ]
+    threshold = subtasks["chosen"]
+    if threshold is None:
+        rows.append(("subtask_demonstrations chosen", "none qualifies", "–"))
+    else:
+        gain = subtasks["thresholds"][str(threshold)]["gain"]
+        rows.append(("subtask_demonstrations chosen", str(threshold), f"{gain:+.3f} nats per fresh execution"))
+    return rows
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
-    """One row: the chosen policy and its mean gain over keeping ``general``."""
-    chosen = metrics["chosen"]
+    """Two rows: the chosen policy and its mean gain over keeping ``general``; the chosen
+    ``subtask_demonstrations`` and its mean gain over making no subtasks."""
+    chosen, subtasks = metrics["chosen"], metrics["subtasks"]
     quantity = "reading selection defaults on generated tasks (issue #23)"
     if chosen is None:
-        return [Finding(quantity, "– (not in the thesis)", (("", "none"),), "no policy qualifies")]
-    value = f"{chosen}: {metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution"
-    verdict = "the best on generated tasks" if chosen == metrics["best"] else "within one standard error of the best"
-    return [Finding(quantity, "– (not in the thesis)", (("", value),), verdict)]
+        rows = [Finding(quantity, "– (not in the thesis)", (("", "none"),), "no policy qualifies")]
+    else:
+        value = f"{chosen}: {metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution"
+        verdict = "the best on generated tasks" if chosen == metrics["best"] else "within one standard error of the best"
+        rows = [Finding(quantity, "– (not in the thesis)", (("", value),), verdict)]
+    quantity = "subtask_demonstrations on generated tasks (issue #23)"
+    threshold = subtasks["chosen"]
+    if threshold is None:
+        return [*rows, Finding(quantity, "– (not in the thesis)", (("", "none"),), "no threshold qualifies")]
+    value = f"subtask_demonstrations={threshold}: {subtasks['thresholds'][str(threshold)]['gain']:+.3f} nats per fresh execution"
+    verdict = "the best on generated tasks" if threshold == subtasks["best"] else "within one standard error of the best"
+    return [*rows, Finding(quantity, "– (not in the thesis)", (("", value),), verdict)]

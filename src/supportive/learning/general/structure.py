@@ -31,9 +31,9 @@ class StructureSettings:
     """What :func:`fit_structure` needs of the learner's settings (see
     :class:`~supportive.learning.learner.HTNLearner`)."""
 
-    evidence: float = 0.05
-    order_support: int | None = None
-    subtask_demonstrations: int = 4
+    evidence: float
+    order_support: int | None
+    subtask_demonstrations: int
 
     @property
     def support_needed(self) -> int:

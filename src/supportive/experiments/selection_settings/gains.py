@@ -1,0 +1,49 @@
+"""Gains over a grid of numbers of demonstrations, and the one-standard-error rule the procedures use.
+
+A setting's **gains** are, per number of demonstrations (a row), one value per generated task: what the
+learner with that setting scores on fresh executions minus a baseline's score on the same task. The rows
+are weighted alike; within a row the tasks of two settings are paired (the same task and fresh executions),
+and the rows are independent (different tasks).
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+__all__ = ["mean_gain", "paired_difference", "within_one_error"]
+
+
+def mean_gain(rows: Mapping[int, Sequence[float]]) -> float:
+    """The mean over the rows of the mean gain of each (0 for no rows).
+
+    >>> mean_gain({2: [1.0, 3.0], 4: [0.0]})
+    1.0
+    """
+    return statistics.fmean(statistics.fmean(row) for row in rows.values()) if rows else 0.0
+
+
+def paired_difference(
+    first: Mapping[int, Sequence[float]], second: Mapping[int, Sequence[float]]
+) -> tuple[float, float]:
+    """``first``'s mean gain minus ``second``'s and the standard error of that difference: the tasks of a row
+    paired, the rows independent (the variance of a mean of row means).
+
+    >>> paired_difference({2: [1.0, 3.0]}, {2: [0.0, 0.0]})
+    (2.0, 1.0)
+    """
+    if not first:
+        return 0.0, 0.0
+    variance = 0.0
+    for n, row in first.items():
+        differences = [a - b for a, b in zip(row, second[n], strict=True)]
+        variance += statistics.variance(differences) / len(differences) if len(differences) > 1 else 0.0
+    return mean_gain(first) - mean_gain(second), math.sqrt(variance) / len(first)
+
+
+def within_one_error(row: Mapping[str, Any]) -> bool:
+    """Whether a setting is within one standard error of the best (its ``gap`` ≤ its ``error``; exactly one
+    error away counts as within, rounding apart)."""
+    return bool(row["gap"] <= row["error"] or math.isclose(row["gap"], row["error"]))
