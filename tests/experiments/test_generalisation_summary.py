@@ -18,14 +18,22 @@ from supportive.experiments.generalisation.measure import LEARNERS, summarize
 SCORE = st.floats(0.0, 1.0, allow_nan=False)
 
 
-def recipe(index: int, f1: dict[str, tuple[float, float]], admitted: int = 1, held_out: int = 2) -> dict[str, Any]:
-    """A recipe trial's result with the given (full, 5-shot) edge F1 per learner and held-out recordings
-    admitted of those held out (every learner alike); the rest are fillers."""
+def recipe(
+    index: int, f1: dict[str, tuple[float, float]], admitted: int = 1, held_out: int = 2, likelihood: float = -5.0
+) -> dict[str, Any]:
+    """A recipe trial's result with the given (full, 5-shot) edge F1 per learner, held-out recordings
+    admitted of those held out and their mean log-likelihood (every learner alike); the rest are fillers."""
     record: dict[str, Any] = {"index": index, "kind": "recipe", "recipe": f"r{index}", "held_out": held_out}
     for mode in LEARNERS:
         scores = {"precision": 0.5, "recall": 0.5, "all_precision": 0.5}
         edges = {s: {"precision": 0.5, "recall": 0.5, "f1": f} for s, f in zip(("full", "5-shot"), f1[mode], strict=True)}
-        record[mode] = {"admitted": admitted, "error_free": scores, "with_errors": scores, "edges": edges}
+        record[mode] = {
+            "admitted": admitted,
+            "held_out_log_likelihood": likelihood,
+            "error_free": scores,
+            "with_errors": scores,
+            "edges": edges,
+        }
     return record
 
 
@@ -67,8 +75,12 @@ def test_one_recipe_gives_no_interval() -> None:
 @settings(max_examples=40, deadline=None)
 @given(st.lists(st.integers(1, 9).flatmap(lambda n: st.tuples(st.integers(0, n), st.just(n))), min_size=2, max_size=24))
 def test_the_admission_interval_is_over_the_recipes(counts: list[tuple[int, int]]) -> None:
-    results = [recipe(i, {m: (0.5, 0.5) for m in LEARNERS}, *pair) for i, pair in enumerate(counts)]
+    results = [recipe(i, {m: (0.5, 0.5) for m in LEARNERS}, *pair, likelihood=-pair[0] - i) for i, pair in enumerate(counts)]
     auto = summarize(results)["captaincook"]["auto"]
+    # the held-out log-likelihood: the mean over the recipes, with Student's t interval over them
+    likelihoods = [-float(a) - i for i, (a, _) in enumerate(counts)]
+    assert auto["held_out_log_likelihood"]["mean"] == pytest.approx(statistics.fmean(likelihoods), abs=1e-4)
+    assert auto["held_out_log_likelihood"]["low"] == pytest.approx(t_interval(likelihoods)[0], abs=1e-4)
     admitted, held = [float(a) for a, _ in counts], [float(n) for _, n in counts]
     share = sum(admitted) / sum(held)
     assert auto["admission"] == pytest.approx(share, abs=1e-4)

@@ -15,6 +15,7 @@ from supportive.io.captaincook import load_captaincook
 from supportive.learning import HTNLearner
 from supportive.learning.graph_edges import edge_scores
 from supportive.learning.precedence import implied_precedences, precedence_scores
+from supportive.learning.selection import held_out_log_likelihoods
 from supportive.tasks.htn import HTN, count_orderings, iter_orderings, sample_ordering, to_leaves
 
 __all__ = ["DEFAULT_TRIALS", "LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
@@ -100,7 +101,10 @@ def _recipe(index: int) -> dict[str, Any]:
     half = len(demos) // 2
     out: dict[str, Any] = {"recipe": clean.name, "held_out": len(demos) - half}
     for mode in LEARNERS:
-        learned = HTNLearner(mode=mode).fit(demos[:half]).htn_  # type: ignore[arg-type]
+        learner = HTNLearner(mode=mode).fit(demos[:half])  # type: ignore[arg-type]
+        # each held-out recording's log-likelihood as the readings are compared (every execution the hierarchy
+        # admits equally likely, a refused one explained as noise), and whether it is admitted
+        held_out = held_out_log_likelihoods(learner.htn_, demos[half:], learner.slip_rate)
         scores = {}
         for name, recipe in (("error_free", clean), ("with_errors", every)):
             htn = HTNLearner(mode=mode).fit(recipe.spec).htn_  # type: ignore[arg-type]
@@ -114,13 +118,19 @@ def _recipe(index: int) -> dict[str, Any]:
             htn = HTNLearner(mode=mode).fit(clean.spec.with_demonstrations(recordings)).htn_  # type: ignore[arg-type]
             score = edge_scores(implied_precedences(htn), clean.steps, clean.graph_edges)
             edges[setting] = {"precision": score.precision, "recall": score.recall, "f1": score.f1}
-        out[mode] = {"admitted": sum(learned.admits(d) for d in demos[half:]), **scores, "edges": edges}
+        out[mode] = {
+            "admitted": sum(ok for _, ok in held_out),
+            "held_out_log_likelihood": round(float(np.mean([v for v, _ in held_out])), 6),
+            **scores,
+            "edges": edges,
+        }
     return out
 
 
 def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """Means per profile and learner; CaptainCook admission (with its 95 % interval over the recipes) and
-    precedence and task-graph scores per learner (the task-graph F1 with its interval, see
+    """Means per profile and learner; CaptainCook admission (with its 95 % interval over the recipes), the
+    mean log-likelihood of a held-out recording (mean and interval over the recipes), and precedence and
+    task-graph scores per learner (the task-graph F1 with its interval, see
     :func:`_edge_summary`)."""
     synthetic = [r for r in results if r["kind"] == "synthetic"]
     recipes = [r for r in results if r["kind"] == "recipe"]
@@ -160,6 +170,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                         bounds=(0.0, 1.0),
                     )
                 ),
+                "held_out_log_likelihood": mean_ci([r[mode]["held_out_log_likelihood"] for r in recipes], digits=4),
                 **{
                     f"{data}_{metric}": round(float(np.mean([r[mode][data][metric] for r in recipes])), 4)
                     for data in ("error_free", "with_errors")

@@ -66,15 +66,21 @@ def _slips_table(slips: Mapping[str, Any]) -> list[str]:
 
 
 def _scores_table(captaincook: Mapping[str, Any]) -> list[str]:
-    """Per learner: held-out recordings admitted (the share with its 95 % interval over the recipes), and
-    precedence precision / recall with and without errors."""
+    """Per learner: held-out recordings admitted (the share with its 95 % interval over the recipes), their
+    mean log-likelihood (nats, mean over the recipes with its interval), and precedence precision / recall with
+    and without errors."""
     header = [
-        "learner", "admitted [95 % CI]", "P (error-free)", "R (error-free)", "P (with errors)", "R (with errors)",
+        "learner", "admitted [95 % CI]", "log-likelihood [95 % CI]", "P (error-free)", "R (error-free)", "P (with errors)", "R (with errors)",
         "P (with errors, all pairs)",
     ]
     keys = ("error_free_precision", "error_free_recall", "with_errors_precision", "with_errors_recall", "with_errors_all_precision")
     rows = [
-        [mode, f"{m['admitted']}/{m['held_out']} ({_share(m)})", *(f"{m[k]:.3f}" for k in keys)]
+        [
+            mode,
+            f"{m['admitted']}/{m['held_out']} ({_share(m)})",
+            format_ci(m["held_out_log_likelihood"], digits=2),
+            *(f"{m[k]:.3f}" for k in keys),
+        ]
         for mode, m in captaincook.items()
     ]
     return markdown_table(header, rows)
