@@ -13,7 +13,21 @@ import statistics
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-__all__ = ["mean_gain", "paired_difference", "within_one_error"]
+from supportive.experiments.statistics import mean_ci
+from supportive.generate.mistakes import PROFILES
+
+__all__ = ["mean_gain", "paired_difference", "row_summary", "within_one_error"]
+
+
+def row_summary(differences: Sequence[float], cell: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """One row's gains: their mean with its 95 % interval, and the mean per task profile (``profiles``) over
+    the trials of ``cell`` (the trial results the ``differences`` come from, in the same order)."""
+    by_profile = {
+        p: round(statistics.fmean(d for d, r in zip(differences, cell, strict=True) if r["profile"] == p), 6)
+        for p in PROFILES
+        if any(r["profile"] == p for r in cell)
+    }
+    return {**mean_ci(differences), "profiles": by_profile}
 
 
 def mean_gain(rows: Mapping[int, Sequence[float]]) -> float:

@@ -27,9 +27,13 @@ from typing import Any
 # issue #13 fixed the default learner's recall on `uniform` tasks learned from this many demonstrations; the
 # generalisation experiment's row holds it there
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
-from supportive.experiments.selection_settings.gains import mean_gain, paired_difference, within_one_error
+from supportive.experiments.selection_settings.gains import (
+    mean_gain,
+    paired_difference,
+    row_summary,
+    within_one_error,
+)
 from supportive.experiments.selection_settings.subtasks import summarize_thresholds
-from supportive.experiments.statistics import mean_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.mistakes import PROFILES, random_known_task
 from supportive.learning import HTNLearner
@@ -131,12 +135,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         for n in present:
             cell = [r for r in results if r["demonstrations"] == n]
             differences = [r["folds"][key]["log_likelihood"] - r["general"]["log_likelihood"] for r in cell]
-            by_profile = {
-                p: round(statistics.fmean(d for d, r in zip(differences, cell, strict=True) if r["profile"] == p), 6)
-                for p in PROFILES
-                if any(r["profile"] == p for r in cell)
-            }
-            gains[key][str(n)] = {**mean_ci(differences), "profiles": by_profile}
+            gains[key][str(n)] = row_summary(differences, cell)
             admitted[key][str(n)] = _share(cell, key)
     for n in present:
         admitted["general"][str(n)] = _share([r for r in results if r["demonstrations"] == n], "general")

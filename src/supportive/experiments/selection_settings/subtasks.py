@@ -16,14 +16,16 @@ executions cannot tell the two apart, fewer claims are kept.
 
 from __future__ import annotations
 
-import statistics
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
-from supportive.experiments.selection_settings.gains import mean_gain, paired_difference, within_one_error
-from supportive.experiments.statistics import mean_ci
-from supportive.generate.mistakes import PROFILES
+from supportive.experiments.selection_settings.gains import (
+    mean_gain,
+    paired_difference,
+    row_summary,
+    within_one_error,
+)
 
 __all__ = ["choose_threshold", "summarize_thresholds", "threshold_gains"]
 
@@ -53,12 +55,7 @@ def summarize_thresholds(
     for n in present:
         cell = [r for r in results if r["demonstrations"] == n]
         differences = [r["subtasks"]["made"]["log_likelihood"] - r["subtasks"]["none"]["log_likelihood"] for r in cell]
-        by_profile = {
-            p: round(statistics.fmean(d for d, r in zip(differences, cell, strict=True) if r["profile"] == p), 6)
-            for p in PROFILES
-            if any(r["profile"] == p for r in cell)
-        }
-        gains[str(n)] = {**mean_ci(differences), "profiles": by_profile}
+        gains[str(n)] = row_summary(differences, cell)
         admitted[str(n)] = {
             way: round(sum(r["subtasks"][way]["admitted"] for r in cell) / (fresh * len(cell)), 6)
             for way in ("made", "none")
