@@ -72,6 +72,29 @@ def admission_benchmark() -> str:
     )
 
 
+def habits_benchmark() -> str:
+    """docs/learning.md: fits that set a step aside, and the share of steps set aside, in clean
+    demonstrations by people with habits, per habit strength and number of demonstrations."""
+    result = read_json(BENCHMARKS / "habits.json")
+    rows = result["by_strength"]
+    sizes = list(next(iter(rows.values())))
+    tasks = result["tasks_per_strength"]
+    lines = [
+        "| habit strength | " + " | ".join(f"{n} demonstrations" for n in sizes) + " |",
+        "|---|" + "---:|" * len(sizes),
+        *(
+            f"| {strength} | "
+            + " | ".join(
+                f"{row[n]['fits_with_a_step_set_aside']} of {tasks} ({row[n]['share_of_steps_set_aside']:.2%} of steps)"
+                for n in sizes
+            )
+            + " |"
+            for strength, row in rows.items()
+        ),
+    ]
+    return "\n".join(lines) + "\n"
+
+
 def _verdict(drops: list[dict[str, float]]) -> str:
     """Whether a curve never falls, or where it does."""
     if not drops:
@@ -114,6 +137,7 @@ def active_learning_benchmark() -> str:
 BLOCKS: dict[str, Block] = {
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
     "bench-admission": Block("benchmarks/results/admission.json (make bench)", admission_benchmark),
+    "bench-habits": Block("benchmarks/results/habits.json (make bench)", habits_benchmark),
     "bench-backoff": Block("benchmarks/results/backoff.json (make bench)", backoff_benchmark),
     "bench-service": from_benchmark(
         "service",

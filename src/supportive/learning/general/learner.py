@@ -3,9 +3,9 @@
 1. Which performance of a repeated action each step is, by context (:mod:`.labelling`).
 2. Slips found as noise, with rates estimated from the demonstrations (:mod:`.noise`).
 3. The hierarchy of the demonstrations with their slips taken out (:mod:`.structure`): chains and cliques the
-   evidence supports from ``subtask_demonstrations`` demonstrations on (fewer rarely tell a subtask from a
-   coincidence: every step is then a root of its own, in the orders the evidence establishes; a single
-   demonstration, with nothing to compare it with, is one chain), repeated subtasks, optional flags, counts,
+   evidence supports from ``subtask_demonstrations`` demonstrations on (with fewer, every step is a root of
+   its own, in the orders the evidence establishes; a single demonstration, with nothing to compare it with,
+   is one chain), repeated subtasks, optional flags, counts,
    and a partial-order top level when several roots remain.
 4. When several roots remain, its alternative: one complete hierarchy that admits every execution the partial
    one admits (:mod:`.alternatives`).
