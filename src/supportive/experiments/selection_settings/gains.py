@@ -10,13 +10,31 @@ from __future__ import annotations
 
 import math
 import statistics
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from supportive.experiments.statistics import mean_ci
 from supportive.generate.mistakes import PROFILES
 
-__all__ = ["mean_gain", "paired_difference", "row_summary", "within_one_error"]
+__all__ = ["mean_gain", "paired_difference", "row_summary", "thresholded_gains", "within_one_error"]
+
+
+def thresholded_gains(
+    results: Sequence[Mapping[str, Any]], threshold: int | None, gain: Callable[[Mapping[str, Any]], float]
+) -> dict[int, list[float]]:
+    """Per number of demonstrations (a row), each trial's gain under a setting that acts from ``threshold``
+    demonstrations on: ``gain(trial)`` where the trial has that many or more, else 0 (always 0 for a
+    ``threshold`` of None: a setting that never acts), in the order of ``results``.
+
+    >>> trials = [{"demonstrations": 2, "g": 1.0}, {"demonstrations": 5, "g": 2.0}]
+    >>> thresholded_gains(trials, 3, lambda t: t["g"])
+    {2: [0.0], 5: [2.0]}
+    """
+    rows: dict[int, list[float]] = {}
+    for r in results:
+        n = int(r["demonstrations"])
+        rows.setdefault(n, []).append(gain(r) if threshold is not None and n >= threshold else 0.0)
+    return rows
 
 
 def row_summary(differences: Sequence[float], cell: Sequence[Mapping[str, Any]]) -> dict[str, Any]:

@@ -31,6 +31,7 @@ from supportive.experiments.selection_settings.gains import (
     mean_gain,
     paired_difference,
     row_summary,
+    thresholded_gains,
     within_one_error,
 )
 from supportive.experiments.selection_settings.subtasks import summarize_thresholds
@@ -198,13 +199,11 @@ def _policy_gains(
 ) -> dict[int, list[float]]:
     """Per number of demonstrations, each task's gain under the policy (0 where it keeps ``general``; always
     for never comparing, ``folds`` None), in the order of ``results``."""
-    rows: dict[int, list[float]] = {}
-    for r in results:
-        n = int(r["demonstrations"])
-        compares = folds is not None and threshold is not None and n >= threshold
-        gain = r["folds"][str(folds)]["log_likelihood"] - r["general"]["log_likelihood"] if compares else 0.0
-        rows.setdefault(n, []).append(gain)
-    return rows
+    return thresholded_gains(
+        results,
+        threshold if folds is not None else None,
+        lambda r: float(r["folds"][str(folds)]["log_likelihood"] - r["general"]["log_likelihood"]),
+    )
 
 
 def _cost(row: Mapping[str, Any]) -> tuple[int, int, int]:

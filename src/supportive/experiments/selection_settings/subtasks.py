@@ -24,6 +24,7 @@ from supportive.experiments.selection_settings.gains import (
     mean_gain,
     paired_difference,
     row_summary,
+    thresholded_gains,
     within_one_error,
 )
 
@@ -33,12 +34,12 @@ __all__ = ["choose_threshold", "summarize_thresholds", "threshold_gains"]
 def threshold_gains(results: Sequence[Mapping[str, Any]], threshold: int) -> dict[int, list[float]]:
     """Per number of demonstrations, each task's gain under ``threshold`` (see the module docstring), in the
     order of ``results``."""
-    rows: dict[int, list[float]] = {}
-    for r in results:
-        n = int(r["demonstrations"])
-        made, none = r["subtasks"]["made"]["log_likelihood"], r["subtasks"]["none"]["log_likelihood"]
-        rows.setdefault(n, []).append(made - none if n >= threshold else 0.0)
-    return rows
+    return thresholded_gains(results, threshold, _made_minus_none)
+
+
+def _made_minus_none(trial: Mapping[str, Any]) -> float:
+    """What making subtasks scored on the trial's fresh executions minus what making none scored."""
+    return float(trial["subtasks"]["made"]["log_likelihood"] - trial["subtasks"]["none"]["log_likelihood"])
 
 
 def summarize_thresholds(
@@ -54,7 +55,7 @@ def summarize_thresholds(
     admitted: dict[str, dict[str, float]] = {}
     for n in present:
         cell = [r for r in results if r["demonstrations"] == n]
-        differences = [r["subtasks"]["made"]["log_likelihood"] - r["subtasks"]["none"]["log_likelihood"] for r in cell]
+        differences = [_made_minus_none(r) for r in cell]
         gains[str(n)] = row_summary(differences, cell)
         admitted[str(n)] = {
             way: round(sum(r["subtasks"][way]["admitted"] for r in cell) / (fresh * len(cell)), 6)
