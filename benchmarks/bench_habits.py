@@ -2,27 +2,27 @@
 benchmarks/results/habits.json.
 
 Issue #23's property tests draw demonstrations uniformly from a task's valid executions. People do not: they
-share a preferred order and each keeps close to it. Here every demonstration is still valid — nothing is a
-slip — but drawn from a model of people with habits: the population's preferred order is one valid execution
-(drawn uniformly); each person shifts every step's rank in it by their own normal noise (standard deviation
-:data:`PERSON_NOISE`), then at each point picks among the steps the task allows next with weight
-``exp(-strength * rank)``; ``strength`` 0 would be uniform over the allowed steps. Random tasks of 7 steps of
-each profile, learned by the default learner from the first n of :data:`MOST` demonstrations: how many fits
-set a step aside, and the share of steps set aside (0 is right). A measurement of a known limitation, not a
-test (docs/learning.md).
+share a preferred order and each keeps close to it (:class:`~supportive.generate.habits.HabitualPeople`).
+Here every demonstration is still valid — nothing is a slip. Random tasks of 7 steps of each profile, learned
+from the first n of :data:`MOST` demonstrations by the default learner and by the same learner reading every
+admitted order as equally likely in its slip search (``order_concentration=inf``, the reading before the
+habit model): how many fits set a step aside, and the share of steps set aside (0 is right). A measurement,
+not a test (docs/learning.md).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import platform
 import time
 from pathlib import Path
 
 import numpy as np
 
-from bench_admission import STEPS, valid_executions
+from bench_admission import STEPS
+from supportive.generate.habits import HABIT_STRENGTHS, HabitualPeople
 from supportive.generate.mistakes import PROFILES, random_known_task
 from supportive.learning import HTNLearner
 
@@ -30,26 +30,10 @@ SIZES = (2, 5, 10, 20, 40)
 """Numbers of demonstrations learned from."""
 MOST = max(SIZES)
 """Demonstrations drawn per task."""
-STRENGTHS = (1.0, 2.0, 4.0)
-"""How strongly people keep the preferred order (per rank of it, in the log weight of a step)."""
-PERSON_NOISE = 0.5
-"""Standard deviation of each person's own shift of each step's rank: people share the habit, not exactly."""
 TASKS_PER_PROFILE = 8
 """Random tasks per profile and strength: a sample size, not a setting of the learner."""
-
-
-def habitual_person(valid: list[list[str]], preferred: list[str], strength: float, rng: np.random.Generator) -> list[str]:
-    """One valid execution by a person with the population's habit (see the module docstring)."""
-    rank = {step: i + rng.normal(0.0, PERSON_NOISE) for i, step in enumerate(preferred)}
-    done: list[str] = []
-    left = valid
-    while len(done) < len(preferred):
-        allowed = sorted({execution[len(done)] for execution in left})
-        weights = np.exp(-strength * np.array([rank[step] for step in allowed]))
-        step = allowed[int(rng.choice(len(allowed), p=weights / weights.sum()))]
-        done.append(step)
-        left = [execution for execution in left if execution[len(done) - 1] == step]
-    return done
+LEARNERS = {"default": HTNLearner, "uniform reading": lambda: HTNLearner(order_concentration=math.inf)}
+"""The learners compared: the default, and the slip search reading every admitted order as equally likely."""
 
 
 def main() -> None:
@@ -59,38 +43,38 @@ def main() -> None:
     args = parser.parse_args()
     started = time.perf_counter()
     rng = np.random.default_rng(args.seed)
-    rows: dict[str, dict[str, dict[str, float]]] = {}
-    for strength in STRENGTHS:
-        fits_with_slips = dict.fromkeys(SIZES, 0)
-        set_aside = dict.fromkeys(SIZES, 0)
+    rows: dict[str, dict[str, dict[str, dict[str, float]]]] = {name: {} for name in LEARNERS}
+    for strength in HABIT_STRENGTHS:
+        fits_with_slips = {name: dict.fromkeys(SIZES, 0) for name in LEARNERS}
+        set_aside = {name: dict.fromkeys(SIZES, 0) for name in LEARNERS}
         steps = dict.fromkeys(SIZES, 0)
         for profile in PROFILES:
             for _ in range(TASKS_PER_PROFILE):
-                task = random_known_task(profile, STEPS, rng)
-                valid = valid_executions(task)
-                preferred = valid[int(rng.integers(len(valid)))]
-                demos = [habitual_person(valid, preferred, strength, rng) for _ in range(MOST)]
+                people = HabitualPeople.of(random_known_task(profile, STEPS, rng), strength, rng)
+                demos = [people.demonstration(rng) for _ in range(MOST)]
                 for n in SIZES:
-                    found = len(HTNLearner().fit(demos[:n]).deviations_)
-                    fits_with_slips[n] += found > 0
-                    set_aside[n] += found
                     steps[n] += sum(map(len, demos[:n]))
-        rows[str(strength)] = {
-            str(n): {
-                "fits_with_a_step_set_aside": fits_with_slips[n],
-                "share_of_steps_set_aside": round(set_aside[n] / steps[n], 5),
+                    for name, learner in LEARNERS.items():
+                        found = len(learner().fit(demos[:n]).deviations_)
+                        fits_with_slips[name][n] += found > 0
+                        set_aside[name][n] += found
+        for name in LEARNERS:
+            rows[name][str(strength)] = {
+                str(n): {
+                    "fits_with_a_step_set_aside": fits_with_slips[name][n],
+                    "share_of_steps_set_aside": round(set_aside[name][n] / steps[n], 5),
+                }
+                for n in SIZES
             }
-            for n in SIZES
-        }
-        print(f"strength {strength}: " + " ".join(f"{n}:{fits_with_slips[n]}/{len(PROFILES) * TASKS_PER_PROFILE}" for n in SIZES))
+            tasks = len(PROFILES) * TASKS_PER_PROFILE
+            print(f"{name}, strength {strength}: " + " ".join(f"{n}:{fits_with_slips[name][n]}/{tasks}" for n in SIZES))
     result = {
         "benchmark": "habits",
         "machine": {"python": platform.python_version(), "processor": platform.machine()},
         "seed": args.seed,
         "tasks_per_strength": len(PROFILES) * TASKS_PER_PROFILE,
         "steps_per_task": STEPS,
-        "person_noise": PERSON_NOISE,
-        "by_strength": rows,
+        "by_learner": rows,
         "seconds": round(time.perf_counter() - started, 1),
     }
     args.output.parent.mkdir(parents=True, exist_ok=True)

@@ -65,19 +65,18 @@ def test_learn_dot_and_hddl(tmp_path: Path, cli: CliRunner) -> None:
 
 def test_learn_names_the_slips_it_set_aside(tmp_path: Path, cli: CliRunner) -> None:
     rows = ["demonstration,step,action"]
-    demos = ["abcdef"] * 10 + ["abdcef"] * 10 + ["bcdefa"] * 2 + ["acbdef"]  # two do "a" last, one swaps b, c
+    demos = ["abcdef"] * 10 + ["abdcef"] * 10 + ["bcdefa", "aebcdf"]  # one does "a" last, one "e" second
     rows += [f"r{i + 1},{j + 1},{a}" for i, demo in enumerate(demos) for j, a in enumerate(demo)]
     path = tmp_path / "demos.csv"
     path.write_text("\n".join(rows) + "\n")
     code, out, err = cli(["learn", str(path)])
     assert code == 0 and "in order a → … → f" in out
-    assert "set aside as slips (3;" in err
-    assert "r21 step 6 a (out of order); r22 step 6 a (out of order); r23 step " in err
-    assert "r23 step 2 c (out of order)" in err or "r23 step 3 b (out of order)" in err  # either explains the swap
+    assert "set aside as slips (2;" in err
+    assert "r21 step 6 a (out of order); r22 step 2 e (out of order)" in err
     code, out, err = cli(["learn", str(path), "-f", "json"])
     data = json.loads(out)
-    assert code == 0 and err == "" and len(data["deviations"]) == 3
-    assert data["noise"]["slips"]["out of order"] == 3 and data["noise"]["rates"]["missing"] == 0.0
+    assert code == 0 and err == "" and len(data["deviations"]) == 2
+    assert data["noise"]["slips"]["out of order"] == 2 and data["noise"]["rates"]["missing"] == 0.0
     code, out, err = cli(["learn", str(examples.path("blocks-v"))])
     assert code == 0 and "slips" not in err
 

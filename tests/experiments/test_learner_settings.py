@@ -11,6 +11,7 @@ from supportive.experiments.learner_settings.measure import (
     CLEAN_TASKS,
     DEMONSTRATIONS,
     GRID,
+    PEOPLE,
     TASKS,
     choose,
     make_trials,
@@ -27,9 +28,11 @@ def test_a_full_run_covers_every_cell_and_the_clean_tasks() -> None:
     mistaken = [t for t in trials if t.params["case"] != "none"]
     assert len(mistaken) == TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(KINDS)
     assert len(trials) - len(mistaken) == CLEAN_TASKS
-    assert {(t.params["profile"], t.params["demonstrations"], t.params["case"]) for t in mistaken} == {
-        (p, n, k) for p in PROFILES for n in DEMONSTRATIONS for k in KINDS
-    }
+    cells = [(t.params["profile"], t.params["demonstrations"], t.params["case"], t.params["people"]) for t in mistaken]
+    assert set(cells) == set(itertools.product(PROFILES, DEMONSTRATIONS, KINDS, PEOPLE))
+    assert len(set(cells)) * TASKS // len(PEOPLE) == len(cells)  # as many tasks by each people in every cell
+    clean = [t.params["people"] for t in trials if t.params["case"] == "none"]
+    assert clean.count("habits") == clean.count("uniform") == CLEAN_TASKS // 2
 
 
 def test_a_trial_scores_every_setting_and_the_summary_picks_by_the_procedure() -> None:
@@ -45,8 +48,11 @@ def test_a_trial_scores_every_setting_and_the_summary_picks_by_the_procedure() -
     assert set(summary["settings"][summary["chosen"]]["kinds"]) == {f"{k} {n}" for k in KINDS for n in DEMONSTRATIONS}
 
 
-def _row(worst: float, flagged: float, tasks: int) -> dict[str, Any]:
-    return {"worst_f1": worst, "clean_flagged": flagged, "clean_tasks_flagged": tasks, "clean_tasks": 100}
+def _row(worst: float, flagged: float, tasks: int, habits: float = 0.0, habit_tasks: int = 0) -> dict[str, Any]:
+    return {
+        "worst_f1": worst, "clean_flagged": flagged, "clean_tasks_flagged": tasks, "clean_tasks": 100,
+        "habits_flagged": habits, "habits_tasks_flagged": habit_tasks, "habits_tasks": 100,
+    }
 
 
 def test_choose_is_the_best_worst_f1_among_the_settings_quiet_on_clean_data() -> None:
@@ -55,9 +61,15 @@ def test_choose_is_the_best_worst_f1_among_the_settings_quiet_on_clean_data() ->
     assert choose({"a": _row(0.9, 0.01, 0)}) is None
 
 
+def test_choose_asks_people_with_habits_for_few_steps_flagged_not_for_few_tasks() -> None:
+    table = {"a": _row(0.95, 0.0, 0, habits=0.006), "b": _row(0.9, 0.0, 0, habits=0.004, habit_tasks=20)}
+    assert choose(table) == "b"  # a calls too many of the habitual people's valid steps slips
+
+
 def test_the_learners_defaults_are_the_chosen_setting() -> None:
     # docs/learning.md quotes the full run that chose them; a change of grid or procedure must change both.
     defaults = HTNLearner()
-    assert settings_name({"slip_margin": defaults.slip_margin, "slip_rate": defaults.slip_rate}) in {
+    chosen = {"slip_margin": defaults.slip_margin, "slip_rate": defaults.slip_rate, "order_concentration": defaults.order_concentration}
+    assert settings_name(chosen) in {
         settings_name(dict(zip(GRID, v, strict=True))) for v in itertools.product(*GRID.values())
     }

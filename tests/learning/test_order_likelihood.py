@@ -2,15 +2,19 @@
 
 from __future__ import annotations
 
+import math
+import random
 from collections import Counter
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from tests.learning.test_pair_orders import _executions, sampled_demonstrations
 
 from supportive.learning import HTNLearner
 from supportive.learning.order_likelihood import OrderLikelihood
+from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode
 
 
 @settings(max_examples=40, deadline=None)
@@ -29,3 +33,66 @@ def test_the_orders_of_each_set_of_steps_are_counted_once(seed: int, kind: str, 
     for done, count in orders.items():
         assert reading.orders(done) == count
     assert all(reading.log_probability(e) > -np.inf for e in executions)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    seed=st.integers(0, 10_000),
+    kind=st.sampled_from(["ikea", "uniform", "partial order"]),
+    mode=st.sampled_from(["general", "strict", "partial order"]),
+)
+def test_the_habit_reading_names_every_admitted_order_apart_and_tends_to_the_uniform_one(
+    seed: int, kind: str, mode: str
+) -> None:
+    # with a huge concentration every admitted order is as likely: the order choices multiply to the number of
+    # orders; with a tiny one a repeated order costs nothing more, and two different orders of the same steps
+    # cost much more (so no two orders are read as the same choices)
+    rng = np.random.default_rng(seed)
+    demos = sampled_demonstrations(rng, kind, skips=True)
+    htn = HTNLearner(mode=mode, alternatives=0, slips=False).fit(demos).htn_  # type: ignore[arg-type]
+    executions = _executions(htn)
+    uniform, flat = OrderLikelihood(htn), OrderLikelihood(htn, concentration=1e6)
+    sample = [executions[int(i)] for i in rng.integers(len(executions), size=6)]
+    assert flat.log_probability_of_all(sample) == pytest.approx(uniform.log_probability_of_all(sample), abs=1e-3)
+    assert uniform.log_probability_of_all(sample) == pytest.approx(sum(uniform.log_probability(e) for e in sample))
+    habitual = OrderLikelihood(htn, concentration=1e-6)
+    by_steps: dict[frozenset[tuple[str, int]], list[tuple[tuple[str, int], ...]]] = {}
+    for execution in executions:
+        by_steps.setdefault(frozenset(execution), []).append(execution)
+    for same in by_steps.values():
+        first = same[0]
+        twice = habitual.log_probability_of_all([first, first])  # the order once, what is done twice
+        once = uniform.log_probability(first) + math.log(uniform.orders(frozenset(first)))
+        assert twice == pytest.approx(2 * once - math.log(uniform.orders(frozenset(first))), abs=1e-3)
+        for other in same[1:3]:
+            assert habitual.log_probability_of_all([first, other]) < twice - 5.0
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    orders=st.lists(st.permutations("abc"), min_size=1, max_size=12),
+    alpha=st.sampled_from([0.25, 1.0, 3.0]),
+    shuffle=st.randoms(use_true_random=False),
+)
+def test_a_cliques_orders_are_read_as_a_polya_urn_in_any_sequence(
+    orders: list[list[str]], alpha: float, shuffle: random.Random
+) -> None:
+    # the Dirichlet-multinomial of one clique of three steps against drawing the orders one by one from an urn
+    # holding alpha of each of the 6 orders plus one more of each order already drawn
+    htn = HTN("t", (ChainNode((ActionNode("k"), CliqueNode(tuple(ActionNode(a) for a in "abc")))),))
+    executions = [(("k", 1), *((a, 1) for a in order)) for order in orders]
+    expected, seen = 0.0, Counter[tuple[str, ...]]()
+    for i, order in enumerate(orders):
+        expected += math.log((seen[tuple(order)] + alpha) / (i + 6 * alpha))
+        seen[tuple(order)] += 1
+    reading = OrderLikelihood(htn, concentration=alpha)
+    assert reading.log_probability_of_all(executions) == pytest.approx(expected)
+    shuffle.shuffle(executions)
+    assert reading.log_probability_of_all(executions) == pytest.approx(expected)
+    assert reading.log_probability_of_all([*executions, (("a", 1), ("k", 1), ("b", 1), ("c", 1))]) == -math.inf
+
+
+def test_a_concentration_must_be_above_zero() -> None:
+    htn = HTN("t", (ActionNode("a"),))
+    with pytest.raises(ValueError, match="concentration"):
+        OrderLikelihood(htn, concentration=0.0)

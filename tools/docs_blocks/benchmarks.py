@@ -74,21 +74,22 @@ def admission_benchmark() -> str:
 
 def habits_benchmark() -> str:
     """docs/learning.md: fits that set a step aside, and the share of steps set aside, in clean
-    demonstrations by people with habits, per habit strength and number of demonstrations."""
+    demonstrations by people with habits, per learner, habit strength and number of demonstrations."""
     result = read_json(BENCHMARKS / "habits.json")
-    rows = result["by_strength"]
-    sizes = list(next(iter(rows.values())))
+    learners = result["by_learner"]
+    sizes = list(next(iter(next(iter(learners.values())).values())))
     tasks = result["tasks_per_strength"]
     lines = [
-        "| habit strength | " + " | ".join(f"{n} demonstrations" for n in sizes) + " |",
-        "|---|" + "---:|" * len(sizes),
+        "| learner | habit strength | " + " | ".join(f"{n} demonstrations" for n in sizes) + " |",
+        "|---|---|" + "---:|" * len(sizes),
         *(
-            f"| {strength} | "
+            f"| {name} | {strength} | "
             + " | ".join(
                 f"{row[n]['fits_with_a_step_set_aside']} of {tasks} ({row[n]['share_of_steps_set_aside']:.2%} of steps)"
                 for n in sizes
             )
             + " |"
+            for name, rows in learners.items()
             for strength, row in rows.items()
         ),
     ]

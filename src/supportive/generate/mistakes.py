@@ -37,7 +37,7 @@ from supportive.errors import GenerationError
 from supportive.generate.partial_orders import PartialOrderTask, random_partial_order
 from supportive.generate.structures import random_structure
 from supportive.seeding import Seed, rng_from
-from supportive.tasks.htn import Node, admits, sample_ordering, to_leaves
+from supportive.tasks.htn import Node, admits, allowed_next, sample_ordering, to_leaves
 
 __all__ = ["KINDS", "PROFILES", "Injected", "KnownTask", "MistakeKind", "TaskProfile", "inject", "random_known_task"]
 
@@ -66,6 +66,16 @@ class KnownTask:
             return self.partial.admits(actions)
         assert self.structure is not None
         return admits(self.structure, to_leaves(actions))
+
+    def allowed_next(self, done: Sequence[str]) -> list[str]:
+        """The steps a valid execution that began with ``done`` (a valid prefix) may do next, sorted; none
+        when it is finished."""
+        if self.partial is not None:
+            needs = self.partial.precedences
+            left = set(self.partial.steps) - set(done)
+            return sorted(b for b in left if not any(a in left for a, later in needs if later == b))
+        assert self.structure is not None
+        return sorted({action for action, _ in allowed_next(self.structure, to_leaves(done))})
 
     def sample(self, seed: Seed = None) -> list[str]:
         """One valid execution, drawn uniformly among them."""

@@ -43,7 +43,8 @@ from supportive.tasks.spec import Demonstration, TaskSpec
 __all__ = ["END_LABEL", "Calibration", "PredictionSession", "StepPredictor"]
 
 _LEARNER = (
-    "mode", "slips", "slip_margin", "slip_rate", "slip_rate_weight", "max_slip_candidates", "evidence",
+    "mode", "slips", "slip_margin", "slip_rate", "slip_rate_weight", "order_concentration", "max_slip_candidates",
+    "evidence",
     "order_support", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
 )
 _TRACKER = ("slip", "restart", "max_states", "beam")
@@ -87,7 +88,8 @@ class StepPredictor(Estimator):
     """Next-step prediction (see the module docstring).
 
     Args:
-        mode, slips, slip_margin, slip_rate, slip_rate_weight, max_slip_candidates, evidence, order_support,
+        mode, slips, slip_margin, slip_rate, slip_rate_weight, order_concentration, max_slip_candidates, evidence,
+            order_support,
             subtask_demonstrations, selection_folds, selection_demonstrations: The hierarchy learner's settings
             (see :class:`HTNLearner`); None (the default) keeps the learner's own default.
         slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
@@ -122,6 +124,7 @@ class StepPredictor(Estimator):
         slip_margin: float | None = None,
         slip_rate: float | None = None,
         slip_rate_weight: float | None = None,
+        order_concentration: float | None = None,
         max_slip_candidates: int | None = None,
         evidence: float | None = None,
         order_support: int | None = None,
@@ -155,6 +158,7 @@ class StepPredictor(Estimator):
         self.slip_margin = slip_margin
         self.slip_rate = slip_rate
         self.slip_rate_weight = slip_rate_weight
+        self.order_concentration = order_concentration
         self.max_slip_candidates = max_slip_candidates
         self.evidence = evidence
         self.order_support = order_support

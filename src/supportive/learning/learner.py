@@ -97,6 +97,16 @@ class HTNLearner(Estimator):
             integrated out under a beta prior with this mean and weight, so demonstrations with many more
             steps outweigh it); above 0. Not swept: 1,000 steps is the size of the generated tasks' data
             (50–100 demonstrations of 6–12 steps), so the data and the prior weigh alike there.
+        order_concentration: ``general``: how the slip search reads the orders a hierarchy admits. Each
+            order choice it leaves open (a clique's order of its children, a partial top level's of its
+            roots) has its own distribution over the orders admitted there, unknown, with a symmetric
+            Dirichlet prior of this concentration, integrated out
+            (:meth:`~supportive.learning.order_likelihood.OrderLikelihood.log_probability_of_all`): small
+            values expect people's habits (an order several people take costs little, so a rare valid order
+            is not read as a slip), large ones every admitted order equally likely (``math.inf``: exactly
+            that, the reading before issue #23's habits work); above 0. Default 1, with ``slip_margin`` and
+            ``slip_rate``: the setting ``supportive reproduce learner-settings`` picks on generated tasks
+            done by people with and without habits (docs/learning.md).
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
             (the most telling first); at least 1. A bound on the work, not a model setting.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
@@ -171,6 +181,7 @@ class HTNLearner(Estimator):
         slip_margin: float = 1.0,
         slip_rate: float = 0.1,
         slip_rate_weight: float = 1000.0,
+        order_concentration: float = 1.0,
         max_slip_candidates: int = 48,
         evidence: float = 0.05,
         order_support: int | None = None,
@@ -193,6 +204,8 @@ class HTNLearner(Estimator):
             raise LearningError(f"slip_rate must be in (0, 0.5), got {slip_rate}")
         if not slip_rate_weight > 0.0:
             raise LearningError(f"slip_rate_weight must be above 0, got {slip_rate_weight}")
+        if not order_concentration > 0.0:
+            raise LearningError(f"order_concentration must be above 0, got {order_concentration}")
         if max_slip_candidates < 1:
             raise LearningError(f"max_slip_candidates must be at least 1, got {max_slip_candidates}")
         if not 0.0 < evidence <= 1.0:
@@ -206,6 +219,7 @@ class HTNLearner(Estimator):
         self.slip_margin = slip_margin
         self.slip_rate = slip_rate
         self.slip_rate_weight = slip_rate_weight
+        self.order_concentration = order_concentration
         self.max_slip_candidates = max_slip_candidates
         self.evidence = evidence
         self.order_support = order_support
@@ -343,6 +357,7 @@ class HTNLearner(Estimator):
             self.slip_rate,
             self.slip_rate_weight,
             self.max_slip_candidates,
+            self.order_concentration,
         )
         return learn_general(
             sequences,

@@ -12,6 +12,17 @@ people chose them (:class:`~supportive.learning.distribution.ProgressModel`, the
 reward a hierarchy for forbidding what few people happened to do, and a rare but valid order of free steps
 would then look like a slip.
 
+**Habits** (issue #23). People are not uniform: they share a preferred order, and a valid order few of them
+take is rare, not wrong. With ``concentration`` α finite, :meth:`OrderLikelihood.log_probability_of_all`
+reads a set of executions jointly: each *order choice* the hierarchy leaves open (a clique's order of the
+children an execution performs; a partial top level's order of the roots it performs) has its own unknown
+distribution over the orders admitted there, with a symmetric Dirichlet(α) prior, integrated out (the
+Dirichlet-multinomial, i.e. the probability of the choices made in sequence, each with chance
+``(times chosen so far + α) / (choices so far + K α)`` among the ``K`` orders admitted). An order many
+people take then costs little however many others are admitted; one nobody else took costs about
+``log(n K / α)``. As α grows the reading tends to the uniform one above (α = ∞ is it exactly). The take-or-skip
+choices are read as above.
+
 >>> from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode
 >>> htn = HTN("t", (ChainNode((ActionNode("k"), CliqueNode((ActionNode("a"), ActionNode("b"))))),))
 >>> reading = OrderLikelihood(htn)
@@ -24,9 +35,14 @@ would then look like a slip.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from collections.abc import Iterable, Sequence
 
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, nullable, to_leaves
+
+_Choice = tuple[object, int, tuple[int, ...]]
+"""An order choice an execution made: what was chosen (a clique by its place and its performed children, or
+the top level by its performed roots), how many orders were admitted there, and which was taken."""
 
 __all__ = ["OrderLikelihood"]
 
@@ -37,10 +53,18 @@ class OrderLikelihood:
     ``shared``: a dict that readings of several hierarchies may share, where the orders of a partial top
     level are kept by what decides them (the top level's order automaton, each root's number of orders,
     which roots are performed and which may be skipped): hierarchies learned from nearly the same
-    demonstrations often share their top level, and counting its orders is the costly part."""
+    demonstrations often share their top level, and counting its orders is the costly part.
 
-    def __init__(self, htn: HTN, *, shared: dict[object, int] | None = None) -> None:
+    ``concentration``: the Dirichlet concentration α of each order choice in
+    :meth:`log_probability_of_all` (above 0; ``math.inf``, the default, is the uniform reading)."""
+
+    def __init__(
+        self, htn: HTN, *, shared: dict[object, int] | None = None, concentration: float = math.inf
+    ) -> None:
+        if not concentration > 0.0:
+            raise ValueError(f"concentration must be above 0, got {concentration}")
         self.htn = htn
+        self.concentration = concentration
         self._orders: dict[frozenset[Leaf], int] = {}
         self._shared = shared if shared is not None else {}
         top = htn.top_level
@@ -55,6 +79,78 @@ class OrderLikelihood:
         return sum(
             _choice(node, done) for root in self.htn.roots for node in _performed_parents(root, done)
         ) - math.log(self.orders(done))
+
+    def log_probability_of_all(self, executions: Iterable[Sequence[Leaf]]) -> float:
+        """Natural log of the joint probability of ``executions`` (``-inf`` when the hierarchy refuses one):
+        with a finite ``concentration``, each order choice's distribution integrated out under its Dirichlet
+        prior (the module docstring); with an infinite one, the sum of :meth:`log_probability`.
+
+        >>> from supportive.tasks.htn import HTN, ActionNode, CliqueNode
+        >>> htn = HTN("t", (CliqueNode((ActionNode("a"), ActionNode("b"))),))
+        >>> same = [[("a", 1), ("b", 1)]] * 3
+        >>> round(OrderLikelihood(htn).log_probability_of_all(same), 3)  # 3 log(1/2)
+        -2.079
+        >>> round(OrderLikelihood(htn, concentration=1.0).log_probability_of_all(same), 3)  # 1/2 · 2/3 · 3/4
+        -1.386
+        """
+        if math.isinf(self.concentration):
+            return sum(self.log_probability(leaves) for leaves in executions)
+        alpha = self.concentration
+        total = 0.0
+        chosen: dict[object, tuple[int, Counter[tuple[int, ...]]]] = {}
+        for leaves in executions:
+            if not self.htn.admits_leaves(leaves):
+                return -math.inf
+            done = frozenset(leaves)
+            total += sum(
+                _choice(node, done) for root in self.htn.roots for node in _performed_parents(root, done)
+            )
+            for where, admitted, order in self._order_choices(leaves):
+                chosen.setdefault(where, (admitted, Counter()))[1][order] += 1
+        for admitted, orders in chosen.values():
+            total += (
+                math.lgamma(admitted * alpha)
+                - math.lgamma(admitted * alpha + orders.total())
+                + sum(math.lgamma(times + alpha) - math.lgamma(alpha) for times in orders.values())
+            )
+        return total
+
+    def _order_choices(self, leaves: Sequence[Leaf]) -> list[_Choice]:
+        """The order choices the admitted execution ``leaves`` made (each clique's children and the top
+        level's roots are done one after the other, so an order is read off where each begins)."""
+        first: dict[Leaf, int] = {}
+        for i, leaf in enumerate(leaves):
+            first.setdefault(leaf, i)
+        done = frozenset(leaves)
+
+        def start(node: Node) -> int:
+            return min(first[leaf] for leaf in node.leaves if leaf in first)
+
+        out: list[_Choice] = []
+        stack: list[tuple[tuple[int, ...], Node]] = [
+            ((r,), root) for r, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves)
+        ]
+        while stack:
+            place, node = stack.pop()
+            if isinstance(node, ActionNode):
+                continue
+            parts = [i for i, child in enumerate(node.children) if not done.isdisjoint(child.leaves)]
+            if not isinstance(node, ChainNode) and len(parts) > 1:
+                order = tuple(sorted(parts, key=lambda i: start(node.children[i])))
+                out.append(((place, tuple(parts)), math.factorial(len(parts)), order))
+            stack.extend(((*place, i), node.children[i]) for i in parts)
+        top = self.htn.top_level
+        performed = [i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves)]
+        if top is not None and len(performed) > 1:
+            skippable = frozenset(i for i, root in enumerate(self.htn.roots) if i not in performed and nullable(root))
+            key = ("root orders", top, tuple(performed), skippable)
+            admitted = self._shared.get(key)
+            if admitted is None:
+                ones = [1] * len(self.htn.roots)
+                admitted = self._shared[key] = self._walk(top, ones, performed, set(skippable))
+            order = tuple(sorted(performed, key=lambda i: start(self.htn.roots[i])))
+            out.append((("top", tuple(performed)), admitted, order))
+        return out
 
     def log_probability_of_actions(self, actions: Sequence[str]) -> float:
         """:meth:`log_probability` of an execution given as action ids (the k-th performance of an action

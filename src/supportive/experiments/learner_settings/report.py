@@ -19,7 +19,7 @@ from supportive.experiments.tables import markdown_table
 from supportive.experiments.templates import render
 from supportive.generate.mistakes import KINDS
 
-__all__ = ["findings", "headline", "plots", "report"]
+__all__ = ["findings", "headline", "plots", "report", "worst_cells"]
 
 
 def report(metrics: Mapping[str, Any]) -> str:
@@ -36,12 +36,13 @@ def report(metrics: Mapping[str, Any]) -> str:
         grid=_grid(),
         chosen=chosen or "none qualifies",
         table=markdown_table(
-            ["setting", *cells, "clean", "worst F1"],
+            ["setting", *cells, "clean", "clean, habits", "worst F1"],
             [
                 [
                     f"**{name}**" if name == chosen else name,
                     *(f"{row['kinds'][c]['precision']:.2f} / {row['kinds'][c]['recall']:.2f}" for c in cells),
                     f"{row['clean_tasks_flagged']}/{row['clean_tasks']} ({row['clean_flagged']:.4%})",
+                    f"{row['habits_tasks_flagged']}/{row['habits_tasks']} ({row['habits_flagged']:.4%})",
                     f"{row['worst_f1']:.3f}",
                 ]
                 for name, row in metrics["settings"].items()
@@ -52,7 +53,7 @@ def report(metrics: Mapping[str, Any]) -> str:
 
 def _grid() -> str:
     """The grid as text: ``slip_margin ∈ {0, 1, 2}, …``."""
-    return ", ".join(k + " ∈ {" + ", ".join(f"{v:g}" for v in values) + "}" for k, values in GRID.items())
+    return ", ".join(k + " ∈ {" + ", ".join(f"{v:g}".replace("inf", "∞") for v in values) + "}" for k, values in GRID.items())
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
@@ -70,18 +71,32 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
 
 
 def _clean(row: Mapping[str, Any]) -> str:
-    """How many clean tasks a setting reported a slip in."""
-    return f"a slip in {row['clean_tasks_flagged']}/{row['clean_tasks']} clean tasks"
+    """How many clean tasks a setting reported a slip in, by people without habits and with them."""
+    return (
+        f"a slip in {row['clean_tasks_flagged']}/{row['clean_tasks']} clean tasks"
+        f" ({row['habits_tasks_flagged']}/{row['habits_tasks']} by people with habits,"
+        f" {row['habits_flagged']:.2%} of their steps)"
+    )
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
-    """One row: the chosen setting, its worst precision and recall and its clean reports."""
+    """One row: the chosen setting, its worst precision and recall where the demonstrations are drawn uniformly
+    (issue #23's case) and where people have habits, and its clean reports."""
     chosen = metrics["chosen"]
     if chosen is None:
         return [Finding("slip search defaults on generated tasks", "– (not in the thesis)", (("", "none"),), "no setting qualifies")]
     row = metrics["settings"][chosen]
-    precision = min(k["precision"] for k in row["kinds"].values() if k["mistakes"])
-    recall = min(k["recall"] for k in row["kinds"].values() if k["mistakes"])
-    value = f"{chosen}: worst P {precision:.2f}, worst R {recall:.2f}, {_clean(row)}"
+    worst = {people: worst_cells(cells) for people, cells in row["kinds_by_people"].items()}
+    precision, recall = worst["uniform"]
+    value = (
+        f"{chosen}: worst P {precision:.2f}, worst R {recall:.2f} (with habits {worst['habits'][0]:.2f}, "
+        f"{worst['habits'][1]:.2f}), {_clean(row)}"
+    )
     verdict = "meets P ≥ 0.9, R ≥ 0.7" if precision >= 0.9 and recall >= 0.7 else "below P ≥ 0.9 or R ≥ 0.7"
     return [Finding("slip search defaults on generated tasks (issue #23)", "– (not in the thesis)", (("", value),), verdict)]
+
+
+def worst_cells(cells: Mapping[str, Mapping[str, Any]]) -> tuple[float, float]:
+    """The lowest precision and the lowest recall over the cells where mistakes were put in."""
+    shown = [c for c in cells.values() if c["mistakes"]]
+    return min((c["precision"] for c in shown), default=1.0), min((c["recall"] for c in shown), default=1.0)

@@ -9,8 +9,13 @@ The learner keeps the explanation of all the demonstrations that is more probabl
 are noise):
 
 * the score of a set of slips is the log-likelihood of the demonstrations with those slips undone (a step
-  set aside is put back where the hierarchy learned without it makes the execution most probable; a missing
-  step where it fits best) under the hierarchy learned from them, plus the log-likelihood of the slips
+  set aside is put back at the first place the hierarchy learned without it admits it; a missing step
+  likewise) under the hierarchy learned from them, read jointly with people's habits integrated out (each
+  order choice the hierarchy leaves open has its own distribution over the orders admitted there, under a
+  Dirichlet prior of concentration ``concentration``:
+  :meth:`~supportive.learning.order_likelihood.OrderLikelihood.log_probability_of_all`; so loosening a
+  hierarchy for an order several people take costs little, while an order one person took alone costs about
+  ``log(n K / α)``), plus the log-likelihood of the slips
   themselves: a rate per kind estimated as slips of that kind over all steps (its maximum-likelihood value;
   ``(1/2) log N`` is charged for each kind whose rate is not zero, as BIC charges a parameter), and where each
   landed (a uniform choice among the demonstration's positions);
@@ -108,6 +113,7 @@ class NoiseSettings:
     rate: float
     weight: float
     max_candidates: int
+    concentration: float
 
 
 @dataclass(frozen=True)
@@ -328,6 +334,9 @@ class _Search:
                 groups.setdefault((slip.leaf, slip.kind), set()).add(slip)
             units = [frozenset({slip}) for slip in sorted(slips, key=_order)]
             units += [frozenset(g) for _, g in sorted(groups.items()) if len(g) > 1]
+            units += [  # a variant several people do, taken for slips with one real slip of the same step
+                frozenset(g - {kept}) for _, g in sorted(groups.items()) if len(g) > 2 for kept in sorted(g, key=_order)
+            ]
             value, unit = max(
                 ((self._total(slips - u) - current + self.settings.margin * len(u), u) for u in units),
                 key=lambda t: t[0],
@@ -622,49 +631,57 @@ class _Search:
 
     def _structure(self, slips: frozenset[Deviation]) -> float:
         """The hierarchy's part of the score of ``slips``: the log-likelihood of the demonstrations with the
-        slips undone and of where the slips landed, in the reading of
-        :class:`~supportive.learning.order_likelihood.OrderLikelihood`, less ``(1/2) log n`` per frequency
-        the hierarchy learned without them fixes."""
+        slips undone, read jointly by :class:`~supportive.learning.order_likelihood.OrderLikelihood` with the
+        settings' ``concentration`` (people's habits integrated out), and of where the slips landed, less
+        ``(1/2) log n`` per frequency the hierarchy learned without them fixes."""
         cached = self._scores.get(slips)
         if cached is not None:
             return cached
         cleaned = self._cleaned(slips)
-        reading = OrderLikelihood(self._fit(slips).htn(), shared=self._orders)
+        reading = OrderLikelihood(
+            self._fit(slips).htn(), shared=self._orders, concentration=self.settings.concentration
+        )
         by_demo: dict[int, list[Deviation]] = {}
         for slip in slips:
             by_demo.setdefault(slip.demonstration, []).append(slip)
+        restored: list[Sequence[Leaf]] = []
         total = 0.0
         for d, demo in enumerate(cleaned):
             mine = by_demo.get(d)
-            total += (
-                reading.log_probability(demo) if mine is None else self._restored(reading, list(demo), mine)
-            )
-            if total == -math.inf:
+            leaves, placed = (demo, 0.0) if mine is None else self._restored(reading, list(demo), mine)
+            if leaves is None:
+                total = -math.inf
                 break
-        total -= 0.5 * math.log(max(len(cleaned), 1)) * reading.parameters()
+            restored.append(leaves)
+            total += placed
+        if total > -math.inf:
+            total += reading.log_probability_of_all(restored)
+            total -= 0.5 * math.log(max(len(cleaned), 1)) * reading.parameters()
         self._scores[slips] = total
         return total
 
     @staticmethod
-    def _restored(reading: OrderLikelihood, leaves: list[Leaf], slips: list[Deviation]) -> float:
-        """Log-probability of a demonstration with its slips undone (a step put back at the first place the
-        hierarchy admits it; every admitted order is as probable) and of where its slips landed: a step out
-        of order or unknown at any of the demonstration's places, a repeated one at any place after the
-        performance it repeats."""
+    def _restored(
+        reading: OrderLikelihood, leaves: list[Leaf], slips: list[Deviation]
+    ) -> tuple[list[Leaf] | None, float]:
+        """A demonstration with its slips undone (a step put back at the first place the hierarchy admits
+        it; None when there is none) and the log-probability of where its slips landed: a step out of order
+        or unknown at any of the demonstration's places, a repeated one at any place after the performance
+        it repeats."""
         length = len(leaves) + sum(1 for s in slips if s.kind in _TAKEN_OUT)
         placed = 0.0
         for slip in sorted(slips, key=_order):
             if slip.kind in _PUT_BACK:
                 position = reading.htn.executions.first_insertion(leaves, slip.leaf)
                 if position is None:
-                    return -math.inf
+                    return None, -math.inf
                 leaves = [*leaves[:position], slip.leaf, *leaves[position:]]
             if slip.kind == "repeated":
                 first = next((i for i, (a, _) in enumerate(leaves) if a == slip.leaf[0]), -1)
                 placed -= math.log(max(length - 1 - first, 1))
             elif slip.kind != "missing":
                 placed -= math.log(max(length, 1))
-        return reading.log_probability(leaves) + placed
+        return leaves, placed
 
     def _noise(self, counts: Counter[str]) -> float:
         """Log-probability of which steps are slips of each kind, the rate of each integrated out under its
