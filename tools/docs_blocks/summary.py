@@ -16,9 +16,14 @@ def _summary() -> dict[str, Any]:
 
 def reproduce_all_trials() -> str:
     """docs/experiments.md: the seed and each experiment's trials in the recorded run."""
+    from supportive.experiments import get
+
     summary = _summary()
-    counts = ", ".join(f"{name} {count}" for name, count in sorted(summary["trials"].items()))
-    return f"(seed {summary['seed']}, each experiment's default trials: {counts})\n"
+    counts = ", ".join(
+        f"{name} {count}" + ("" if count == get(name).default_trials else f" (of a full run's {get(name).default_trials})")
+        for name, count in sorted(summary["trials"].items())
+    )
+    return f"(seed {summary['seed']}, each experiment's trials: {counts})\n"
 
 
 def reproduce_all_summary() -> str:

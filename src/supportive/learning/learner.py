@@ -89,8 +89,9 @@ class HTNLearner(Estimator):
             without them (:mod:`~supportive.learning.general.noise`); False learns from every step as it is.
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
-            the noise it claims has been paid for); 0 or more. Default 1, with ``slip_rate`` 0.1: the setting
-            ``supportive reproduce learner-settings`` picks on generated tasks (docs/learning.md).
+            the noise it claims has been paid for); 0 or more. Default 0, with ``slip_rate`` 0.1 and
+            ``order_concentration`` 1: the setting ``supportive reproduce learner-settings`` picks on generated
+            tasks (docs/learning.md).
         slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
             (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
         slip_rate_weight: ``general``: how many observed steps that prior is worth (each kind's rate is
@@ -178,7 +179,7 @@ class HTNLearner(Estimator):
         *,
         mode: Mode = "auto",
         slips: bool = True,
-        slip_margin: float = 1.0,
+        slip_margin: float = 0.0,
         slip_rate: float = 0.1,
         slip_rate_weight: float = 1000.0,
         order_concentration: float = 1.0,
