@@ -12,6 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from tests.learning.test_pair_orders import _executions, sampled_demonstrations
 
+from supportive.errors import LearningError
 from supportive.learning import HTNLearner
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode
@@ -94,5 +95,5 @@ def test_a_cliques_orders_are_read_as_a_polya_urn_in_any_sequence(
 
 def test_a_concentration_must_be_above_zero() -> None:
     htn = HTN("t", (ActionNode("a"),))
-    with pytest.raises(ValueError, match="concentration"):
+    with pytest.raises(LearningError, match="concentration"):
         OrderLikelihood(htn, concentration=0.0)

@@ -38,6 +38,7 @@ import math
 from collections import Counter
 from collections.abc import Iterable, Sequence
 
+from supportive.errors import LearningError
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, nullable, to_leaves
 
 _Choice = tuple[object, int, tuple[int, ...]]
@@ -62,7 +63,7 @@ class OrderLikelihood:
         self, htn: HTN, *, shared: dict[object, int] | None = None, concentration: float = math.inf
     ) -> None:
         if not concentration > 0.0:
-            raise ValueError(f"concentration must be above 0, got {concentration}")
+            raise LearningError(f"concentration must be above 0, got {concentration}")
         self.htn = htn
         self.concentration = concentration
         self._orders: dict[frozenset[Leaf], int] = {}
