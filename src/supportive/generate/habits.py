@@ -27,15 +27,13 @@ from supportive.errors import GenerationError
 from supportive.generate.mistakes import KnownTask
 from supportive.seeding import Seed, rng_from
 
-__all__ = ["HABIT_STRENGTHS", "PERSON_NOISE", "HabitualPeople"]
+__all__ = ["HABIT_STRENGTHS", "HabitualPeople"]
 
 HABIT_STRENGTHS = (1.0, 2.0, 4.0)
 """The strengths experiments draw from: people who often, mostly, and nearly always keep the habit (with
-:data:`PERSON_NOISE`, a step one rank behind another in the preferred order is taken first, when both are
+the default ``person_noise`` of 0.5, a step one rank behind another in the preferred order is taken first, when both are
 allowed, about 29 %, 18 % and 12 % of the time: the person's own noise, not the strength, makes most of the
 swaps at strength 4)."""
-PERSON_NOISE = 0.5
-"""Standard deviation of each person's own shift of each step's rank: people share the habit, not exactly."""
 
 
 @dataclass(frozen=True)
@@ -46,13 +44,14 @@ class HabitualPeople:
         task: The task whose valid executions they do.
         preferred: The population's preferred order, one valid execution.
         strength: How strongly they keep it, 0 or more (per rank, in the log weight of a step).
-        person_noise: Standard deviation of each person's shift of each rank, 0 or more.
+        person_noise: Standard deviation of each person's shift of each rank, 0 or more (default 0.5: people
+            share the habit, not exactly; a property of the generated population, not a learner setting).
     """
 
     task: KnownTask
     preferred: tuple[str, ...]
     strength: float
-    person_noise: float = PERSON_NOISE
+    person_noise: float = 0.5
 
     def __post_init__(self) -> None:
         if not self.strength >= 0.0 or not self.person_noise >= 0.0:
@@ -63,9 +62,10 @@ class HabitualPeople:
             raise GenerationError(f"the preferred order {list(self.preferred)} is not a valid execution of the task")
 
     @classmethod
-    def of(cls, task: KnownTask, strength: float, seed: Seed = None, *, person_noise: float = PERSON_NOISE) -> HabitualPeople:
-        """People whose preferred order is drawn uniformly among ``task``'s valid executions."""
-        return cls(task, tuple(task.sample(rng_from(seed))), strength, person_noise)
+    def of(cls, task: KnownTask, strength: float, seed: Seed = None, **options: float) -> HabitualPeople:
+        """People whose preferred order is drawn uniformly among ``task``'s valid executions (``options``: the
+        other fields, e.g. ``person_noise``)."""
+        return cls(task, tuple(task.sample(rng_from(seed))), strength, **options)
 
     def demonstration(self, seed: Seed = None) -> list[str]:
         """One valid execution by a new person of this population."""
