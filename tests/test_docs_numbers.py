@@ -161,9 +161,9 @@ def test_the_learner_defaults_are_the_setting_the_recorded_run_chose() -> None:
 
 
 def test_the_selection_defaults_are_the_policy_the_recorded_run_chose() -> None:
-    """docs/learning.md says when and with how many folds the default learner compares its readings, and from
-    how many demonstrations it makes subtasks, were chosen by `reproduce selection-settings`: the recorded run's
-    choices are what ``HTNLearner`` defaults to."""
+    """docs/learning.md says when and with how many folds the default learner compares its readings, from how
+    many demonstrations it makes subtasks, and its evidence level were chosen by `reproduce selection-settings`:
+    the recorded run's choices are what ``HTNLearner`` defaults to."""
     import inspect
 
     from supportive.learning import HTNLearner
@@ -174,8 +174,10 @@ def test_the_selection_defaults_are_the_policy_the_recorded_run_chose() -> None:
     parameters = inspect.signature(HTNLearner.__init__).parameters
     assert parameters["selection_folds"].default == policy["folds"]
     assert parameters["selection_demonstrations"].default == policy["demonstrations"]
-    # and from how many demonstrations the general reading makes subtasks, by its sweep of the same run
+    # and from how many demonstrations the general reading makes subtasks, and its evidence level, by the
+    # sweeps of the same run
     assert parameters["subtask_demonstrations"].default == metrics["subtasks"]["chosen"]
+    assert parameters["evidence"].default == metrics["evidence"]["chosen"]
 
 
 def test_the_caregiver_prose_holds_on_the_recorded_run() -> None:

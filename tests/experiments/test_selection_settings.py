@@ -10,6 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from supportive.experiments import get
+from supportive.experiments.selection_settings.evidence import LEVELS
 from supportive.experiments.selection_settings.measure import (
     CONVENTIONAL,
     DEMONSTRATIONS,
@@ -38,11 +39,13 @@ def test_a_trial_scores_general_and_every_number_of_folds_on_fresh_executions() 
     result = run_trial(trial)
     assert result == run_trial(trial)
     assert set(result["folds"]) == {str(k) for k in FOLDS}
-    for score in (result["general"], *result["folds"].values(), *result["subtasks"].values()):
+    assert set(result["evidence"]) == {str(level) for level in LEVELS}
+    for score in (result["general"], *result["folds"].values(), *result["subtasks"].values(), *result["evidence"].values()):
         assert 0 <= score["admitted"] <= FRESH and score["log_likelihood"] < 0
-    # general, from this many demonstrations, is one of the two ways subtasks.py compares
+    # general, from this many demonstrations, is one of the two ways subtasks.py compares, and the level of
+    # evidence.py at the learner's default
     default = "made" if HTNLearner().subtask_demonstrations <= 5 else "none"
-    assert result["subtasks"][default] == result["general"]
+    assert result["subtasks"][default] == result["general"] == result["evidence"][str(HTNLearner().evidence)]
 
 
 def _result(
@@ -57,6 +60,7 @@ def _result(
         "general": score,
         "folds": {str(k): {"log_likelihood": auto[k], "admitted": auto_admits, "chosen": "x"} for k in FOLDS},
         "subtasks": {"made": score, "none": score},
+        "evidence": {str(level): score for level in LEVELS},
     }
 
 

@@ -334,6 +334,53 @@ def selection_settings_subtasks_chosen() -> str:
     )
 
 
+def selection_settings_evidence_chosen() -> str:
+    """docs/learning.md: the ``evidence`` level the procedure picks, what the levels it passed over gain and
+    cost, and what the learner defaults to."""
+    from supportive.experiments.selection_settings.evidence import CONVENTIONAL_EVIDENCE, LEVELS
+    from supportive.experiments.selection_settings.gains import within_one_error
+    from supportive.learning import HTNLearner
+
+    evidence: dict[str, Any] = read_json(RESULTS / "selection-settings.json")["evidence"]
+    rows, best, chosen = evidence["levels"], evidence["best"], evidence["chosen"]
+    conventional = rows[str(CONVENTIONAL_EVIDENCE)]
+    parts = []
+    if best != CONVENTIONAL_EVIDENCE:
+        within = "within" if within_one_error(conventional) else "beyond"
+        parts.append(
+            f"The best qualifying level is {best} ({rows[str(best)]['gain']:+.3f} nats per fresh execution over "
+            f"{CONVENTIONAL_EVIDENCE}); {CONVENTIONAL_EVIDENCE} is {within} one standard error of it "
+            f"({conventional['gap']:.4f} behind, error {conventional['error']:.4f})."
+        )
+    else:
+        parts.append(f"No qualifying level predicts the fresh executions better than {CONVENTIONAL_EVIDENCE}.")
+    costly = [level for level in LEVELS if not rows[str(level)]["qualifies"]]
+    if costly:
+        parts.append(
+            "Costing issue #13's recall: "
+            + "; ".join(
+                f"{level} ({rows[str(level)]['gain']:+.3f} nats, admits {rows[str(level)]['recall']:.3f} of the "
+                f"fresh executions against {conventional['recall']:.3f})"
+                for level in costly
+            )
+            + "."
+        )
+    behind = [level for level in LEVELS if rows[str(level)]["qualifies"] and level != best]
+    if behind:
+        parts.append(
+            "Behind the best: "
+            + "; ".join(
+                f"{level} by {rows[str(level)]['gap']:.3f} nats ("
+                f"{'within' if within_one_error(rows[str(level)]) else 'beyond'} one standard error, "
+                f"{rows[str(level)]['error']:.3f})"
+                for level in behind
+            )
+            + "."
+        )
+    parts.append(f"Chosen: {chosen}; `HTNLearner` defaults to {HTNLearner().evidence}.")
+    return " ".join(parts) + "\n"
+
+
 def selection_settings_losses() -> str:
     """docs/learning.md: where comparing loses from 6 demonstrations on, under the kept policy's folds: which
     readings it keeps instead of ``general`` on how many tasks, and what each then gains or loses."""
@@ -381,6 +428,11 @@ BLOCKS: dict[str, Block] = {
         "selection-settings", "selection-settings.json", "| subtask_demonstrations |"
     ),
     "selection-settings-subtasks-chosen": Block(_SS, selection_settings_subtasks_chosen),
+    "selection-settings-evidence-gains": report_table(
+        "selection-settings", "selection-settings.json", "| demonstrations | evidence="
+    ),
+    "selection-settings-evidence-levels": report_table("selection-settings", "selection-settings.json", "| evidence |"),
+    "selection-settings-evidence-chosen": Block(_SS, selection_settings_evidence_chosen),
     "selection-settings-losses": Block(_SS, selection_settings_losses),
     "selection-settings-time": run_time("selection-settings"),
 }

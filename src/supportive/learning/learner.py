@@ -115,7 +115,10 @@ class HTNLearner(Estimator):
             an order the demonstrations reverse far less often than the hierarchy predicts as agreed (the
             slip search's candidates, :mod:`~supportive.learning.general.noise`); a step out of order stands
             only when a sample of valid executions shows what the demonstrations show with a chance below
-            this over the number of pairs of steps. The conventional 5 % level.
+            this over the number of pairs of steps. Default 0.05, the conventional level, which ``supportive
+            reproduce selection-settings`` keeps on generated tasks: the levels above it predict fresh
+            executions a little better but admit fewer of them from issue #13's 4 demonstrations, and those
+            below predict them worse by more than one standard error (docs/learning.md).
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
             even when no step is between them (:func:`~supportive.learning.general.evidence.established_precedences`);
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).

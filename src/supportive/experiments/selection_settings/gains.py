@@ -16,7 +16,7 @@ from typing import Any
 from supportive.experiments.statistics import mean_ci
 from supportive.generate.mistakes import PROFILES
 
-__all__ = ["mean_gain", "paired_difference", "row_summary", "thresholded_gains", "within_one_error"]
+__all__ = ["mean_gain", "paired_difference", "row_summary", "set_distances", "thresholded_gains", "within_one_error"]
 
 
 def thresholded_gains(
@@ -73,6 +73,23 @@ def paired_difference(
         differences = [a - b for a, b in zip(row, second[n], strict=True)]
         variance += statistics.variance(differences) / len(differences) if len(differences) > 1 else 0.0
     return mean_gain(first) - mean_gain(second), math.sqrt(variance) / len(first)
+
+
+def set_distances(
+    rows: Mapping[str, dict[str, Any]], gains: Mapping[str, Mapping[int, Sequence[float]]], best: str | None
+) -> None:
+    """Give each of ``rows`` (settings, by name) its ``gap`` behind the ``best`` one and the standard ``error`` of
+    that difference (:func:`paired_difference` of their per-task ``gains``, by the same names; both 0 when
+    there is no best), rounded to 6 places.
+
+    >>> rows = {"a": {}, "b": {}}
+    >>> set_distances(rows, {"a": {2: [1.0, 3.0]}, "b": {2: [0.0, 0.0]}}, "a")
+    >>> rows
+    {'a': {'gap': 0.0, 'error': 0.0}, 'b': {'gap': 2.0, 'error': 1.0}}
+    """
+    for name, row in rows.items():
+        gap, error = paired_difference(gains[best], gains[name]) if best is not None else (0.0, 0.0)
+        row["gap"], row["error"] = round(gap, 6), round(error, 6)
 
 
 def within_one_error(row: Mapping[str, Any]) -> bool:

@@ -14,7 +14,8 @@ many demonstrations on; below, the ``general`` reading is kept). Its gain at ``n
 demonstrations of the grid — or the :data:`CONVENTIONAL` policy when it is within one standard error of that.
 
 Each trial also scores the ``general`` reading making subtasks and making none, from which
-:mod:`.subtasks` picks ``subtask_demonstrations`` — the same tasks, fresh executions and score.
+:mod:`.subtasks` picks ``subtask_demonstrations``, and at every evidence level, from which :mod:`.evidence`
+picks ``evidence`` — the same tasks, fresh executions and score.
 """
 
 from __future__ import annotations
@@ -27,10 +28,11 @@ from typing import Any
 # issue #13 fixed the default learner's recall on `uniform` tasks learned from this many demonstrations; the
 # generalisation experiment's row holds it there
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
+from supportive.experiments.selection_settings.evidence import LEVELS, summarize_levels
 from supportive.experiments.selection_settings.gains import (
     mean_gain,
-    paired_difference,
     row_summary,
+    set_distances,
     thresholded_gains,
     within_one_error,
 )
@@ -93,7 +95,8 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
 
 def run_trial(trial: Trial) -> dict[str, Any]:
     """Generate the task, its demonstrations and fresh executions; learn and score ``general`` and ``auto``
-    under every number of folds, and ``general`` making subtasks and making none."""
+    under every number of folds, ``general`` making subtasks and making none, and ``general`` at every evidence
+    level."""
     rng = trial.rng()
     profile, n = trial.params["profile"], int(trial.params["demonstrations"])
     task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
@@ -112,6 +115,14 @@ def run_trial(trial: Trial) -> dict[str, Any]:
     made = HTNLearner(mode="general", alternatives=0, subtask_demonstrations=1).fit(demos)
     none = HTNLearner(mode="general", alternatives=0, subtask_demonstrations=n + 1).fit(demos)
     out["subtasks"] = {"made": _score(made, fresh), "none": _score(none, fresh)}
+    # the general reading at every evidence level (evidence.py)
+    out["evidence"] = {
+        str(level): _score(
+            general if level == general.evidence else HTNLearner(mode="general", alternatives=0, evidence=level).fit(demos),
+            fresh,
+        )
+        for level in LEVELS
+    }
     return out
 
 
@@ -125,7 +136,8 @@ def _score(learner: HTNLearner, fresh: Sequence[Sequence[str]]) -> dict[str, Any
 def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     """Per number of folds and of demonstrations: the gain of comparing over ``general`` (mean and 95 %
     interval over the tasks, and per profile); the share of fresh executions each admits; every policy's mean
-    gain over the grid and recall at :data:`RECALL_DEMONSTRATIONS`; the chosen policy (:func:`choose`)."""
+    gain over the grid and recall at :data:`RECALL_DEMONSTRATIONS`; the chosen policy (:func:`choose`); the
+    sweeps of ``subtask_demonstrations`` (:mod:`.subtasks`) and ``evidence`` (:mod:`.evidence`)."""
     present = sorted({int(r["demonstrations"]) for r in results})
     gains: dict[str, dict[str, Any]] = {}
     admitted: dict[str, dict[str, float | None]] = {"general": {}}
@@ -151,6 +163,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         "best": best,
         "chosen": choose(policies),
         "subtasks": summarize_thresholds(results, DEMONSTRATIONS, FRESH),
+        "evidence": summarize_levels(results, FRESH),
         "tasks": [dict(r) for r in results],
     }
 
@@ -188,9 +201,7 @@ def _policies(
             "qualifies": kept is not None and recall["general"] is not None and kept >= recall["general"],
         }
     best = best_policy(out)
-    for name, row in out.items():
-        gap, error = paired_difference(per_task[best], per_task[name]) if best is not None else (0.0, 0.0)
-        row["gap"], row["error"] = round(gap, 6), round(error, 6)
+    set_distances(out, per_task, best)
     return out, best
 
 

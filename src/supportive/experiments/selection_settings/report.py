@@ -8,6 +8,7 @@ from typing import Any
 
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
+from supportive.experiments.selection_settings.evidence import CONVENTIONAL_EVIDENCE, LEVELS
 from supportive.experiments.selection_settings.measure import (
     CONVENTIONAL,
     DEMONSTRATIONS,
@@ -50,6 +51,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         conventional_gap=_conventional_gap(metrics),
         chosen=metrics["chosen"] or "none qualifies",
         **_subtasks(metrics["subtasks"]),
+        **_evidence(metrics["evidence"]),
     )
 
 
@@ -78,6 +80,34 @@ def _subtasks(subtasks: Mapping[str, Any]) -> dict[str, object]:
         ),
         "subtask_best": str(subtasks["best"]) if subtasks["best"] is not None else "none qualifies",
         "subtask_chosen": str(subtasks["chosen"]) if subtasks["chosen"] is not None else "none qualifies",
+    }
+
+
+def _evidence(evidence: Mapping[str, Any]) -> dict[str, object]:
+    """The template's fields on ``evidence``: each level's gain over the conventional one per number of
+    demonstrations, every level's mean gain and recall, and the level chosen."""
+    gains, rows = evidence["gains"], evidence["levels"]
+    present = [str(n) for n in DEMONSTRATIONS if str(n) in gains[str(CONVENTIONAL_EVIDENCE)]]
+
+    def level(value: float) -> list[str]:
+        row = rows[str(value)]
+        gain = f"{row['gain']:+.3f}" + ("" if row["qualifies"] else " ✗")
+        recall = "–" if row["recall"] is None else f"{row['recall']:.3f}"
+        name = f"**{value}**" if value == evidence["chosen"] else str(value)
+        return [name, gain, recall, f"{row['gap']:.3f}", f"{row['error']:.3f}"]
+
+    return {
+        "evidence_gains": markdown_table(
+            ["demonstrations", *(f"evidence={value}" for value in LEVELS)],
+            [[n, *(format_ci(gains[str(value)][n], signed=True) for value in LEVELS)] for n in present],
+        ),
+        "evidence_levels": markdown_table(
+            ["evidence", "mean gain", f"admitted, uniform, {RECALL_DEMONSTRATIONS} demonstrations", "behind the best", "standard error"],
+            [level(value) for value in LEVELS],
+        ),
+        "evidence_conventional": str(CONVENTIONAL_EVIDENCE),
+        "evidence_best": str(evidence["best"]) if evidence["best"] is not None else "none qualifies",
+        "evidence_chosen": str(evidence["chosen"]) if evidence["chosen"] is not None else "none qualifies",
     }
 
 
@@ -114,7 +144,7 @@ def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
 
 
 def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
-    """The chosen policy and threshold, and their mean gains."""
+    """The chosen policy, threshold and evidence level, and their mean gains."""
     chosen, subtasks = metrics["chosen"], metrics["subtasks"]
     rows: list[HeadlineRow] = [
         ("selection settings chosen", chosen, f"{metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution")
@@ -127,12 +157,19 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     else:
         gain = subtasks["thresholds"][str(threshold)]["gain"]
         rows.append(("subtask_demonstrations chosen", str(threshold), f"{gain:+.3f} nats per fresh execution"))
+    level = metrics["evidence"]["chosen"]
+    if level is None:
+        rows.append(("evidence chosen", "none qualifies", "–"))
+    else:
+        gain = metrics["evidence"]["levels"][str(level)]["gain"]
+        rows.append(("evidence chosen", str(level), f"{gain:+.3f} nats per fresh execution over {CONVENTIONAL_EVIDENCE}"))
     return rows
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
-    """Two rows: the chosen policy and its mean gain over keeping ``general``; the chosen
-    ``subtask_demonstrations`` and its mean gain over making no subtasks."""
+    """Three rows: the chosen policy and its mean gain over keeping ``general``; the chosen
+    ``subtask_demonstrations`` and its mean gain over making no subtasks; the chosen ``evidence`` and its mean
+    gain over the conventional level."""
     chosen, subtasks = metrics["chosen"], metrics["subtasks"]
     quantity = "reading selection defaults on generated tasks (issue #23)"
     if chosen is None:
@@ -144,7 +181,20 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     quantity = "subtask_demonstrations on generated tasks (issue #23)"
     threshold = subtasks["chosen"]
     if threshold is None:
-        return [*rows, Finding(quantity, "– (not in the thesis)", (("", "none"),), "no threshold qualifies")]
-    value = f"subtask_demonstrations={threshold}: {subtasks['thresholds'][str(threshold)]['gain']:+.3f} nats per fresh execution"
-    verdict = "the best on generated tasks" if threshold == subtasks["best"] else "within one standard error of the best"
-    return [*rows, Finding(quantity, "– (not in the thesis)", (("", value),), verdict)]
+        rows.append(Finding(quantity, "– (not in the thesis)", (("", "none"),), "no threshold qualifies"))
+    else:
+        value = f"subtask_demonstrations={threshold}: {subtasks['thresholds'][str(threshold)]['gain']:+.3f} nats per fresh execution"
+        verdict = "the best on generated tasks" if threshold == subtasks["best"] else "within one standard error of the best"
+        rows.append(Finding(quantity, "– (not in the thesis)", (("", value),), verdict))
+    return [*rows, _evidence_finding(metrics["evidence"])]
+
+
+def _evidence_finding(evidence: Mapping[str, Any]) -> Finding:
+    """The chosen ``evidence`` and its mean gain over the conventional level."""
+    quantity = "evidence level on generated tasks (issue #23)"
+    level = evidence["chosen"]
+    if level is None:
+        return Finding(quantity, "– (not in the thesis)", (("", "none"),), "no level qualifies")
+    value = f"evidence={level}: {evidence['levels'][str(level)]['gain']:+.3f} nats per fresh execution over {CONVENTIONAL_EVIDENCE}"
+    verdict = "the best on generated tasks" if level == evidence["best"] else "within one standard error of the best"
+    return Finding(quantity, "– (not in the thesis)", (("", value),), verdict)

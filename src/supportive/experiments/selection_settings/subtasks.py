@@ -22,8 +22,8 @@ from typing import Any
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.selection_settings.gains import (
     mean_gain,
-    paired_difference,
     row_summary,
+    set_distances,
     thresholded_gains,
     within_one_error,
 )
@@ -68,9 +68,7 @@ def summarize_thresholds(
     }
     qualified = [k for k in thresholds if rows[str(k)]["qualifies"]]
     best = max(qualified, key=lambda k: (rows[str(k)]["gain"], k), default=None)
-    for k in thresholds:
-        gap, error = paired_difference(per_threshold[best], per_threshold[k]) if best is not None else (0.0, 0.0)
-        rows[str(k)]["gap"], rows[str(k)]["error"] = round(gap, 6), round(error, 6)
+    set_distances(rows, {str(k): gains for k, gains in per_threshold.items()}, None if best is None else str(best))
     return {
         "gains": gains,
         "admitted": admitted,
