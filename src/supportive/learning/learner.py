@@ -90,7 +90,7 @@ class HTNLearner(Estimator):
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
             the noise it claims has been paid for); 0 or more. Default 0, with ``slip_rate`` 0.1 and
-            ``order_concentration`` 1: the setting ``supportive reproduce learner-settings`` picks on generated
+            ``order_concentration`` 0.25: the setting ``supportive reproduce learner-settings`` picks on generated
             tasks (docs/learning.md).
         slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
             (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
@@ -105,9 +105,10 @@ class HTNLearner(Estimator):
             (:meth:`~supportive.learning.order_likelihood.OrderLikelihood.log_probability_of_all`): small
             values expect people's habits (an order several people take costs little, so a rare valid order
             is not read as a slip), large ones every admitted order equally likely (``math.inf``: exactly
-            that, the reading before issue #23's habits work); above 0. Default 1, with ``slip_margin`` and
+            that, the reading before issue #23's habits work); above 0. Default 0.25, with ``slip_margin`` and
             ``slip_rate``: the setting ``supportive reproduce learner-settings`` picks on generated tasks
-            done by people with and without habits (docs/learning.md).
+            done by people with and without habits (docs/learning.md; tied on worst F1 with 1, the first in
+            the grid's order).
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
             (the most telling first); at least 1. A bound on the work, not a model setting.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
@@ -185,7 +186,7 @@ class HTNLearner(Estimator):
         slip_margin: float = 0.0,
         slip_rate: float = 0.1,
         slip_rate_weight: float = 1000.0,
-        order_concentration: float = 1.0,
+        order_concentration: float = 0.25,
         max_slip_candidates: int = 48,
         evidence: float = 0.05,
         order_support: int | None = None,
