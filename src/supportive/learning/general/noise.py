@@ -25,7 +25,8 @@ are noise):
   alone). It also runs from a second start, the most telling step out of place in every demonstration that
   has one (when that beats no slip), and keeps the more probable of the two ends: a greedy search from the
   large start can stall where taking back the variants of a step would mean keeping its real slips (issue
-  #23: four real slips of a step among eighteen valid variants, 70 nats less probable than the four alone). Candidates are the steps that reverse an order the others agree on (an order that so few
+  #23: four real slips of a step kept with eighteen valid variants, 70 nats less probable than the four
+  alone). Candidates are the steps that reverse an order the others agree on (an order that so few
   demonstrations reverse that the hierarchy learned without them, which predicts how often the pair comes
   either way, makes it unlikely: a binomial test), alone and, for an order several demonstrations reverse,
   together; steps found inside a subtask the others keep together, in fewer demonstrations than establish an
