@@ -30,12 +30,13 @@ from supportive.experiments.selection_settings.gains import (
     thresholded_gains,
     within_one_error,
 )
+from supportive.learning import HTNLearner
 
 __all__ = ["CONVENTIONAL_EVIDENCE", "LEVELS", "choose_level", "level_gains", "summarize_levels"]
 
-CONVENTIONAL_EVIDENCE = 0.05
-"""The conventional 5 % level: kept unless a level predicts fresh executions better by more than one standard
-error (:func:`choose_level`)."""
+CONVENTIONAL_EVIDENCE: float = HTNLearner().evidence
+"""The learner's default level (the conventional 5 %), the reference every level is scored against: kept
+unless a level predicts fresh executions better by more than one standard error (:func:`choose_level`)."""
 
 LEVELS = (0.01, 0.025, CONVENTIONAL_EVIDENCE, 0.1, 0.2)
 """The levels swept: the usual ones, from a strict 1 % to a lax 20 %."""
