@@ -69,7 +69,7 @@ def test_choose_asks_people_with_habits_for_few_steps_flagged_not_for_few_tasks(
 def test_the_learners_defaults_are_the_chosen_setting() -> None:
     # docs/learning.md quotes the full run that chose them; a change of grid or procedure must change both.
     defaults = HTNLearner()
-    chosen = {"slip_margin": defaults.slip_margin, "slip_rate": defaults.slip_rate, "order_concentration": defaults.order_concentration}
+    chosen = {name: getattr(defaults, name) for name in GRID}
     assert settings_name(chosen) in {
         settings_name(dict(zip(GRID, v, strict=True))) for v in itertools.product(*GRID.values())
     }

@@ -89,15 +89,16 @@ class HTNLearner(Estimator):
             without them (:mod:`~supportive.learning.general.noise`); False learns from every step as it is.
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
-            the noise it claims has been paid for); 0 or more. Default 0, with ``slip_rate`` 0.1 and
-            ``order_concentration`` 0.25: the setting ``supportive reproduce learner-settings`` picks on generated
-            tasks (docs/learning.md).
+            the noise it claims has been paid for); 0 or more. Default 0, with ``slip_rate`` 0.1,
+            ``slip_rate_weight`` 300 and ``order_concentration`` 1: the setting ``supportive reproduce
+            learner-settings`` picks on generated tasks (docs/learning.md).
         slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
             (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
         slip_rate_weight: ``general``: how many observed steps that prior is worth (each kind's rate is
             integrated out under a beta prior with this mean and weight, so demonstrations with many more
-            steps outweigh it); above 0. Not swept: 1,000 steps is the size of the generated tasks' data
-            (50–100 demonstrations of 6–12 steps), so the data and the prior weigh alike there.
+            steps outweigh it, and the rates of clean data fall toward 0 as they grow); above 0. Default
+            300, with ``slip_margin``: swept over 100, 300 and 1,000 by ``supportive reproduce
+            learner-settings`` on tasks done by people with and without habits.
         order_concentration: ``general``: how the slip search reads the orders a hierarchy admits. Each
             order choice it leaves open (a clique's order of its children, a partial top level's of its
             roots) has its own distribution over the orders admitted there, unknown, with a symmetric
@@ -105,10 +106,9 @@ class HTNLearner(Estimator):
             (:meth:`~supportive.learning.order_likelihood.OrderLikelihood.log_probability_of_all`): small
             values expect people's habits (an order several people take costs little, so a rare valid order
             is not read as a slip), large ones every admitted order equally likely (``math.inf``: exactly
-            that, the reading before issue #23's habits work); above 0. Default 0.25, with ``slip_margin`` and
-            ``slip_rate``: the setting ``supportive reproduce learner-settings`` picks on generated tasks
-            done by people with and without habits (docs/learning.md; tied on worst F1 with 1, the first in
-            the grid's order).
+            that, the reading before issue #23's habits work); above 0. Default 1, with ``slip_margin``: the
+            setting ``supportive reproduce learner-settings`` picks on generated tasks done by people with
+            and without habits (docs/learning.md).
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
             (the most telling first); at least 1. A bound on the work, not a model setting.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
@@ -185,8 +185,8 @@ class HTNLearner(Estimator):
         slips: bool = True,
         slip_margin: float = 0.0,
         slip_rate: float = 0.1,
-        slip_rate_weight: float = 1000.0,
-        order_concentration: float = 0.25,
+        slip_rate_weight: float = 300.0,
+        order_concentration: float = 1.0,
         max_slip_candidates: int = 48,
         evidence: float = 0.05,
         order_support: int | None = None,

@@ -66,14 +66,19 @@ KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "mis
 PEOPLE = ("uniform", "habits")
 """Who does the demonstrations: every valid execution equally likely, or people with habits (alternating)."""
 GRID: dict[str, tuple[float, ...]] = {
-    "slip_margin": (0.0, 1.0, 2.0),
+    "slip_margin": (0.0, 1.0),
     "slip_rate": (0.1,),
+    "slip_rate_weight": (100.0, 300.0, 1000.0),
     "order_concentration": (0.25, 1.0, math.inf),
 }
 """The settings swept: every combination. ``slip_rate`` is held at 0.1, the value the earlier sweep of margin ×
 rate chose on uniform demonstrations (0.03, 0.1, 0.2; docs/learning.md): a rate's log is a cost per slip as
-the margin is, so the margin's sweep spans what the rate's would, and each more value of it would add a third
-to the run (the clean tasks by people with habits are the slow part)."""
+the margin is, so the margin's sweep spans what the rate's would. ``slip_rate_weight`` (how many steps the
+rate's prior is worth) decides how far the data move the rates from it: 1,000 steps is about the data of a
+task with 100 demonstrations, 100 lets the rates of clean data fall toward 0. The margin's sweep stops at 1:
+margin 2 had the worst F1 of every concentration in the run before the weight was swept (0.50–0.63,
+docs/learning.md), and each value of the grid adds to a run that the clean tasks by people with habits make
+slow."""
 
 
 def settings_name(settings: Mapping[str, float]) -> str:

@@ -9,7 +9,6 @@ from typing import Any
 from supportive.experiments.learner_settings.measure import (
     CLEAN_DEMONSTRATIONS,
     DEMONSTRATIONS,
-    GRID,
     SHARE,
     SIZES,
 )
@@ -33,7 +32,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         sizes=f"{SIZES[0]}–{SIZES[1]}",
         share=f"{SHARE:.0%}",
         clean_demonstrations=f"{CLEAN_DEMONSTRATIONS[0]}–{CLEAN_DEMONSTRATIONS[1]}",
-        grid=_grid(),
+        grid=_grid(metrics["settings"]),
         chosen=chosen or "none qualifies",
         table=markdown_table(
             ["setting", *cells, "clean", "clean, habits", "worst F1"],
@@ -45,15 +44,28 @@ def report(metrics: Mapping[str, Any]) -> str:
                     f"{row['habits_tasks_flagged']}/{row['habits_tasks']} ({row['habits_flagged']:.4%})",
                     f"{row['worst_f1']:.3f}",
                 ]
-                for name, row in metrics["settings"].items()
+                for name, row in sorted(metrics["settings"].items(), key=lambda item: _values(item[0]))
             ],
         ),
     )
 
 
-def _grid() -> str:
-    """The grid as text: ``slip_margin ∈ {0, 1, 2}, …``."""
-    return ", ".join(k + " ∈ {" + ", ".join(f"{v:g}".replace("inf", "∞") for v in values) + "}" for k, values in GRID.items())
+def _values(name: str) -> tuple[float, ...]:
+    """A setting's values in the order of its name (``slip_margin=0 slip_rate=0.1`` → ``(0.0, 0.1)``): the
+    grid's order, whatever order the metrics file keeps its keys in."""
+    return tuple(float(part.split("=")[1]) for part in name.split())
+
+
+def _grid(settings: Mapping[str, Any]) -> str:
+    """The grid the run swept, read from its settings' names: ``slip_margin ∈ {0, 1}, …``."""
+    values: dict[str, set[float]] = {}
+    for name in settings:
+        for part in name.split():
+            key, value = part.split("=")
+            values.setdefault(key, set()).add(float(value))
+    return ", ".join(
+        k + " ∈ {" + ", ".join(f"{v:g}".replace("inf", "∞") for v in sorted(vs)) + "}" for k, vs in values.items()
+    )
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
