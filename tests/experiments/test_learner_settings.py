@@ -73,3 +73,16 @@ def test_the_learners_defaults_are_the_chosen_setting() -> None:
     assert settings_name(chosen) in {
         settings_name(dict(zip(GRID, v, strict=True))) for v in itertools.product(*GRID.values())
     }
+
+
+def test_the_report_lists_the_grid_of_its_run_in_the_order_of_the_values() -> None:
+    # A metrics file keeps its keys sorted as text (weight 1000 before 300); the report orders by value.
+    result = run_trial(make_trials(get("learner-settings").default_trials, 0)[0])
+    summary = summarize([result])
+    metrics = {**summary, "settings": dict(sorted(summary["settings"].items())), "experiment": "learner-settings"}
+    text = get("learner-settings").report(metrics)
+    grid = ", ".join(k + " ∈ {" + ", ".join(f"{v:g}".replace("inf", "∞") for v in vs) + "}" for k, vs in GRID.items())
+    assert f"(grid: {grid})" in text
+    rows = [line.split(" | ")[0].strip("|* ") for line in text.splitlines() if line.startswith("| ") and "=" in line]
+    expected = [settings_name(dict(zip(GRID, v, strict=True))) for v in itertools.product(*GRID.values())]
+    assert rows == expected

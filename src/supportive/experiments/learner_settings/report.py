@@ -50,19 +50,24 @@ def report(metrics: Mapping[str, Any]) -> str:
     )
 
 
+def _parsed(name: str) -> list[tuple[str, float]]:
+    """A setting's name as (parameter, value) pairs: ``slip_margin=0 slip_rate=0.1`` → ``[("slip_margin",
+    0.0), ("slip_rate", 0.1)]``."""
+    return [(key, float(value)) for key, value in (part.split("=") for part in name.split())]
+
+
 def _values(name: str) -> tuple[float, ...]:
-    """A setting's values in the order of its name (``slip_margin=0 slip_rate=0.1`` → ``(0.0, 0.1)``): the
-    grid's order, whatever order the metrics file keeps its keys in."""
-    return tuple(float(part.split("=")[1]) for part in name.split())
+    """A setting's values in the order of its name: the grid's order, whatever order the metrics file keeps
+    its keys in."""
+    return tuple(value for _, value in _parsed(name))
 
 
 def _grid(settings: Mapping[str, Any]) -> str:
     """The grid the run swept, read from its settings' names: ``slip_margin ∈ {0, 1}, …``."""
     values: dict[str, set[float]] = {}
     for name in settings:
-        for part in name.split():
-            key, value = part.split("=")
-            values.setdefault(key, set()).add(float(value))
+        for key, value in _parsed(name):
+            values.setdefault(key, set()).add(value)
     return ", ".join(
         k + " ∈ {" + ", ".join(f"{v:g}".replace("inf", "∞") for v in sorted(vs)) + "}" for k, vs in values.items()
     )
