@@ -3,6 +3,8 @@ defaults."""
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -24,6 +26,7 @@ from supportive.experiments.selection_settings.measure import (
     run_trial,
     summarize,
 )
+from supportive.experiments.selection_settings.report import findings
 from supportive.generate.mistakes import PROFILES
 from supportive.learning import HTNLearner
 
@@ -166,3 +169,15 @@ def test_choose_is_the_best_gain_among_the_qualified_unless_the_convention_is_wi
     assert choose(table) == "d"
     assert choose({"never": _policy(0.0, None, None), "x": _policy(0.0, 2, 20)}) == "never"
     assert choose({"a": table["a"]}) is None
+
+
+def test_the_findings_name_each_choice_or_say_that_nothing_qualified() -> None:
+    metrics = json.loads((Path(__file__).parent / "reports" / "selection-settings" / "metrics.json").read_text())
+    verdicts = [f.as_json()["verdict"] for f in findings(metrics)]
+    assert all(v in ("the best on generated tasks", "within one standard error of the best") for v in verdicts)
+    nothing = {
+        **metrics, "chosen": None,
+        "subtasks": {**metrics["subtasks"], "chosen": None}, "evidence": {**metrics["evidence"], "chosen": None},
+    }
+    found = [f.as_json() for f in findings(nothing)]
+    assert [f["verdict"] for f in found] == ["no policy qualifies", "no threshold qualifies", "no level qualifies"]

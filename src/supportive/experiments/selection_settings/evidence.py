@@ -24,6 +24,7 @@ from typing import Any
 
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.selection_settings.gains import (
+    best_qualified,
     mean_gain,
     row_summary,
     set_distances,
@@ -84,11 +85,9 @@ def summarize_levels(results: Sequence[Mapping[str, Any]], fresh: int) -> dict[s
             "recall": kept,
             "qualifies": kept is not None and conventional is not None and kept >= conventional,
         }
-    qualified = [level for level in LEVELS if rows[str(level)]["qualifies"]]
-    best = max(
-        qualified, key=lambda level: (rows[str(level)]["gain"], level == CONVENTIONAL_EVIDENCE), default=None
-    )
-    set_distances(rows, {str(level): gains for level, gains in per_level.items()}, None if best is None else str(best))
+    best_name = best_qualified(rows, lambda name: float(name) == CONVENTIONAL_EVIDENCE)
+    set_distances(rows, {str(level): gains for level, gains in per_level.items()}, best_name)
+    best = None if best_name is None else float(best_name)
     return {
         "gains": gains,
         "admitted": admitted,

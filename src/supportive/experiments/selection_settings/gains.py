@@ -16,7 +16,15 @@ from typing import Any
 from supportive.experiments.statistics import mean_ci
 from supportive.generate.mistakes import PROFILES
 
-__all__ = ["mean_gain", "paired_difference", "row_summary", "set_distances", "thresholded_gains", "within_one_error"]
+__all__ = [
+    "best_qualified",
+    "mean_gain",
+    "paired_difference",
+    "row_summary",
+    "set_distances",
+    "thresholded_gains",
+    "within_one_error",
+]
 
 
 def thresholded_gains(
@@ -90,6 +98,18 @@ def set_distances(
     for name, row in rows.items():
         gap, error = paired_difference(gains[best], gains[name]) if best is not None else (0.0, 0.0)
         row["gap"], row["error"] = round(gap, 6), round(error, 6)
+
+
+def best_qualified(rows: Mapping[str, Mapping[str, Any]], prefer: Callable[[str], Any]) -> str | None:
+    """The name of the row with the best ``gain`` among those that ``qualify``; of rows tied on gain, the one
+    ``prefer`` ranks highest (then the first). None when no row qualifies.
+
+    >>> rows = {"a": {"gain": 1.0, "qualifies": True}, "b": {"gain": 1.0, "qualifies": True}, "c": {"gain": 2.0, "qualifies": False}}
+    >>> best_qualified(rows, lambda name: name == "b")
+    'b'
+    """
+    qualified = [name for name, row in rows.items() if row["qualifies"]]
+    return max(qualified, key=lambda name: (rows[name]["gain"], prefer(name)), default=None)
 
 
 def within_one_error(row: Mapping[str, Any]) -> bool:

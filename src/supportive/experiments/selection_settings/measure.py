@@ -30,6 +30,7 @@ from typing import Any
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.selection_settings.evidence import LEVELS, summarize_levels
 from supportive.experiments.selection_settings.gains import (
+    best_qualified,
     mean_gain,
     row_summary,
     set_distances,
@@ -227,8 +228,7 @@ def _cost(row: Mapping[str, Any]) -> tuple[int, int, int]:
 
 def best_policy(policies: Mapping[str, Mapping[str, Any]]) -> str | None:
     """The best mean gain among the policies that keep the recall (ties: the cheaper); None when none does."""
-    qualified = [name for name, row in policies.items() if row["qualifies"]]
-    return min(qualified, key=lambda name: (-policies[name]["gain"], _cost(policies[name])), default=None)
+    return best_qualified(policies, lambda name: tuple(-part for part in _cost(policies[name])))
 
 
 def choose(policies: Mapping[str, Mapping[str, Any]]) -> str | None:

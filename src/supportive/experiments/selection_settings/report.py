@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -170,31 +170,29 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     """Three rows: the chosen policy and its mean gain over keeping ``general``; the chosen
     ``subtask_demonstrations`` and its mean gain over making no subtasks; the chosen ``evidence`` and its mean
     gain over the conventional level."""
-    chosen, subtasks = metrics["chosen"], metrics["subtasks"]
-    quantity = "reading selection defaults on generated tasks (issue #23)"
+    subtasks, evidence = metrics["subtasks"], metrics["evidence"]
+    return [
+        _choice(
+            "reading selection defaults on generated tasks (issue #23)", "policy", metrics["chosen"], metrics["best"],
+            lambda chosen: f"{chosen}: {metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution",
+        ),
+        _choice(
+            "subtask_demonstrations on generated tasks (issue #23)", "threshold", subtasks["chosen"], subtasks["best"],
+            lambda chosen: f"subtask_demonstrations={chosen}: "
+            f"{subtasks['thresholds'][str(chosen)]['gain']:+.3f} nats per fresh execution",
+        ),
+        _choice(
+            "evidence level on generated tasks (issue #23)", "level", evidence["chosen"], evidence["best"],
+            lambda chosen: f"evidence={chosen}: {evidence['levels'][str(chosen)]['gain']:+.3f} nats per fresh "
+            f"execution over {CONVENTIONAL_EVIDENCE}",
+        ),
+    ]
+
+
+def _choice(quantity: str, what: str, chosen: Any, best: Any, value: Callable[[Any], str]) -> Finding:
+    """A finding on one setting the procedure chose: ``value`` of the choice, and whether it is the best on
+    the generated tasks or within one standard error of it (or that no ``what`` qualified)."""
     if chosen is None:
-        rows = [Finding(quantity, "– (not in the thesis)", (("", "none"),), "no policy qualifies")]
-    else:
-        value = f"{chosen}: {metrics['policies'][chosen]['gain']:+.3f} nats per fresh execution"
-        verdict = "the best on generated tasks" if chosen == metrics["best"] else "within one standard error of the best"
-        rows = [Finding(quantity, "– (not in the thesis)", (("", value),), verdict)]
-    quantity = "subtask_demonstrations on generated tasks (issue #23)"
-    threshold = subtasks["chosen"]
-    if threshold is None:
-        rows.append(Finding(quantity, "– (not in the thesis)", (("", "none"),), "no threshold qualifies"))
-    else:
-        value = f"subtask_demonstrations={threshold}: {subtasks['thresholds'][str(threshold)]['gain']:+.3f} nats per fresh execution"
-        verdict = "the best on generated tasks" if threshold == subtasks["best"] else "within one standard error of the best"
-        rows.append(Finding(quantity, "– (not in the thesis)", (("", value),), verdict))
-    return [*rows, _evidence_finding(metrics["evidence"])]
-
-
-def _evidence_finding(evidence: Mapping[str, Any]) -> Finding:
-    """The chosen ``evidence`` and its mean gain over the conventional level."""
-    quantity = "evidence level on generated tasks (issue #23)"
-    level = evidence["chosen"]
-    if level is None:
-        return Finding(quantity, "– (not in the thesis)", (("", "none"),), "no level qualifies")
-    value = f"evidence={level}: {evidence['levels'][str(level)]['gain']:+.3f} nats per fresh execution over {CONVENTIONAL_EVIDENCE}"
-    verdict = "the best on generated tasks" if level == evidence["best"] else "within one standard error of the best"
-    return Finding(quantity, "– (not in the thesis)", (("", value),), verdict)
+        return Finding(quantity, "– (not in the thesis)", (("", "none"),), f"no {what} qualifies")
+    verdict = "the best on generated tasks" if chosen == best else "within one standard error of the best"
+    return Finding(quantity, "– (not in the thesis)", (("", value(chosen)),), verdict)

@@ -21,6 +21,7 @@ from typing import Any
 
 from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.selection_settings.gains import (
+    best_qualified,
     mean_gain,
     row_summary,
     set_distances,
@@ -66,9 +67,9 @@ def summarize_thresholds(
         str(k): {"gain": round(mean_gain(per_threshold[k]), 6), "qualifies": k <= RECALL_DEMONSTRATIONS}
         for k in thresholds
     }
-    qualified = [k for k in thresholds if rows[str(k)]["qualifies"]]
-    best = max(qualified, key=lambda k: (rows[str(k)]["gain"], k), default=None)
-    set_distances(rows, {str(k): gains for k, gains in per_threshold.items()}, None if best is None else str(best))
+    best_name = best_qualified(rows, int)
+    set_distances(rows, {str(k): gains for k, gains in per_threshold.items()}, best_name)
+    best = None if best_name is None else int(best_name)
     return {
         "gains": gains,
         "admitted": admitted,
