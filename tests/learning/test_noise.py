@@ -175,3 +175,38 @@ def test_a_steps_real_slips_among_its_valid_variants_are_found_alone(seed: int) 
     ]
     reported, right = _put_right(task, slipped, seed=seed, n=100)
     assert reported == right == set(range(96, 100))
+
+
+@pytest.mark.parametrize(
+    ("odd", "expected"),
+    [
+        ("hbcdaefg", {("h", "out of order"), ("a", "out of order")}),  # two steps moved in one demonstration
+        ("bcdeafg", {("h", "missing"), ("a", "out of order")}),  # one forgotten, one moved
+    ],
+)
+def test_two_slips_in_one_demonstration_are_put_back_together(odd: str, expected: set[tuple[str, str]]) -> None:
+    # put back one at a time, the first has no place while the second is still out: the pair scored -inf,
+    # and the hierarchy was loosened to admit the odd demonstration instead
+    learner = HTNLearner().fit([list("abcdefgh")] * 11 + [list(odd)])
+    assert {(d.leaf[0], d.kind) for d in learner.deviations_} == expected
+    assert all(d.demonstration == 11 for d in learner.deviations_)
+    assert learner.htn_.count_orderings() == 1
+
+
+def test_slips_that_no_demonstration_can_judge_are_taken_back() -> None:
+    # every demonstration has two slips: judging one step's, the other slips leave no demonstration to tell
+    # them from chance, so they do not stand (this raised an error before)
+    from supportive.learning.general.labelling import label_performances
+    from supportive.learning.general.noise import Deviation, NoiseSettings, _Search
+    from supportive.learning.general.structure import StructureSettings
+
+    demos = [list("badc")] * 3 + [list("acdb")] * 3
+    labelled = label_performances(demos)
+    search = _Search(labelled, StructureSettings(0.05, None, 2), NoiseSettings(0.0, 0.1, 300.0, 12, 1.0), True)
+    slips = frozenset(
+        Deviation(d, position, (step, 1), "out of order")
+        for demonstrations, moved in ((range(3), ((1, "a"), (3, "c"))), (range(3, 6), ((3, "b"), (2, "d"))))
+        for d in demonstrations
+        for position, step in moved
+    )
+    assert search._by_chance(slips) < slips

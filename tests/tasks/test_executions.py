@@ -29,6 +29,7 @@ from supportive.tasks.htn import (
 )
 
 T = TypeVar("T")
+StepT = TypeVar("StepT", str, tuple[str, int])
 
 Shape = str | tuple[str, bool, list["Shape"]]
 
@@ -156,20 +157,38 @@ def test_single_moves_agree_with_trying_every_move(structure: Node, data: st.Dat
         assert list(htn.executions.single_moves(steps, reversed(range(len(steps))))) == expected[::-1]
 
 
+def merges(steps: Sequence[T], inserted: Sequence[T]) -> Iterator[tuple[tuple[int, ...], list[T]]]:
+    """Every way of doing ``inserted`` among ``steps`` (their order kept), with the order the search tries them
+    in: place by place, a step of ``inserted`` (by index) before the next of ``steps``."""
+    if not inserted and not steps:
+        yield (), []
+        return
+    for i, step in enumerate(inserted):
+        for key, rest in merges(steps, [*inserted[:i], *inserted[i + 1 :]]):
+            yield (i, *key), [step, *rest]
+    if steps:
+        for key, rest in merges(steps[1:], inserted):
+            yield (len(inserted), *key), [steps[0], *rest]
+
+
 @given(structures(), st.data())
-def test_first_insertion_agrees_with_trying_every_place(structure: Node, data: st.DataObject) -> None:
+def test_insertions_agree_with_trying_every_place(structure: Node, data: st.DataObject) -> None:
     htn = HTN("t", (structure,))
     leaves = list(data.draw(st.sampled_from(list(iter_orderings(structure)))))
     assume(leaves)
-    left_out = leaves.pop(data.draw(st.integers(0, len(leaves) - 1)))
+    left_out = [leaves.pop(data.draw(st.integers(0, len(leaves) - 1))) for _ in range(min(2, len(leaves)))]
     if data.draw(st.booleans()) and len(leaves) > 1:  # sometimes no place will do
         leaves.insert(data.draw(st.integers(0, len(leaves) - 1)), leaves.pop())
-    inserted = data.draw(st.sampled_from([left_out, *structure.leaves]))
-    places = [k for k in range(len(leaves) + 1) if htn.admits_leaves([*leaves[:k], inserted, *leaves[k:]])]
-    assert htn.executions.first_insertion(leaves, inserted) == (places[0] if places else None)
-    actions = [action for action, _ in leaves]
-    places = [k for k in range(len(actions) + 1) if htn.admits([*actions[:k], inserted[0], *actions[k:]])]
-    assert htn.executions.first_insertion(actions, inserted[0]) == (places[0] if places else None)
+    inserted = data.draw(st.sampled_from([left_out, left_out[:1], [left_out[0], *structure.leaves[:1]]]))
+    _assert_first_insertions(htn, htn.admits_leaves, leaves, inserted)
+    _assert_first_insertions(htn, htn.admits, [action for action, _ in leaves], [action for action, _ in inserted])
+
+
+def _assert_first_insertions(
+    htn: HTN, admits: Callable[[Sequence[StepT]], bool], steps: list[StepT], extra: list[StepT]
+) -> None:
+    found = sorted(((key, merged) for key, merged in merges(steps, extra) if admits(merged)), key=lambda m: m[0])
+    assert htn.executions.with_insertions(steps, extra) == (found[0][1] if found else None)
 
 
 def test_single_moves_follow_the_top_level() -> None:

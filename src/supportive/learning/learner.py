@@ -372,7 +372,7 @@ class HTNLearner(Estimator):
         )
 
     def _reading(self, name: str, found: GeneralResult, indices: Sequence[int]) -> HTN:
-        """One reading learned from the demonstrations ``indices`` with the slips ``found`` taken out (for
+        """One reading learned from the demonstrations ``indices`` with the slips ``found`` undone (for
         the selection, :mod:`~supportive.learning.selection`)."""
         if name == "strict":
             result = StrictLearner.of(_actions(found, indices)).result(alternatives=0, max_roots=1)
@@ -384,7 +384,7 @@ class HTNLearner(Estimator):
         self, sequences: Sequence[Sequence[str]], found: GeneralResult, general: FittedStructure
     ) -> tuple[Selection, HTN]:
         """Why a reading was chosen by the held-out likelihood, and that reading learned from the
-        demonstrations (``sequences``) with the slips ``found`` taken out."""
+        demonstrations (``sequences``) with the slips ``found`` undone."""
         fits: dict[tuple[str, tuple[int, ...]], HTN] = {}
 
         def fit(name: str, indices: Sequence[int]) -> HTN:
@@ -393,7 +393,7 @@ class HTNLearner(Estimator):
                 fits[key] = self._reading(name, found, indices)
             return fits[key]
 
-        everything = tuple(range(len(found.cleaned)))
+        everything = tuple(range(len(found.restored)))
         fits[("general", everything)] = general.htn()
         selection = select_reading(
             _actions(found, everything) if found.deviations else sequences,
@@ -445,8 +445,11 @@ class HTNLearner(Estimator):
 
 
 def _actions(found: GeneralResult, indices: Iterable[int]) -> list[list[str]]:
-    """The cleaned demonstrations ``indices`` of ``found`` as action ids."""
-    return [[action for action, _ in found.cleaned[i]] for i in indices]
+    """The demonstrations ``indices`` of ``found`` with their slips undone (a step out of order or missing
+    put back where the hierarchy admits it; repeated and unknown ones taken out), as action ids: what the
+    strict reading learns from and the selection holds out (a step deleted, not put back, would make it
+    optional to the strict learner and a refused demonstration to the others)."""
+    return [[action for action, _ in found.restored[i]] for i in indices]
 
 
 def _check_steps(demo: DemonstrationLike, index: int) -> None:

@@ -1,7 +1,10 @@
 """Which reading of the demonstrations to keep: the one that best predicts demonstrations it did not see.
 
 Readings of the same demonstrations (:class:`~supportive.learning.learner.HTNLearner`), each learned from the
-demonstrations with their slips taken out (the slips are found once, :mod:`~supportive.learning.general.noise`):
+demonstrations with their slips undone (a step out of order or forgotten put back where the ``general`` hierarchy
+admits it, a repeated or unknown one taken out; the slips are found once, on all the demonstrations,
+:mod:`~supportive.learning.general.noise`: the held-out demonstrations are scored as what their people meant
+to do, which is what a reading predicts):
 
 * ``general``: chains and cliques the evidence supports, a partial order where no tree fits;
 * ``strict``: the thesis's reading, only what was seen in full;
@@ -217,7 +220,7 @@ def select_reading(
     """Choose a reading among those of ``full`` (see the module docstring).
 
     Args:
-        actions: The demonstrations with their slips taken out, as action ids.
+        actions: The demonstrations with their slips undone, as action ids.
         fit: Learns a reading from some of them (by index); called for each reading with every index, then
             for each fold.
         general: The ``general`` reading learned from all of them.
@@ -227,7 +230,7 @@ def select_reading(
     """
     if len(actions) < min_demonstrations:
         return Selection(READINGS[0], "too few demonstrations")
-    if general.count_orderings() <= len({tuple(a) for a in actions}):
+    if general.count_orderings() <= len({tuple(a) for a in actions if general.admits(a)}):
         return Selection(READINGS[0], "every execution was demonstrated")
     everything = list(range(len(actions)))
     full = {name: general if name == READINGS[0] else fit(name, everything) for name in CANDIDATES}

@@ -392,22 +392,48 @@ class Executions:
                         yield i
                         break
 
-    def first_insertion(self, steps: Sequence[Step], step: Step) -> int | None:
-        """The first place ``k`` (before ``steps[k]``; ``len(steps)``: at the end) where doing ``step`` makes
-        ``steps`` a whole execution the hierarchy admits; None when there is none. Exact, in about one run of
-        ``steps`` (the runs of the prefixes are shared, and states unable to finish are remembered, as in
-        :meth:`single_moves`)."""
-        finishes = self._finisher(steps)
-        states = self.initial()
-        for k in range(len(steps) + 1):
-            if finishes(self.advance(states, step), k, -1):
-                return k
-            if k == len(steps):
-                break
-            states = self.advance(states, steps[k])
-            if not states:
-                break
-        return None
+    def with_insertions(self, steps: Sequence[Step], inserted: Sequence[Step]) -> list[Step] | None:
+        """``steps`` with every step of ``inserted`` done somewhere, making a whole execution the hierarchy
+        admits, each as early as the others allow (the first such sequence when, place by place, doing a step of
+        ``inserted`` comes before going on with ``steps``, and the steps of ``inserted`` are tried in the order
+        given); None when there is none. Inserting the steps together finds places that one at a time would not
+        (the first step put back has no place while the second is still out). Exact: a depth-first search over
+        the runs, each state found unable to finish remembered with where it stood and what was left to insert.
+
+        >>> from supportive.tasks.htn import HTN, ActionNode, ChainNode
+        >>> chain = HTN("t", (ChainNode(tuple(ActionNode(a) for a in "abcd")),))
+        >>> chain.executions.with_insertions(["b", "c"], ["d", "a"])
+        ['a', 'b', 'c', 'd']
+        """
+        n = len(steps)
+        dead: set[tuple[Progress, int, tuple[Step, ...]]] = set()  # (state, next of steps, still to insert)
+
+        def search(states: tuple[Progress, ...], k: int, left: tuple[Step, ...]) -> list[Step] | None:
+            visited: list[tuple[Progress, int, tuple[Step, ...]]] = []
+            done: list[Step] = []
+            while True:
+                states = tuple(s for s in states if (s, k, left) not in dead)
+                if not states:
+                    break
+                visited.extend((s, k, left) for s in states)
+                for i, step in enumerate(left):
+                    if step in left[:i]:
+                        continue  # the same step tried already
+                    after = self.advance(states, step)
+                    rest = search(after, k, left[:i] + left[i + 1 :]) if after else None
+                    if rest is not None:
+                        return [*done, step, *rest]
+                if k == n:
+                    if not left and any(self.can_finish(s) for s in states):
+                        return done
+                    break
+                states = self.advance(states, steps[k])
+                done.append(steps[k])
+                k += 1
+            dead.update(visited)
+            return None
+
+        return search(self.initial(), 0, tuple(inserted))
 
     def _finisher(self, steps: Sequence[Step]) -> Callable[[tuple[Progress, ...], int, int], bool]:
         """``finishes(states, start, gap)``: whether a run in ``states`` can finish with ``steps[start:]``

@@ -30,7 +30,8 @@ __all__ = ["GeneralResult", "alternatives_of", "learn_general", "refit"]
 @dataclass(frozen=True)
 class GeneralResult:
     """Roots, top level (None when one root is left), the slips set aside, the noise model, the labelled
-    demonstrations and the same with their slips taken out (``cleaned``)."""
+    demonstrations and the same with their slips taken out (``cleaned``) and undone (``restored``: steps out of
+    order or missing put back, :class:`~supportive.learning.general.noise.SlipResult`)."""
 
     roots: tuple[Node, ...]
     top_level: TopLevel | None
@@ -38,6 +39,7 @@ class GeneralResult:
     noise: NoiseEstimate
     labelled: tuple[tuple[Leaf, ...], ...]
     cleaned: tuple[tuple[Leaf, ...], ...]
+    restored: tuple[tuple[Leaf, ...], ...]
 
 
 def learn_general(
@@ -58,6 +60,7 @@ def learn_general(
         found.noise,
         tuple(labelled),
         tuple(tuple(demo) for demo in found.cleaned),
+        tuple(tuple(demo) for demo in found.restored),
     )
 
 

@@ -9,16 +9,16 @@ The learner keeps the explanation of all the demonstrations that is more probabl
 are noise):
 
 * the score of a set of slips is the log-likelihood of the demonstrations with those slips undone (a step
-  set aside is put back at the first place the hierarchy learned without it admits it; a missing step
-  likewise) under the hierarchy learned from them, read jointly with people's habits integrated out (each
-  order choice the hierarchy leaves open has its own distribution over the orders admitted there, under a
-  Dirichlet prior of concentration ``concentration``:
+  set aside is put back at the first place the hierarchy learned without it admits it, together with the
+  demonstration's other steps put back; a missing step likewise) under the hierarchy learned from them, read
+  jointly with people's habits integrated out (each order choice the hierarchy leaves open has its own
+  distribution over the orders admitted there, under a Dirichlet prior of concentration ``concentration``:
   :meth:`~supportive.learning.order_likelihood.OrderLikelihood.log_probability_of_all`; so loosening a
   hierarchy for an order several people take costs little, while an order one person took alone costs about
-  ``log(n K / α)``), plus the log-likelihood of the slips
-  themselves: a rate per kind estimated as slips of that kind over all steps (its maximum-likelihood value;
-  ``(1/2) log N`` is charged for each kind whose rate is not zero, as BIC charges a parameter), and where each
-  landed (a uniform choice among the demonstration's positions);
+  ``log(n K / α)``), plus the log-likelihood of the slips themselves: which steps are slips of each kind, the
+  kind's rate integrated out under a beta prior of mean ``rate`` worth ``weight`` steps (beta-binomial: on
+  clean data the rates go to zero), and where each landed (a uniform choice among the demonstration's
+  positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
   gain exceeds ``margin`` nats; then takes back the slips not worth ``margin`` nats each; and repeats the two
   until a pass changes nothing (slips that only pay together can be missed by a pass that took a few that pay
@@ -57,7 +57,7 @@ from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal
+from typing import Literal, cast
 
 import numpy as np
 
@@ -153,10 +153,13 @@ class NoiseEstimate:
 
 @dataclass(frozen=True)
 class SlipResult:
-    """The demonstrations with their slips taken out, the slips, the noise model and the hierarchy learned
-    from the cleaned demonstrations."""
+    """The demonstrations with their slips taken out (``cleaned``) and undone (``restored``: a step out of order
+    or missing put back at the first place the hierarchy admits it, as the search scored them; the cleaned
+    ones when the slips cannot be undone), the slips, the noise model and the hierarchy learned from the
+    cleaned demonstrations."""
 
     cleaned: list[tuple[Leaf, ...]]
+    restored: list[tuple[Leaf, ...]]
     deviations: tuple[Deviation, ...]
     noise: NoiseEstimate
     structure: FittedStructure
@@ -257,6 +260,7 @@ class _Search:
         self._fits: dict[frozenset[Deviation], FittedStructure] = {}
         self._found: dict[frozenset[Deviation], list[frozenset[Deviation]]] = {}
         self._cleaned_by: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = {}
+        self._restorations: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = {}  # slips undone
         self._orders: dict[object, int] = {}  # counted orders of top levels, shared by the readings scored
 
     # ------------------------------------------------------------------ search
@@ -278,7 +282,9 @@ class _Search:
         deviations = tuple(sorted(slips, key=_order))
         counts = Counter(d.kind for d in deviations)
         noise = NoiseEstimate(self.steps, {k: counts[k] for k in KINDS if counts[k]}, gain, len(self._scores))
-        return SlipResult(self._cleaned(slips), deviations, noise, fitted)
+        cleaned = self._cleaned(slips)
+        restored = self._restorations[slips] if slips and math.isfinite(self._structure(slips)) else cleaned
+        return SlipResult(cleaned, restored, deviations, noise, fitted)
 
     def _passes(self, slips: frozenset[Deviation], passed: set[frozenset[Deviation]]) -> frozenset[Deviation]:
         """Forward then backward passes from ``slips``, until a pass changes nothing; every set of slips a
@@ -382,7 +388,7 @@ class _Search:
         admits equally likely (:class:`OrderLikelihood`): each demonstration falls outside with chance
         ``1 - tight / loose``, the two hierarchies' numbers of orders of the steps it performs (0 when the
         tighter has as many), and how many do is Poisson-binomial. The demonstrations other slips touch are left out:
-        their own slips explain them."""
+        their own slips explain them (and when that leaves none, the chance is 1)."""
         from scipy.stats import poisson_binom
 
         rest = slips - group
@@ -395,6 +401,8 @@ class _Search:
             done = frozenset(demo)
             outside += not tight.htn.admits_leaves(demo)
             chances.append(1.0 - min(1.0, tight.orders(done) / max(loose.orders(done), 1)))
+        if not chances:  # every demonstration has other slips: nothing tells these from chance
+            return 1.0
         return float(poisson_binom.cdf(outside, chances))
 
     def _searchable(self) -> bool:
@@ -650,19 +658,20 @@ class _Search:
         by_demo: dict[int, list[Deviation]] = {}
         for slip in slips:
             by_demo.setdefault(slip.demonstration, []).append(slip)
-        restored: list[Sequence[Leaf]] = []
+        restored: list[tuple[Leaf, ...]] = []
         total = 0.0
         for d, demo in enumerate(cleaned):
             mine = by_demo.get(d)
-            leaves, placed = (demo, 0.0) if mine is None else self._restored(reading, list(demo), mine)
+            leaves, placed = (list(demo), 0.0) if mine is None else self._restored(reading, list(demo), mine)
             if leaves is None:
                 total = -math.inf
                 break
-            restored.append(leaves)
+            restored.append(tuple(leaves))
             total += placed
         if total > -math.inf:
             total += reading.log_probability_of_all(restored)
             total -= 0.5 * math.log(max(len(cleaned), 1)) * reading.parameters()
+            self._restorations[slips] = restored
         self._scores[slips] = total
         return total
 
@@ -670,18 +679,20 @@ class _Search:
     def _restored(
         reading: OrderLikelihood, leaves: list[Leaf], slips: list[Deviation]
     ) -> tuple[list[Leaf] | None, float]:
-        """A demonstration with its slips undone (a step put back at the first place the hierarchy admits
-        it; None when there is none) and the log-probability of where its slips landed: a step out of order
+        """A demonstration with its slips undone (the steps out of order or missing put back together, each
+        at the first place the hierarchy admits it with the others: :meth:`~supportive.tasks.executions.Executions.with_insertions`;
+        None when there is none) and the log-probability of where its slips landed: a step out of order
         or unknown at any of the demonstration's places, a repeated one at any place after the performance
         it repeats."""
         length = len(leaves) + sum(1 for s in slips if s.kind in _TAKEN_OUT)
+        put_back = [slip.leaf for slip in sorted(slips, key=_order) if slip.kind in _PUT_BACK]
+        if put_back:
+            restored = reading.htn.executions.with_insertions(leaves, put_back)
+            if restored is None:
+                return None, -math.inf
+            leaves = cast(list[Leaf], restored)
         placed = 0.0
-        for slip in sorted(slips, key=_order):
-            if slip.kind in _PUT_BACK:
-                position = reading.htn.executions.first_insertion(leaves, slip.leaf)
-                if position is None:
-                    return None, -math.inf
-                leaves = [*leaves[:position], slip.leaf, *leaves[position:]]
+        for slip in slips:
             if slip.kind == "repeated":
                 first = next((i for i, (a, _) in enumerate(leaves) if a == slip.leaf[0]), -1)
                 placed -= math.log(max(length - 1 - first, 1))
