@@ -20,7 +20,7 @@ are noise):
   clean data the rates go to zero), and where each landed (a uniform choice among the demonstration's
   positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
-  gain exceeds ``margin`` nats; then takes back the slips not worth ``margin`` nats each; and repeats the two
+  gain exceeds ``margin`` nats a slip; then takes back the slips not worth ``margin`` nats each; and repeats the two
   until a pass changes nothing (slips that only pay together can be missed by a pass that took a few that pay
   alone). It also runs from a second start, the most telling step out of place in every demonstration that
   has one (when that beats no slip), and keeps the more probable of the two ends: a greedy search from the
@@ -305,7 +305,8 @@ class _Search:
 
     def _forward(self, slips: frozenset[Deviation]) -> frozenset[Deviation]:
         """Add, one at a time, the candidate whose slips make the explanation most probable per slip, while
-        it gains more than ``margin``; return the slips. Per slip: a group of slips (the
+        it gains more than ``margin`` a slip (as :meth:`_backward` and the joint start weigh slips); return
+        the slips. Per slip: a group of slips (the
         same step out of order in several demonstrations) must be worth more than its best single members,
         or a variant many people do would be taken for many slips at once. Lazy: a candidate's gain in an
         earlier round bounds its gain now (adding slips rarely makes another worth more), so only the
@@ -329,7 +330,7 @@ class _Search:
                     best = (value, candidate)
                     break
                 heapq.heappush(heap, (-value / len(candidate), i, candidate))
-            if best is None or not best[0] > self.settings.margin:
+            if best is None or not best[0] > self.settings.margin * len(best[1]):
                 break
             slips |= best[1]
             current += best[0]
