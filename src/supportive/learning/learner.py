@@ -97,7 +97,7 @@ class HTNLearner(Estimator):
         slip_rate_weight: ``general``: how many observed steps that prior is worth (each kind's rate is
             integrated out under a beta prior with this mean and weight, so demonstrations with many more
             steps outweigh it, and the rates of clean data fall toward 0 as they grow); above 0. Default
-            300, with ``slip_margin``: swept over 100, 300 and 1,000 by ``supportive reproduce
+            1,000, with ``slip_margin``: swept over 100, 300 and 1,000 by ``supportive reproduce
             learner-settings`` on tasks done by people with and without habits.
         order_concentration: ``general``: how the slip search reads the orders a hierarchy admits. Each
             order choice it leaves open (a clique's order of its children, a partial top level's of its
@@ -106,7 +106,7 @@ class HTNLearner(Estimator):
             (:meth:`~supportive.learning.order_likelihood.OrderLikelihood.log_probability_of_all`): small
             values expect people's habits (an order several people take costs little, so a rare valid order
             is not read as a slip), large ones every admitted order equally likely (``math.inf``: exactly
-            that, the reading before issue #23's habits work); above 0. Default 1, with ``slip_margin``: the
+            that, the reading before issue #23's habits work); above 0. Default 0.25, with ``slip_margin``: the
             setting ``supportive reproduce learner-settings`` picks on generated tasks done by people with
             and without habits (docs/learning.md).
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
@@ -185,8 +185,8 @@ class HTNLearner(Estimator):
         slips: bool = True,
         slip_margin: float = 0.0,
         slip_rate: float = 0.1,
-        slip_rate_weight: float = 300.0,
-        order_concentration: float = 1.0,
+        slip_rate_weight: float = 1000.0,
+        order_concentration: float = 0.25,
         max_slip_candidates: int = 48,
         evidence: float = 0.05,
         order_support: int | None = None,
