@@ -220,7 +220,9 @@ def select_reading(
     """Choose a reading among those of ``full`` (see the module docstring).
 
     Args:
-        actions: The demonstrations with their slips undone, as action ids.
+        actions: The demonstrations with their slips undone, as action ids; each one ``general`` admits (the
+            slips were undone where it admits them), so as many distinct ones as it has executions are all of
+            them.
         fit: Learns a reading from some of them (by index); called for each reading with every index, then
             for each fold.
         general: The ``general`` reading learned from all of them.
@@ -230,7 +232,7 @@ def select_reading(
     """
     if len(actions) < min_demonstrations:
         return Selection(READINGS[0], "too few demonstrations")
-    if general.count_orderings() <= len({tuple(a) for a in actions if general.admits(a)}):
+    if general.count_orderings() <= len({tuple(a) for a in actions}):
         return Selection(READINGS[0], "every execution was demonstrated")
     everything = list(range(len(actions)))
     full = {name: general if name == READINGS[0] else fit(name, everything) for name in CANDIDATES}
