@@ -90,7 +90,7 @@ class HTNLearner(Estimator):
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
             the noise it claims has been paid for); 0 or more. Default 0, with ``slip_rate`` 0.1,
-            ``slip_rate_weight`` 300 and ``order_concentration`` 1: the setting ``supportive reproduce
+            ``slip_rate_weight`` 1,000 and ``order_concentration`` 0.25: the setting ``supportive reproduce
             learner-settings`` picks on generated tasks (docs/learning.md).
         slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
             (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
@@ -380,11 +380,9 @@ class HTNLearner(Estimator):
         structure = self._structure_settings(name)
         return refit(found, indices, structure, modules=not name.startswith("partial order")).htn()
 
-    def _selected(
-        self, sequences: Sequence[Sequence[str]], found: GeneralResult, general: FittedStructure
-    ) -> tuple[Selection, HTN]:
+    def _selected(self, found: GeneralResult, general: FittedStructure) -> tuple[Selection, HTN]:
         """Why a reading was chosen by the held-out likelihood, and that reading learned from the
-        demonstrations (``sequences``) with the slips ``found`` undone."""
+        demonstrations with the slips ``found`` undone (as they are, when there are none)."""
         fits: dict[tuple[str, tuple[int, ...]], HTN] = {}
 
         def fit(name: str, indices: Sequence[int]) -> HTN:
@@ -396,7 +394,7 @@ class HTNLearner(Estimator):
         everything = tuple(range(len(found.restored)))
         fits[("general", everything)] = general.htn()
         selection = select_reading(
-            _actions(found, everything) if found.deviations else sequences,
+            _actions(found, everything),
             fit,
             general.htn(),
             folds=self.selection_folds,
@@ -422,7 +420,7 @@ class HTNLearner(Estimator):
         fitted = FittedStructure(found.roots, found.top_level)
         reading: str = self.mode
         if self.mode == "auto":
-            self.selection_, chosen = self._selected(sequences, found, fitted)
+            self.selection_, chosen = self._selected(found, fitted)
             reading = self.selection_.chosen
             fitted = FittedStructure(chosen.roots, chosen.top_level)  # its alternative too: one admitting all
         return reading, fitted.roots, fitted.top_level, alternatives_of(fitted, limit=limit, max_roots=most)
