@@ -13,6 +13,7 @@ pinned below, where a step was set aside before slips had to be more than chance
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 import pytest
@@ -22,6 +23,7 @@ from hypothesis import strategies as st
 from supportive.generate import inject, random_known_task, random_partial_order, random_structure
 from supportive.generate.mistakes import KnownTask
 from supportive.generate.partial_orders import PartialOrderTask
+from supportive.io.htn_json import htn_to_dict
 from supportive.learning import HTNLearner
 from supportive.tasks.htn import sample_ordering
 from supportive.tasks.nodes import ActionNode, ChainNode, CliqueNode
@@ -210,3 +212,65 @@ def test_slips_that_no_demonstration_can_judge_are_taken_back() -> None:
         for position, step in moved
     )
     assert search._by_chance(slips) < slips
+
+
+def _learned(learner: HTNLearner) -> tuple[object, ...]:
+    """What a general fit learned: the hierarchy, the slips, the noise model and how many explanations its
+    search scored."""
+    assert learner.noise_ is not None
+    return (htn_to_dict(learner.htn_), learner.deviations_, learner.noise_.as_dict(), learner.noise_.evaluations)
+
+
+@pytest.mark.parametrize(("profile", "kind"), [("ikea", "moved"), ("uniform", "repeated"), ("partial order", "dropped")])
+def test_a_slip_cache_shared_by_a_sweep_changes_no_fit(profile: str, kind: str) -> None:
+    # a sweep over the slip settings with one cache learns exactly what each setting learns alone, on two sets of
+    # demonstrations (kept apart in the cache)
+    from supportive.learning.general import SlipSearchCache
+
+    cache = SlipSearchCache()
+    grid = [
+        {"slip_margin": margin, "slip_rate_weight": weight, "order_concentration": concentration}
+        for margin, weight, concentration in itertools.product((0.0, 1.0), (100.0, 1000.0), (0.25, math.inf))
+    ]
+    for seed in (1, 2):
+        task = random_known_task(profile, 7, seed=seed)  # type: ignore[arg-type]
+        rng = np.random.default_rng(seed)
+        demos, injected = inject([task.sample(rng) for _ in range(30)], kind, 0.1, task.admits, rng)  # type: ignore[arg-type]
+        assert injected
+        for setting in grid:
+            alone = HTNLearner(mode="general", **setting).fit(demos)  # type: ignore[arg-type]
+            shared = HTNLearner(mode="general", slip_cache=cache, **setting).fit(demos)  # type: ignore[arg-type]
+            assert _learned(shared) == _learned(alone), (seed, setting)
+    assert len(cache) == 2
+
+
+def test_a_slip_cache_learns_each_hierarchy_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the second fit of the same demonstrations with a shared cache learns no hierarchy in its slip search
+    from supportive.learning.general import SlipSearchCache, noise
+    from supportive.learning.general.structure import fit_structure as learn
+
+    task = random_known_task("uniform", 7, seed=3)
+    rng = np.random.default_rng(3)
+    demos, _ = inject([task.sample(rng) for _ in range(30)], "moved", 0.1, task.admits, rng)
+    fits = 0
+
+    def counted(*args: object, **kwargs: object) -> object:
+        nonlocal fits
+        fits += 1
+        return learn(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(noise, "fit_structure", counted)
+    cache = SlipSearchCache()
+    first = HTNLearner(mode="general", slip_cache=cache).fit(demos)
+    assert fits > 0
+    learned, fits = fits, 0
+    again = HTNLearner(mode="general", slip_margin=1.0, slip_cache=cache).fit(demos)
+    assert fits == 0 and learned > 0
+    assert again.noise_ is not None and first.noise_ is not None and again.noise_.evaluations > 0
+
+
+def test_a_slip_cache_must_be_one() -> None:
+    from supportive.errors import LearningError
+
+    with pytest.raises(LearningError, match="slip_cache must be a SlipSearchCache or None, got dict"):
+        HTNLearner(slip_cache={})  # type: ignore[arg-type]

@@ -31,6 +31,7 @@ from supportive.learning.general import (
     GeneralResult,
     NoiseEstimate,
     NoiseSettings,
+    SlipSearchCache,
     StructureSettings,
     alternatives_of,
     learn_general,
@@ -111,6 +112,11 @@ class HTNLearner(Estimator):
             and without habits (docs/learning.md).
         max_slip_candidates: ``general``: most single out-of-order steps a round of the slip search scores
             (the most telling first); at least 1. A bound on the work, not a model setting.
+        slip_cache: ``general``: a :class:`~supportive.learning.general.noise.SlipSearchCache` shared by the
+            fits of a sweep over the slip settings (``slip_margin``, ``slip_rate``, ``slip_rate_weight``,
+            ``order_concentration``) on the same demonstrations, so that what no slip setting changes (the
+            hierarchies learned with each set of slips taken out, the candidates) is learned once; None
+            (default): nothing shared. Not a model setting: a fit gives the same result with it or without.
         evidence: ``general``: accept a subtask when the chance of its contiguity were it not one is below
             this (:func:`~supportive.learning.general.evidence.contiguity_chance`, a likelihood-ratio test), and take
             an order the demonstrations reverse far less often than the hierarchy predicts as agreed (the
@@ -188,6 +194,7 @@ class HTNLearner(Estimator):
         slip_rate_weight: float = 1000.0,
         order_concentration: float = 0.25,
         max_slip_candidates: int = 48,
+        slip_cache: SlipSearchCache | None = None,
         evidence: float = 0.05,
         order_support: int | None = None,
         subtask_demonstrations: int = 2,
@@ -213,6 +220,8 @@ class HTNLearner(Estimator):
             raise LearningError(f"order_concentration must be above 0, got {order_concentration}")
         if max_slip_candidates < 1:
             raise LearningError(f"max_slip_candidates must be at least 1, got {max_slip_candidates}")
+        if slip_cache is not None and not isinstance(slip_cache, SlipSearchCache):
+            raise LearningError(f"slip_cache must be a SlipSearchCache or None, got {type(slip_cache).__name__}")
         if not 0.0 < evidence <= 1.0:
             raise LearningError(f"evidence must be in (0, 1], got {evidence}")
         if order_support is not None and order_support < 1:
@@ -226,6 +235,7 @@ class HTNLearner(Estimator):
         self.slip_rate_weight = slip_rate_weight
         self.order_concentration = order_concentration
         self.max_slip_candidates = max_slip_candidates
+        self.slip_cache = slip_cache
         self.evidence = evidence
         self.order_support = order_support
         self.subtask_demonstrations = subtask_demonstrations
@@ -369,6 +379,7 @@ class HTNLearner(Estimator):
             self._structure_settings(reading),
             noise,
             modules=not reading.startswith("partial order"),
+            cache=self.slip_cache,
         )
 
     def _reading(self, name: str, found: GeneralResult, indices: Sequence[int]) -> HTN:

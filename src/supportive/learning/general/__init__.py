@@ -6,7 +6,7 @@ independent); :class:`~supportive.learning.learner.HTNLearner` chooses between t
 """
 
 from supportive.learning.general.learner import GeneralResult, alternatives_of, learn_general, refit
-from supportive.learning.general.noise import Deviation, NoiseEstimate, NoiseSettings
+from supportive.learning.general.noise import Deviation, NoiseEstimate, NoiseSettings, SlipSearchCache
 from supportive.learning.general.structure import FittedStructure, StructureSettings
 
 __all__ = [
@@ -15,6 +15,7 @@ __all__ = [
     "GeneralResult",
     "NoiseEstimate",
     "NoiseSettings",
+    "SlipSearchCache",
     "StructureSettings",
     "alternatives_of",
     "learn_general",

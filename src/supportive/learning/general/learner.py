@@ -20,7 +20,13 @@ from dataclasses import dataclass
 
 from supportive.learning.general.alternatives import complete_alternative
 from supportive.learning.general.labelling import label_performances
-from supportive.learning.general.noise import Deviation, NoiseEstimate, NoiseSettings, find_slips
+from supportive.learning.general.noise import (
+    Deviation,
+    NoiseEstimate,
+    NoiseSettings,
+    SlipSearchCache,
+    find_slips,
+)
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.tasks.htn import Leaf, Node, TopLevel
 
@@ -48,11 +54,13 @@ def learn_general(
     noise: NoiseSettings,
     *,
     modules: bool = True,
+    cache: SlipSearchCache | None = None,
 ) -> GeneralResult:
     """Learn a hierarchy from action sequences with the ``general`` learner (see the module docstring);
-    ``modules`` False learns the partial order of the steps only."""
+    ``modules`` False learns the partial order of the steps only; ``cache`` shares the slip search's work with
+    other fits of the same demonstrations (:class:`~supportive.learning.general.noise.SlipSearchCache`)."""
     labelled = label_performances(demonstrations)
-    found = find_slips(labelled, structure, noise, modules=modules)
+    found = find_slips(labelled, structure, noise, modules=modules, cache=cache)
     return GeneralResult(
         found.structure.roots,
         found.structure.top_level,

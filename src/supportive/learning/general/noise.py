@@ -67,7 +67,7 @@ from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
 from supportive.tasks.htn import Leaf
 
-__all__ = ["KINDS", "Deviation", "NoiseEstimate", "NoiseSettings", "SlipResult", "find_slips"]
+__all__ = ["KINDS", "Deviation", "NoiseEstimate", "NoiseSettings", "SlipResult", "SlipSearchCache", "find_slips"]
 
 Kind = Literal["out of order", "repeated", "missing", "unknown"]
 KINDS: tuple[Kind, ...] = ("out of order", "repeated", "missing", "unknown")
@@ -165,12 +165,60 @@ class SlipResult:
     structure: FittedStructure
 
 
+@dataclass
+class _Work:
+    """What the search learns of one set of demonstrations that no noise setting changes, by set of slips:
+    the hierarchy learned with them taken out, the candidates scored next, the demonstrations with them taken
+    out and undone; the counted orders of top levels; and the hierarchy's part of the score
+    (:meth:`_Search._structure`), by ``order_concentration`` too."""
+
+    fits: dict[frozenset[Deviation], FittedStructure] = field(default_factory=dict)
+    found: dict[frozenset[Deviation], list[frozenset[Deviation]]] = field(default_factory=dict)
+    cleaned_by: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = field(default_factory=dict)
+    restorations: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = field(default_factory=dict)
+    orders: dict[object, int] = field(default_factory=dict)
+    scores: dict[float, dict[frozenset[Deviation], float]] = field(default_factory=dict)
+
+
+class SlipSearchCache:
+    """The slip search's work, shared between fits of the same demonstrations under different slip settings.
+
+    A sweep of ``slip_margin``, ``slip_rate``, ``slip_rate_weight`` or ``order_concentration`` (as
+    ``supportive reproduce learner-settings`` runs) explains the same demonstrations many times: the
+    hierarchies learned with each set of slips taken out, the candidates and the scores of the hierarchies
+    (for each concentration) are the same in every fit. Given to
+    :class:`~supportive.learning.learner.HTNLearner` as ``slip_cache``, they are learned once; the results are
+    exactly those of fits without it. The work is kept apart for each set of demonstrations, way of learning
+    hierarchies and candidate bound, and held until the cache is dropped: use one for the fits of one sweep.
+
+    >>> from supportive.learning import HTNLearner
+    >>> from supportive.learning.general import SlipSearchCache
+    >>> demos = [list("abcd")] * 8 + [list("abdc"), list("bacd")]
+    >>> cache = SlipSearchCache()
+    >>> fits = [HTNLearner(mode="general", slip_margin=m, slip_cache=cache).fit(demos) for m in (0.0, 1.0)]
+    >>> len(cache)  # one set of demonstrations, searched twice
+    1
+    """
+
+    def __init__(self) -> None:
+        self._work: dict[tuple[object, ...], _Work] = {}
+
+    def __len__(self) -> int:
+        """How many sets of demonstrations (with a way of learning and a candidate bound) the cache holds."""
+        return len(self._work)
+
+    def _of(self, labelled: tuple[tuple[Leaf, ...], ...], structure: StructureSettings, modules: bool, bound: int) -> _Work:
+        """The work kept for these demonstrations, learned this way, with this candidate bound (new if none)."""
+        return self._work.setdefault((labelled, structure, modules, bound), _Work())
+
+
 def find_slips(
     labelled: Sequence[Sequence[Leaf]],
     structure: StructureSettings,
     settings: NoiseSettings,
     *,
     modules: bool = True,
+    cache: SlipSearchCache | None = None,
 ) -> SlipResult:
     """The most probable explanation of ``labelled`` as valid executions plus slips (see the module
     docstring).
@@ -180,8 +228,10 @@ def find_slips(
         structure: How hierarchies are learned (:func:`~supportive.learning.general.structure.fit_structure`).
         settings: The search's margin, the slip rates' prior and how many candidates a round scores.
         modules: False learns partial orders of steps only (see :func:`fit_structure`).
+        cache: Work shared with other searches of the same demonstrations (:class:`SlipSearchCache`); None:
+            none shared.
     """
-    return _Search(labelled, structure, settings, modules).run()
+    return _Search(labelled, structure, settings, modules, cache).run()
 
 
 @dataclass(frozen=True)
@@ -250,18 +300,23 @@ class _Search:
         structure: StructureSettings,
         settings: NoiseSettings,
         modules: bool,
+        cache: SlipSearchCache | None = None,
     ) -> None:
         self.labelled = [tuple(demo) for demo in labelled]
         self.structure_settings = structure
         self.settings = settings
         self.modules = modules
         self.steps = sum(len(demo) for demo in self.labelled)
-        self._scores: dict[frozenset[Deviation], float] = {}
-        self._fits: dict[frozenset[Deviation], FittedStructure] = {}
-        self._found: dict[frozenset[Deviation], list[frozenset[Deviation]]] = {}
-        self._cleaned_by: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = {}
-        self._restorations: dict[frozenset[Deviation], list[tuple[Leaf, ...]]] = {}  # slips undone
-        self._orders: dict[object, int] = {}  # counted orders of top levels, shared by the readings scored
+        work = (SlipSearchCache() if cache is None else cache)._of(
+            tuple(self.labelled), structure, modules, settings.max_candidates
+        )
+        self._scores = work.scores.setdefault(settings.concentration, {})
+        self._fits = work.fits
+        self._found = work.found
+        self._cleaned_by = work.cleaned_by
+        self._restorations = work.restorations  # slips undone
+        self._orders = work.orders  # counted orders of top levels, shared by the readings scored
+        self._scored: set[frozenset[Deviation]] = set()  # the explanations this search scored
 
     # ------------------------------------------------------------------ search
     def run(self) -> SlipResult:
@@ -281,7 +336,7 @@ class _Search:
         fitted = self._fit(slips)
         deviations = tuple(sorted(slips, key=_order))
         counts = Counter(d.kind for d in deviations)
-        noise = NoiseEstimate(self.steps, {k: counts[k] for k in KINDS if counts[k]}, gain, len(self._scores))
+        noise = NoiseEstimate(self.steps, {k: counts[k] for k in KINDS if counts[k]}, gain, len(self._scored))
         cleaned = self._cleaned(slips)
         restored = self._restorations[slips] if slips and math.isfinite(self._structure(slips)) else cleaned
         return SlipResult(cleaned, restored, deviations, noise, fitted)
@@ -649,6 +704,7 @@ class _Search:
         slips undone, read jointly by :class:`~supportive.learning.order_likelihood.OrderLikelihood` with the
         settings' ``concentration`` (people's habits integrated out), and of where the slips landed, less
         ``(1/2) log n`` per frequency the hierarchy learned without them fixes."""
+        self._scored.add(slips)
         cached = self._scores.get(slips)
         if cached is not None:
             return cached
