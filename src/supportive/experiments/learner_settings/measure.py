@@ -39,10 +39,12 @@ __all__ = [
     "SHARE",
     "SIZES",
     "TASKS",
+    "grid_settings",
     "make_trials",
     "run_trial",
     "settings_name",
     "summarize",
+    "trial_demonstrations",
 ]
 
 DEMONSTRATIONS = (20, 50, 100)
@@ -86,10 +88,6 @@ def settings_name(settings: Mapping[str, float]) -> str:
     return " ".join(f"{k}={v:g}" for k, v in settings.items())
 
 
-def _combinations() -> list[dict[str, float]]:
-    return [dict(zip(GRID, values, strict=True)) for values in itertools.product(*GRID.values())]
-
-
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
     """Trials with mistakes cycle through profile × demonstrations × kind (a full run has :data:`TASKS` of
     each), then clean ones cycle through the profiles (:data:`CLEAN_TASKS`); fewer trials keep the proportion.
@@ -107,10 +105,8 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
     return spawn_trials(seed, params)
 
 
-def run_trial(trial: Trial) -> dict[str, Any]:
-    """Generate the task and its demonstrations, then learn them under every setting of the grid (sharing the
-    slip search's work between the settings: :class:`~supportive.learning.general.SlipSearchCache`; each
-    setting's time under ``"timing"`` is its fit's given what the settings before it shared)."""
+def trial_demonstrations(trial: Trial) -> tuple[list[list[str]], set[int], Callable[[Sequence[str]], bool]]:
+    """A trial's generated demonstrations, the indices of those given a mistake, and its task's validity check."""
     rng = trial.rng()
     profile, case = trial.params["profile"], trial.params["case"]
     if case == "none":
@@ -128,18 +124,33 @@ def run_trial(trial: Trial) -> dict[str, Any]:
     if case != "none":
         demos, injected = inject(demos, case, SHARE, task.admits, rng)
         truth = {i.demonstration for i in injected}
+    return demos, truth, task.admits
+
+
+def grid_settings() -> list[dict[str, float]]:
+    """Every combination of :data:`GRID`, in the order the trials learn them."""
+    return [dict(zip(GRID, values, strict=True)) for values in itertools.product(*GRID.values())]
+
+
+def run_trial(trial: Trial) -> dict[str, Any]:
+    """Generate the task and its demonstrations, then learn them under every setting of the grid (sharing the
+    slip search's work between the settings: :class:`~supportive.learning.general.SlipSearchCache`; each
+    setting's time under ``"timing"`` is its fit's given what the settings before it shared)."""
+    profile, case, people = trial.params["profile"], trial.params["case"], trial.params["people"]
+    demos, truth, valid = trial_demonstrations(trial)
+    n = len(demos)
     out: dict[str, Any] = {
         "index": trial.index, "profile": profile, "demonstrations": n, "case": case, "people": people,
         "steps": sum(len(d) for d in demos), "mistakes": len(truth), "settings": {},
     }
     timing: dict[str, float] = {}
     cache = SlipSearchCache()
-    for settings in _combinations():
+    for settings in grid_settings():
         started = time.perf_counter()
         learner = HTNLearner(mode="general", alternatives=0, slip_cache=cache, **settings).fit(demos)  # type: ignore[arg-type]
         name = settings_name(settings)
         timing[name] = time.perf_counter() - started
-        right = [d for d in learner.deviations_ if _right(d, case, demos, task.admits) and d.demonstration in truth]
+        right = [d for d in learner.deviations_ if _right(d, case, demos, valid) and d.demonstration in truth]
         found = {d.demonstration for d in right}
         out["settings"][name] = {
             "reported": len(learner.deviations_),
