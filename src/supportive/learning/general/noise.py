@@ -307,9 +307,7 @@ class _Search:
         self.settings = settings
         self.modules = modules
         self.steps = sum(len(demo) for demo in self.labelled)
-        work = (SlipSearchCache() if cache is None else cache)._of(
-            tuple(self.labelled), structure, modules, settings.max_candidates
-        )
+        work = _Work() if cache is None else cache._of(tuple(self.labelled), structure, modules, settings.max_candidates)
         self._scores = work.scores.setdefault(settings.concentration, {})
         self._fits = work.fits
         self._found = work.found
