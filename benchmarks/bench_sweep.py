@@ -16,16 +16,15 @@ from __future__ import annotations
 import argparse
 import json
 import platform
-import time
 from pathlib import Path
 
 from supportive.experiments.learner_settings.measure import (
     DEFAULT_TRIALS,
     grid_settings,
+    learn_grid,
     make_trials,
     trial_demonstrations,
 )
-from supportive.learning import HTNLearner
 from supportive.learning.general import SlipSearchCache
 
 STRIDE = 150
@@ -34,13 +33,12 @@ STRIDE = 150
 
 def sweep(demos: list[list[str]], cache: SlipSearchCache | None) -> tuple[float, list[object]]:
     """Seconds to learn ``demos`` under every setting of the grid (sharing ``cache``), and what each fit found."""
-    started = time.perf_counter()
-    found: list[object] = []
-    for settings in grid_settings():
-        learner = HTNLearner(mode="general", alternatives=0, slip_cache=cache, **settings).fit(demos)  # type: ignore[arg-type]
+    seconds, found = 0.0, []
+    for _, learner, fit_seconds in learn_grid(demos, cache):
         assert learner.noise_ is not None
+        seconds += fit_seconds
         found.append((learner.deviations_, learner.noise_.as_dict(), learner.noise_.evaluations))
-    return time.perf_counter() - started, found
+    return seconds, found
 
 
 def main() -> None:

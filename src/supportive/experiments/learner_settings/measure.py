@@ -19,7 +19,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any
 
 from supportive.experiments.trials import Trial, spawn_trials
@@ -40,6 +40,7 @@ __all__ = [
     "SIZES",
     "TASKS",
     "grid_settings",
+    "learn_grid",
     "make_trials",
     "run_trial",
     "settings_name",
@@ -132,6 +133,17 @@ def grid_settings() -> list[dict[str, float]]:
     return [dict(zip(GRID, values, strict=True)) for values in itertools.product(*GRID.values())]
 
 
+def learn_grid(
+    demos: Sequence[Sequence[str]], cache: SlipSearchCache | None
+) -> Iterator[tuple[dict[str, float], HTNLearner, float]]:
+    """Learn ``demos`` with the ``general`` reading under each setting of the grid in turn (sharing ``cache``'s
+    work; None: nothing shared): each setting, its fitted learner and the fit's seconds."""
+    for settings in grid_settings():
+        started = time.perf_counter()
+        learner = HTNLearner(mode="general", alternatives=0, slip_cache=cache, **settings).fit(demos)  # type: ignore[arg-type]
+        yield settings, learner, time.perf_counter() - started
+
+
 def run_trial(trial: Trial) -> dict[str, Any]:
     """Generate the task and its demonstrations, then learn them under every setting of the grid (sharing the
     slip search's work between the settings: :class:`~supportive.learning.general.SlipSearchCache`; each
@@ -144,12 +156,9 @@ def run_trial(trial: Trial) -> dict[str, Any]:
         "steps": sum(len(d) for d in demos), "mistakes": len(truth), "settings": {},
     }
     timing: dict[str, float] = {}
-    cache = SlipSearchCache()
-    for settings in grid_settings():
-        started = time.perf_counter()
-        learner = HTNLearner(mode="general", alternatives=0, slip_cache=cache, **settings).fit(demos)  # type: ignore[arg-type]
+    for settings, learner, seconds in learn_grid(demos, SlipSearchCache()):
         name = settings_name(settings)
-        timing[name] = time.perf_counter() - started
+        timing[name] = seconds
         right = [d for d in learner.deviations_ if _right(d, case, demos, valid) and d.demonstration in truth]
         found = {d.demonstration for d in right}
         out["settings"][name] = {
