@@ -274,3 +274,25 @@ def test_a_slip_cache_must_be_one() -> None:
 
     with pytest.raises(LearningError, match="slip_cache must be a SlipSearchCache or None, got dict"):
         HTNLearner(slip_cache={})  # type: ignore[arg-type]
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.tuples(st.permutations("abcde"), st.integers(3, 5)).map(lambda t: t[0][: t[1]]), min_size=2, max_size=8))
+def test_transition_surprisal_matches_counting_by_hand(orders: list[list[str]]) -> None:
+    """The candidate search's transition surprisal (vectorised) against counting each demonstration's
+    transitions among the others', add-one smoothed over what may follow a step (a step or the end)."""
+    from supportive.learning.general.noise import _Steps, _transition_surprisal
+
+    demos = [[(a, 1) for a in order] for order in orders]
+    outcomes = len({leaf for demo in demos for leaf in demo}) + 1
+    padded = [["<start>", *demo, "<end>"] for demo in demos]
+    expected = []
+    for d, demo in enumerate(padded):
+        others = [o for e, o in enumerate(padded) if e != d]
+        pairs = [(x, y) for o in others for x, y in itertools.pairwise(o)]
+        surprisal = [
+            -math.log((sum(p == (x, y) for p in pairs) + 1) / (sum(p[0] == x for p in pairs) + outcomes))
+            for x, y in itertools.pairwise(demo)
+        ]
+        expected.append(sum(surprisal) / len(surprisal))
+    assert _transition_surprisal(_Steps.of(demos)) == pytest.approx(expected)

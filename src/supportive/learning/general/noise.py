@@ -774,9 +774,15 @@ class _Search:
 
 
 def _surprising(steps: _Steps) -> set[int]:
-    """The demonstrations whose steps follow one another unusually: the mean surprisal of their transitions
-    (``-log`` of how often the others go from each step to the next, add-one smoothed) is an outlier
-    (:func:`_outliers`) among all demonstrations'."""
+    """The demonstrations whose steps follow one another unusually: their :func:`_transition_surprisal` is an
+    outlier (:func:`_outliers`) among all demonstrations'."""
+    return _outliers(_transition_surprisal(steps))
+
+
+def _transition_surprisal(steps: _Steps) -> list[float]:
+    """Each demonstration's mean surprisal of its transitions, the start and end included: ``-log`` of how
+    often the other demonstrations go from each step to the next, add-one smoothed over what may follow a
+    step (any step or the end)."""
     leaves = steps.leaves
     start, end = len(leaves), len(leaves) + 1  # the ends of every demonstration, as two more steps
     n, longest = steps.matrix.shape
@@ -790,7 +796,7 @@ def _surprising(steps: _Steps) -> set[int]:
     codes = np.where(done, before * width + after, 0)
     pairs = np.bincount(codes[done], minlength=width * width)
     starts = np.bincount(before[done], minlength=width)
-    vocabulary = len(leaves) + 2  # the steps and the end, as the transitions' add-one smoothing counts them
+    vocabulary = len(leaves) + 1  # what may follow a step: a step or the end, each smoothed by one
     # a step is done once in a demonstration, so each of its transitions is its own once: the others' count is
     # one less, plus one of smoothing
     surprisal = np.where(
@@ -798,7 +804,8 @@ def _surprising(steps: _Steps) -> set[int]:
         -np.log(np.where(done, pairs[codes], 1) / (starts[np.where(done, before, 0)] - 1 + vocabulary)),
         0.0,
     )
-    return _outliers((surprisal.sum(axis=1) / done.sum(axis=1)).tolist())
+    means: list[float] = (surprisal.sum(axis=1) / done.sum(axis=1)).tolist()
+    return means
 
 
 def _outliers(scores: Sequence[float]) -> set[int]:
