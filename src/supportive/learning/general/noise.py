@@ -738,7 +738,8 @@ class _Search:
         at the first place the hierarchy admits it with the others: :meth:`~supportive.tasks.executions.Executions.with_insertions`;
         None when there is none) and the log-probability of where its slips landed: a step out of order
         or unknown at any of the demonstration's places, a repeated one at any place after the performance
-        it repeats."""
+        it repeats (where that performance stands once the slips are undone: an approximation, off by the
+        slips before it, of where it stood)."""
         length = len(leaves) + sum(1 for s in slips if s.kind in _TAKEN_OUT)
         put_back = [slip.leaf for slip in sorted(slips, key=_order) if slip.kind in _PUT_BACK]
         if put_back:
