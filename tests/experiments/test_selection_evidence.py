@@ -16,15 +16,19 @@ from supportive.experiments.selection_settings.evidence import (
     summarize_levels,
 )
 from supportive.experiments.selection_settings.measure import DEMONSTRATIONS, FRESH, RECALL_DEMONSTRATIONS
+from supportive.generate.habits import PEOPLE
 from supportive.generate.mistakes import PROFILES
 
 
-def _result(profile: str, n: int, scores: list[float], admits: list[int] | None = None) -> dict[str, Any]:
+def _result(
+    profile: str, n: int, scores: list[float], admits: list[int] | None = None, people: str = "uniform"
+) -> dict[str, Any]:
     """The part of a trial's result the sweep reads: the general reading's score and admissions per level."""
     admitted = admits or [FRESH] * len(LEVELS)
     return {
         "profile": profile,
         "demonstrations": n,
+        "people": people,
         "evidence": {str(level): {"log_likelihood": s, "admitted": a} for level, s, a in zip(LEVELS, scores, admitted, strict=True)},
     }
 
@@ -35,26 +39,28 @@ _task = st.tuples(
     st.sampled_from(DEMONSTRATIONS),
     st.lists(_likelihood, min_size=len(LEVELS), max_size=len(LEVELS)),
     st.lists(st.integers(0, FRESH), min_size=len(LEVELS), max_size=len(LEVELS)),
+    st.sampled_from(PEOPLE),
 )
 
 
 @given(st.lists(_task, min_size=1, max_size=12))
 def test_each_levels_gain_recall_and_distance_from_the_best_are_worked_out_task_by_task(
-    tasks: list[tuple[str, int, list[float], list[int]]],
+    tasks: list[tuple[str, int, list[float], list[int], str]],
 ) -> None:
     # The oracle: a level's gain on a task is its score minus the conventional level's; the mean of each row,
-    # then over the rows; the recall the share of the uniform tasks' fresh executions at issue #13's row; the
+    # then over the rows; the recall the share of the fresh executions of the uniform tasks by people without
+    # habits at issue #13's row; the
     # distance from the best the same of the paired differences, its variance that of a mean of independent
     # row means.
     summary = summarize_levels([_result(*task) for task in tasks], FRESH)
-    rows = sorted({n for _, n, _, _ in tasks})
+    rows = sorted({n for _, n, _, _, _ in tasks})
     conventional = LEVELS.index(CONVENTIONAL_EVIDENCE)
 
     def per_task(i: int) -> dict[int, np.ndarray]:
-        return {n: np.array([s[i] - s[conventional] for _, n2, s, _ in tasks if n2 == n]) for n in rows}
+        return {n: np.array([s[i] - s[conventional] for _, n2, s, _, _ in tasks if n2 == n]) for n in rows}
 
     means = [float(np.mean([g.mean() for g in per_task(i).values()])) for i in range(len(LEVELS))]
-    uniform = [a for p, n, _, a in tasks if p == "uniform" and n == RECALL_DEMONSTRATIONS]
+    uniform = [a for p, n, _, a, who in tasks if p == "uniform" and n == RECALL_DEMONSTRATIONS and who == "uniform"]
     recall = [sum(a[i] for a in uniform) / (FRESH * len(uniform)) if uniform else None for i in range(len(LEVELS))]
     qualified = [i for i in range(len(LEVELS)) if recall[i] is not None and recall[i] >= recall[conventional]]  # type: ignore[operator]
     best = summary["best"]
@@ -115,6 +121,11 @@ def test_a_level_that_admits_fewer_fresh_executions_at_issue_13s_row_does_not_qu
 
 
 def test_no_level_qualifies_when_the_run_learned_no_uniform_task_at_issue_13s_row() -> None:
-    summary = summarize_levels([_result("ikea", RECALL_DEMONSTRATIONS, [-5.0] * len(LEVELS))], FRESH)
+    # neither a task of another profile nor one by people with habits measures issue #13's recall
+    results = [
+        _result("ikea", RECALL_DEMONSTRATIONS, [-5.0] * len(LEVELS)),
+        _result("uniform", RECALL_DEMONSTRATIONS, [-5.0] * len(LEVELS), people="habits"),
+    ]
+    summary = summarize_levels(results, FRESH)
     assert summary["best"] is None and summary["chosen"] is None
     assert choose_level(summary["levels"], None) is None

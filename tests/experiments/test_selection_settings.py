@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -27,20 +28,26 @@ from supportive.experiments.selection_settings.measure import (
     summarize,
 )
 from supportive.experiments.selection_settings.report import findings
+from supportive.generate.habits import PEOPLE
 from supportive.generate.mistakes import PROFILES
 from supportive.learning import HTNLearner
 
 
 def test_a_full_run_has_the_same_number_of_tasks_in_every_cell() -> None:
     trials = make_trials(get("selection-settings").default_trials, 0)
-    cells = [(t.params["profile"], t.params["demonstrations"]) for t in trials]
-    assert {cell: cells.count(cell) for cell in set(cells)} == {(p, n): TASKS for p in PROFILES for n in DEMONSTRATIONS}
+    cells = [(t.params["profile"], t.params["demonstrations"], t.params["people"]) for t in trials]
+    assert {cell: cells.count(cell) for cell in set(cells)} == {
+        (p, n, who): TASKS for p in PROFILES for n in DEMONSTRATIONS for who in PEOPLE
+    }
 
 
-def test_a_trial_scores_general_and_every_number_of_folds_on_fresh_executions() -> None:
-    trial = next(t for t in make_trials(60, 0) if t.params == {"profile": "uniform", "demonstrations": 5})
+@pytest.mark.parametrize("people", PEOPLE)
+def test_a_trial_scores_general_and_every_number_of_folds_on_fresh_executions(people: str) -> None:
+    trial = next(
+        t for t in make_trials(120, 0) if t.params == {"profile": "uniform", "demonstrations": 5, "people": people}
+    )
     result = run_trial(trial)
-    assert result == run_trial(trial)
+    assert result == run_trial(trial) and result["people"] == people
     assert set(result["folds"]) == {str(k) for k in FOLDS}
     assert set(result["evidence"]) == {str(level) for level in LEVELS}
     for score in (result["general"], *result["folds"].values(), *result["subtasks"].values(), *result["evidence"].values()):
@@ -60,6 +67,7 @@ def _result(
     return {
         "profile": profile,
         "demonstrations": n,
+        "people": "uniform",
         "general": score,
         "folds": {str(k): {"log_likelihood": auto[k], "admitted": auto_admits, "chosen": "x"} for k in FOLDS},
         "subtasks": {"made": score, "none": score},

@@ -19,6 +19,7 @@ def _result(profile: str, n: int, made: float, none: float, made_admits: int = F
     return {
         "profile": profile,
         "demonstrations": n,
+        "people": "uniform",
         "subtasks": {"made": {"log_likelihood": made, "admitted": made_admits}, "none": {"log_likelihood": none, "admitted": FRESH}},
     }
 

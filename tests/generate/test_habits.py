@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.errors import GenerationError
-from supportive.generate.habits import HabitualPeople
+from supportive.generate.habits import HABIT_STRENGTHS, HabitualPeople, executions_by
 from supportive.generate.mistakes import PROFILES, KnownTask, random_known_task
 
 
@@ -63,3 +63,17 @@ def test_a_bad_population_is_refused() -> None:
         HabitualPeople.of(task, -1.0, 0)
     with pytest.raises(GenerationError, match="not a valid execution"):
         HabitualPeople(task, tuple(reversed(task.sample(0))), 1.0)
+
+
+def test_executions_by_people_draw_as_the_settings_experiments_did_before_it_was_shared() -> None:
+    # uniform people are the task's own uniform draw; people with habits take a strength from the generator,
+    # then their preferred order from it (the learner-settings trials' recorded order of draws)
+    task = random_known_task("partial order", 7, 3)
+    rng, expected = np.random.default_rng(5), np.random.default_rng(5)
+    assert executions_by(task, "uniform", rng)(rng) == task.sample(expected)
+    draw = executions_by(task, "habits", rng)
+    people = HabitualPeople.of(task, float(expected.choice(HABIT_STRENGTHS)), expected)
+    assert [draw(rng) for _ in range(5)] == [people.demonstration(expected) for _ in range(5)]
+    assert all(task.admits(draw(seed)) for seed in range(20))
+    with pytest.raises(GenerationError, match="people must be one of uniform, habits, got 'experts'"):
+        executions_by(task, "experts")

@@ -19,6 +19,7 @@ here (the ``learner-settings`` experiment and ``make bench``'s ``bench_habits`` 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,13 +28,16 @@ from supportive.errors import GenerationError
 from supportive.generate.mistakes import KnownTask
 from supportive.seeding import Seed, rng_from
 
-__all__ = ["HABIT_STRENGTHS", "HabitualPeople"]
+__all__ = ["HABIT_STRENGTHS", "PEOPLE", "HabitualPeople", "executions_by"]
 
 HABIT_STRENGTHS = (1.0, 2.0, 4.0)
 """The strengths experiments draw from: people who often, mostly, and nearly always keep the habit (with
 the default ``person_noise`` of 0.5, a step one rank behind another in the preferred order is taken first, when both are
 allowed, about 29 %, 18 % and 12 % of the time: the person's own noise, not the strength, makes most of the
 swaps at strength 4)."""
+PEOPLE = ("uniform", "habits")
+"""Who does a generated task's executions in the experiments that choose the learner's settings: everyone
+drawing uniformly among the valid executions, or :class:`HabitualPeople` (see :func:`executions_by`)."""
 
 
 @dataclass(frozen=True)
@@ -79,3 +83,25 @@ class HabitualPeople:
             weights = np.exp(logits - logits.max())
             done.append(allowed[int(rng.choice(len(allowed), p=weights / weights.sum()))])
         return done
+
+
+def executions_by(task: KnownTask, people: str, seed: Seed = None) -> Callable[[Seed], list[str]]:
+    """How ``people`` (one of :data:`PEOPLE`) draw ``task``'s valid executions, each call one person's:
+    ``task.sample`` for ``"uniform"``; for ``"habits"``, one :class:`HabitualPeople` population of a strength
+    drawn from :data:`HABIT_STRENGTHS` with ``seed`` (then its preferred order, with the same generator).
+
+    Raises:
+        GenerationError: ``people`` is not one of :data:`PEOPLE`.
+
+    >>> from supportive.generate.mistakes import random_known_task
+    >>> task = random_known_task("uniform", 5, seed=0)
+    >>> draw = executions_by(task, "habits", seed=1)
+    >>> task.admits(draw(2)), draw(3) == executions_by(task, "habits", seed=1)(3)
+    (True, True)
+    """
+    if people == "uniform":
+        return task.sample
+    if people == "habits":
+        rng = rng_from(seed)
+        return HabitualPeople.of(task, float(rng.choice(HABIT_STRENGTHS)), rng).demonstration
+    raise GenerationError(f"people must be one of {', '.join(PEOPLE)}, got {people!r}")

@@ -8,7 +8,7 @@ the setting the documented procedure picks (:func:`~supportive.experiments.learn
 
 >>> from supportive.experiments import get
 >>> get("learner-settings").default_trials
-3162
+3486
 """
 
 from supportive.experiments.learner_settings import measure, report

@@ -23,7 +23,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any
 
 from supportive.experiments.trials import Trial, spawn_trials
-from supportive.generate.habits import HABIT_STRENGTHS, HabitualPeople
+from supportive.generate.habits import PEOPLE, executions_by
 from supportive.generate.mistakes import KINDS, PROFILES, inject, random_known_task
 from supportive.learning import HTNLearner
 from supportive.learning.general.noise import Deviation, SlipSearchCache
@@ -54,8 +54,12 @@ SHARE = 0.1
 """Share of the demonstrations given a mistake."""
 SIZES = (6, 12)
 """Steps per task (inclusive range)."""
-TASKS = 6
-"""Generated tasks per profile, number of demonstrations and kind of mistake (a full run)."""
+TASKS = 18
+"""Generated tasks per profile, number of demonstrations and kind of mistake (a full run): a sample size, not
+a setting of any learner. A cell of the report (a kind of mistake and a number of demonstrations) pools the
+profiles: 54 tasks, half by each kind of people. (It was 6, 18 tasks a cell; two full samples of that size,
+seeds 0 and 1, put the weights 300 and 1,000 first in opposite orders, decided by a few tasks of people with
+habits, docs/learning.md. Tasks with mistakes are a tenth of a run's work, the clean ones the rest.)"""
 CLEAN_TASKS = 3000
 """Generated tasks without mistakes (a full run), each with 1–200 demonstrations: how often a setting reports
 a slip where there is none."""
@@ -66,8 +70,6 @@ TRIAL_KINDS = ("task with mistakes", "clean task")
 """What a run needs a trial of each of (its summary compares them)."""
 KIND_OF_SLIP = {"moved": "out of order", "repeated": "repeated", "dropped": "missing"}
 """Which kind of slip the learner should report for each kind of mistake put in."""
-PEOPLE = ("uniform", "habits")
-"""Who does the demonstrations: every valid execution equally likely, or people with habits (alternating)."""
 GRID: dict[str, tuple[float, ...]] = {
     "slip_margin": (0.0, 1.0),
     "slip_rate": (0.1,),
@@ -115,12 +117,8 @@ def trial_demonstrations(trial: Trial) -> tuple[list[list[str]], set[int], Calla
     else:
         n = int(trial.params["demonstrations"])
     task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
-    people = trial.params["people"]
-    if people == "habits":
-        person = HabitualPeople.of(task, float(rng.choice(HABIT_STRENGTHS)), rng)
-        demos = [person.demonstration(rng) for _ in range(n)]
-    else:
-        demos = [task.sample(rng) for _ in range(n)]
+    draw = executions_by(task, trial.params["people"], rng)
+    demos = [draw(rng) for _ in range(n)]
     truth: set[int] = set()
     if case != "none":
         demos, injected = inject(demos, case, SHARE, task.admits, rng)

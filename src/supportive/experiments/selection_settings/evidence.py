@@ -12,8 +12,8 @@ Each selection-settings trial also learns its demonstrations with the ``general`
 task is its score minus the :data:`CONVENTIONAL_EVIDENCE` level's.
 
 The procedure (:func:`choose_level`): among the levels that keep issue #13's recall (admit no fewer fresh
-executions of ``uniform`` tasks from :data:`RECALL_DEMONSTRATIONS` demonstrations than the conventional level),
-the best mean gain over the rows — unless the conventional level is within one standard error of it: these
+executions of the trials :func:`~supportive.experiments.selection_settings.gains.recall_trials` picks than the
+conventional level), the best mean gain over the rows — unless the conventional level is within one standard error of it: these
 tasks cannot then tell the two apart, and the convention is kept.
 """
 
@@ -22,10 +22,10 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.selection_settings.gains import (
     best_qualified,
     mean_gain,
+    recall_trials,
     row_summary,
     set_distances,
     thresholded_gains,
@@ -58,8 +58,8 @@ def _gain(trial: Mapping[str, Any], level: float) -> float:
 
 def summarize_levels(results: Sequence[Mapping[str, Any]], fresh: int) -> dict[str, Any]:
     """Per number of demonstrations, each level's gain over the conventional one (mean and 95 % interval over
-    the tasks, and per profile) and the share of fresh executions it admits; every level's mean gain over the
-    rows, its recall at :data:`RECALL_DEMONSTRATIONS` (``uniform`` tasks; None when the run learned none),
+    the tasks, per profile and per kind of people) and the share of fresh executions it admits; every level's
+    mean gain over the rows, its recall (on :func:`~.gains.recall_trials`; None when the run learned none),
     whether it qualifies, and its distance from the best (``gap``, with the standard error ``error`` of that
     difference); the best and the chosen level (:func:`choose_level`). ``fresh``: the fresh executions each
     trial scores."""
@@ -72,9 +72,7 @@ def summarize_levels(results: Sequence[Mapping[str, Any]], fresh: int) -> dict[s
             cell = [r for r in results if r["demonstrations"] == n]
             gains[str(level)][str(n)] = row_summary([_gain(r, level) for r in cell], cell)
             admitted[str(level)][str(n)] = _share(cell, level, fresh)
-    uniform = [
-        r for r in results if r["demonstrations"] == RECALL_DEMONSTRATIONS and r["profile"] == "uniform"
-    ]
+    uniform = recall_trials(results)
     recall = {level: _share(uniform, level, fresh) if uniform else None for level in LEVELS}
     per_level = {level: level_gains(results, level) for level in LEVELS}
     rows: dict[str, dict[str, Any]] = {}

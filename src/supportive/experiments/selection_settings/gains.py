@@ -13,13 +13,16 @@ import statistics
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from supportive.experiments.generalisation.measure import DEMONSTRATIONS as RECALL_DEMONSTRATIONS
 from supportive.experiments.statistics import mean_ci
+from supportive.generate.habits import PEOPLE
 from supportive.generate.mistakes import PROFILES
 
 __all__ = [
     "best_qualified",
     "mean_gain",
     "paired_difference",
+    "recall_trials",
     "row_summary",
     "set_distances",
     "thresholded_gains",
@@ -46,14 +49,39 @@ def thresholded_gains(
 
 
 def row_summary(differences: Sequence[float], cell: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """One row's gains: their mean with its 95 % interval, and the mean per task profile (``profiles``) over
-    the trials of ``cell`` (the trial results the ``differences`` come from, in the same order)."""
-    by_profile = {
-        p: round(statistics.fmean(d for d, r in zip(differences, cell, strict=True) if r["profile"] == p), 6)
-        for p in PROFILES
-        if any(r["profile"] == p for r in cell)
+    """One row's gains: their mean with its 95 % interval, and the mean per task profile (``profiles``) and per
+    kind of people (``people``) over the trials of ``cell`` (the trial results the ``differences`` come from,
+    in the same order)."""
+    return {
+        **mean_ci(differences),
+        "profiles": _means_by(differences, cell, "profile", PROFILES),
+        "people": _means_by(differences, cell, "people", PEOPLE),
     }
-    return {**mean_ci(differences), "profiles": by_profile}
+
+
+def _means_by(
+    differences: Sequence[float], cell: Sequence[Mapping[str, Any]], key: str, values: Sequence[str]
+) -> dict[str, float]:
+    """The mean of ``differences`` over the trials of ``cell`` with each of ``values`` under ``key`` (values no
+    trial has left out)."""
+    return {
+        value: round(statistics.fmean(d for d, r in zip(differences, cell, strict=True) if r[key] == value), 6)
+        for value in values
+        if any(r[key] == value for r in cell)
+    }
+
+
+def recall_trials(results: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
+    """The trials issue #13's recall is measured on: ``uniform`` tasks learned from
+    :data:`RECALL_DEMONSTRATIONS` demonstrations drawn uniformly (people without habits), in order.
+
+    >>> recall_trials([{"demonstrations": 4, "profile": "uniform", "people": "habits"}])
+    []
+    """
+    return [
+        r for r in results
+        if r["demonstrations"] == RECALL_DEMONSTRATIONS and r["profile"] == "uniform" and r["people"] == "uniform"
+    ]
 
 
 def mean_gain(rows: Mapping[int, Sequence[float]]) -> float:

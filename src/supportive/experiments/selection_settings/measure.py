@@ -1,6 +1,11 @@
-"""Selection-settings trials: one generated task, ``n`` demonstrations sampled uniformly from its valid
-executions, learned by the ``general`` reading and by ``auto`` comparing the readings with every number of
-folds of :data:`FOLDS`; each learned hierarchy scored on fresh executions of the same task.
+"""Selection-settings trials: one generated task, ``n`` demonstrations of it by people with or without habits,
+learned by the ``general`` reading and by ``auto`` comparing the readings with every number of folds of
+:data:`FOLDS`; each learned hierarchy scored on fresh executions of the same task by the same people.
+
+Half the trials draw the executions uniformly from the task's valid executions (``people`` "uniform"), half
+from people with habits (``people`` "habits", :func:`~supportive.generate.habits.executions_by`), as
+``learner-settings`` does: people favour some valid orders, and a setting chosen on uniform draws alone would
+be chosen for people nobody is. Issue #13's recall is measured on the uniform half (:func:`.gains.recall_trials`).
 
 The score is the one the comparison itself estimates (:func:`~supportive.learning.selection.held_out_log_likelihoods`):
 the log-likelihood of an execution when every execution a hierarchy admits is equally likely, a refused one
@@ -32,6 +37,7 @@ from supportive.experiments.selection_settings.evidence import LEVELS, summarize
 from supportive.experiments.selection_settings.gains import (
     best_qualified,
     mean_gain,
+    recall_trials,
     row_summary,
     set_distances,
     thresholded_gains,
@@ -39,6 +45,7 @@ from supportive.experiments.selection_settings.gains import (
 )
 from supportive.experiments.selection_settings.subtasks import summarize_thresholds
 from supportive.experiments.trials import Trial, spawn_trials
+from supportive.generate.habits import PEOPLE, executions_by
 from supportive.generate.mistakes import PROFILES, random_known_task
 from supportive.learning import HTNLearner
 from supportive.learning.selection import held_out_log_likelihoods
@@ -68,11 +75,11 @@ FOLDS = (2, 3, 5, 10)
 SIZES = (6, 12)
 """Steps per task (inclusive range), as in ``learner-settings``."""
 TASKS = 100
-"""Generated tasks per profile and number of demonstrations (a full run): a sample size, which sets how
+"""Generated tasks per profile, number of demonstrations and kind of people (a full run): a sample size, which sets how
 precisely the gains are measured, not a setting of any learner (a run of fewer trials keeps the proportions)."""
 FRESH = 50
 """Fresh executions of each task the learned hierarchies are scored on: a sample size, like :data:`TASKS`."""
-DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS)
+DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(PEOPLE)
 """Trials of a full run."""
 CONVENTIONAL = (5, 5)
 """``selection_folds`` and ``selection_demonstrations`` by convention: 5-fold cross-validation (the usual
@@ -89,23 +96,31 @@ def policy_name(folds: int | None, demonstrations: int | None) -> str:
 
 
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
-    """Trials cycle through profile × number of demonstrations (a full run has :data:`TASKS` of each)."""
+    """Trials cycle through profile × number of demonstrations, the people alternating with each cycle (a
+    full run has :data:`TASKS` of each profile, number and kind of people)."""
     cells = list(itertools.product(PROFILES, DEMONSTRATIONS))
-    return spawn_trials(seed, [{"profile": p, "demonstrations": n} for p, n in (cells[i % len(cells)] for i in range(trials))])
+    return spawn_trials(
+        seed,
+        [
+            {"profile": p, "demonstrations": n, "people": PEOPLE[(i // len(cells)) % len(PEOPLE)]}
+            for i, (p, n) in ((i, cells[i % len(cells)]) for i in range(trials))
+        ],
+    )
 
 
 def run_trial(trial: Trial) -> dict[str, Any]:
-    """Generate the task, its demonstrations and fresh executions; learn and score ``general`` and ``auto``
+    """Generate the task, its demonstrations and fresh executions (by the trial's people); learn and score ``general`` and ``auto``
     under every number of folds, ``general`` making subtasks and making none, and ``general`` at every evidence
     level."""
     rng = trial.rng()
     profile, n = trial.params["profile"], int(trial.params["demonstrations"])
     task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
-    demos = [task.sample(rng) for _ in range(n)]
-    fresh = [task.sample(rng) for _ in range(FRESH)]
+    draw = executions_by(task, trial.params["people"], rng)
+    demos = [draw(rng) for _ in range(n)]
+    fresh = [draw(rng) for _ in range(FRESH)]
     general = HTNLearner(mode="general", alternatives=0).fit(demos)
     out: dict[str, Any] = {
-        "index": trial.index, "profile": profile, "demonstrations": n,
+        "index": trial.index, "profile": profile, "demonstrations": n, "people": trial.params["people"],
         "general": _score(general, fresh), "folds": {},
     }
     for folds in FOLDS:
@@ -153,7 +168,7 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
             admitted[key][str(n)] = _share(cell, key)
     for n in present:
         admitted["general"][str(n)] = _share([r for r in results if r["demonstrations"] == n], "general")
-    uniform = [r for r in results if r["demonstrations"] == RECALL_DEMONSTRATIONS and r["profile"] == "uniform"]
+    uniform = recall_trials(results)
     recall = {name: _share(uniform, name) for name in admitted}
     policies, best = _policies(results, recall)
     return {

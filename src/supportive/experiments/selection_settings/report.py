@@ -68,9 +68,13 @@ def _subtasks(subtasks: Mapping[str, Any]) -> dict[str, object]:
 
     return {
         "subtask_gains": markdown_table(
-            ["demonstrations", "gain of making subtasks", "admitted, subtasks", "admitted, none"],
+            ["demonstrations", "gain of making subtasks", *(f"… people {who}" for who in PEOPLE_NAMES.values()),
+             "admitted, subtasks", "admitted, none"],
             [
-                [n, format_ci(gains[n], signed=True), f"{admitted[n]['made']:.3f}", f"{admitted[n]['none']:.3f}"]
+                [
+                    n, format_ci(gains[n], signed=True), *(_mean_of(gains[n], who) for who in PEOPLE_NAMES),
+                    f"{admitted[n]['made']:.3f}", f"{admitted[n]['none']:.3f}",
+                ]
                 for n in present
             ],
         ),
@@ -81,6 +85,16 @@ def _subtasks(subtasks: Mapping[str, Any]) -> dict[str, object]:
         "subtask_best": str(subtasks["best"]) if subtasks["best"] is not None else "none qualifies",
         "subtask_chosen": str(subtasks["chosen"]) if subtasks["chosen"] is not None else "none qualifies",
     }
+
+
+PEOPLE_NAMES = {"uniform": "without habits", "habits": "with habits"}
+"""How the report names each of :data:`~supportive.generate.habits.PEOPLE`."""
+
+
+def _mean_of(row: Mapping[str, Any], people: str) -> str:
+    """A row's mean gain over the tasks by ``people`` (– where the run had none)."""
+    mean = row["people"].get(people)
+    return "–" if mean is None else f"{mean:+.3f}"
 
 
 def _evidence(evidence: Mapping[str, Any]) -> dict[str, object]:
