@@ -299,10 +299,14 @@ def selection_settings_chosen() -> str:
         return f"{row['gap']:.4f} nats behind it, {within} one standard error ({row['error']:.4f})"
 
     conventional, never = policy_name(*CONVENTIONAL), policy_name(CONVENTIONAL[0], None)
+    against = (
+        "it is the conventional policy" if best == conventional
+        else f"the conventional `{conventional}` is {behind(conventional)}"
+    )
     text = (
         f"The best policy that keeps the recall is `{best}` ({policies[best]['gain']:+.3f} nats per fresh "
-        f"execution over keeping `general`, the mean over the rows); the conventional `{conventional}` is "
-        f"{behind(conventional)}, and not comparing at all is {behind(never)}. Kept: `{chosen}`."
+        f"execution over keeping `general`, the mean over the rows); {against}, and not comparing at all is "
+        f"{behind(never)}. Kept: `{chosen}`."
     )
     likelihood = best_policy({name: {**row, "qualifies": True} for name, row in policies.items()})
     assert likelihood is not None

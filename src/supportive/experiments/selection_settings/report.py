@@ -135,6 +135,8 @@ def _conventional_gap(metrics: Mapping[str, Any]) -> str:
         )
     if metrics["best"] is None or not row["qualifies"]:
         return "The conventional policy costs recall."
+    if metrics["best"] == policy_name(*CONVENTIONAL):
+        return "It is the conventional policy."
     return f"The conventional policy is {row['gap']:.4f} nats behind it, one standard error {row['error']:.4f}."
 
 
