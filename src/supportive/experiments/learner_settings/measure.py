@@ -58,8 +58,9 @@ TASKS = 18
 """Generated tasks per profile, number of demonstrations and kind of mistake (a full run): a sample size, not
 a setting of any learner. A cell of the report (a kind of mistake and a number of demonstrations) pools the
 profiles: 54 tasks, half by each kind of people. (It was 6, 18 tasks a cell; two full samples of that size,
-seeds 0 and 1, put the weights 300 and 1,000 first in opposite orders, decided by a few tasks of people with
-habits, docs/learning.md. Tasks with mistakes are a tenth of a run's work, the clean ones the rest.)"""
+seeds 0 and 1, ranked the weights 300 and 1,000 in opposite orders, decided by a few tasks of people with
+habits, docs/learning.md. At 18 the tasks with mistakes are about a quarter of a run's work, the clean ones
+the rest.)"""
 CLEAN_TASKS = 3000
 """Generated tasks without mistakes (a full run), each with 1–200 demonstrations: how often a setting reports
 a slip where there is none."""
