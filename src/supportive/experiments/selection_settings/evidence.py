@@ -13,8 +13,8 @@ task is its score minus the :data:`CONVENTIONAL_EVIDENCE` level's.
 
 The procedure (:func:`choose_level`): among the levels that keep issue #13's recall (admit no fewer fresh
 executions of the trials :func:`~supportive.experiments.selection_settings.gains.recall_trials` picks than the
-conventional level), the best mean gain over the rows — unless the conventional level is within one standard error of it: these
-tasks cannot then tell the two apart, and the convention is kept.
+conventional level), the best mean gain over the rows — unless the conventional level is within one standard
+error of it: these tasks cannot then tell the two apart, and the convention is kept.
 """
 
 from __future__ import annotations

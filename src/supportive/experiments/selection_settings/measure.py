@@ -75,8 +75,9 @@ FOLDS = (2, 3, 5, 10)
 SIZES = (6, 12)
 """Steps per task (inclusive range), as in ``learner-settings``."""
 TASKS = 100
-"""Generated tasks per profile, number of demonstrations and kind of people (a full run): a sample size, which sets how
-precisely the gains are measured, not a setting of any learner (a run of fewer trials keeps the proportions)."""
+"""Generated tasks per profile, number of demonstrations and kind of people (a full run): a sample size, which
+sets how precisely the gains are measured, not a setting of any learner (a run of fewer trials keeps the
+proportions)."""
 FRESH = 50
 """Fresh executions of each task the learned hierarchies are scored on: a sample size, like :data:`TASKS`."""
 DEFAULT_TRIALS = TASKS * len(PROFILES) * len(DEMONSTRATIONS) * len(PEOPLE)
@@ -99,19 +100,17 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
     """Trials cycle through profile × number of demonstrations, the people alternating with each cycle (a
     full run has :data:`TASKS` of each profile, number and kind of people)."""
     cells = list(itertools.product(PROFILES, DEMONSTRATIONS))
-    return spawn_trials(
-        seed,
-        [
-            {"profile": p, "demonstrations": n, "people": PEOPLE[(i // len(cells)) % len(PEOPLE)]}
-            for i, (p, n) in ((i, cells[i % len(cells)]) for i in range(trials))
-        ],
-    )
+    params: list[dict[str, Any]] = []
+    for i in range(trials):
+        profile, n = cells[i % len(cells)]
+        params.append({"profile": profile, "demonstrations": n, "people": PEOPLE[(i // len(cells)) % len(PEOPLE)]})
+    return spawn_trials(seed, params)
 
 
 def run_trial(trial: Trial) -> dict[str, Any]:
-    """Generate the task, its demonstrations and fresh executions (by the trial's people); learn and score ``general`` and ``auto``
-    under every number of folds, ``general`` making subtasks and making none, and ``general`` at every evidence
-    level."""
+    """Generate the task, its demonstrations and fresh executions (by the trial's people); learn and score
+    ``general`` and ``auto`` under every number of folds, ``general`` making subtasks and making none, and
+    ``general`` at every evidence level."""
     rng = trial.rng()
     profile, n = trial.params["profile"], int(trial.params["demonstrations"])
     task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
