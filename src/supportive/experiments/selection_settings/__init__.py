@@ -1,17 +1,18 @@
 """Selection settings (issue #23): when and with how many folds the default learner compares its readings,
 chosen by a procedure on generated tasks.
 
-Generated tasks are learned from 2–20 demonstrations by the ``general`` reading and by ``auto`` (the readings
-compared by cross-validated held-out likelihood, :mod:`~supportive.learning.selection`) with each number of
-folds; both are scored on fresh executions of the task. The report gives what comparing gains per number of
-demonstrations and folds, and the policy the documented procedure picks
+Generated tasks, done by people drawing uniformly among their valid executions and by people with habits,
+are learned from 2–20 demonstrations by the ``general`` reading and by ``auto`` (the readings compared by
+cross-validated held-out likelihood, :mod:`~supportive.learning.selection`) with each number of folds; both
+are scored on fresh executions of the task by the same people. The report gives what comparing gains per
+number of demonstrations and folds, and the policy the documented procedure picks
 (:func:`~supportive.experiments.selection_settings.measure.choose`).
 :class:`~supportive.learning.learner.HTNLearner`'s ``selection_folds`` and ``selection_demonstrations`` are
 that policy; CaptainCook4D plays no part.
 
 >>> from supportive.experiments import get
 >>> get("selection-settings").default_trials
-3000
+6000
 """
 
 from supportive.experiments.registry import declare
