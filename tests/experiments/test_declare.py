@@ -137,9 +137,13 @@ def test_render_needs_exactly_the_placeholders() -> None:
 
 
 def test_render_fills_in_text_and_lines() -> None:
-    values = {"sizes": "1–2", "share": "5%", "clean_demonstrations": "3–4", "grid": "g", "chosen": "c"}
-    text = render(PACKAGE, "report.md", table=["| a |", "| b |"], **values)
-    assert text.startswith("# Learner settings") and text.endswith("Chosen: **c**.\n\n| a |\n| b |\n")
-    assert "Generated tasks of 1–2 steps" in text and "$" not in text
-    part = section(PACKAGE, "report.md", table="t", **values)
-    assert part.startswith("\n\n# Learner settings") and part.endswith("Chosen: **c**.\n\nt")
+    values = {
+        "sizes": "1–2", "share": "5%", "clean_demonstrations": "3–4", "grid": "g", "chosen": "c",
+        "resamples": "9", "untold": "u.",
+    }
+    text = render(PACKAGE, "report.md", table=["| a |", "| b |"], spread=["| s |"], **values)
+    assert text.startswith("# Learner settings") and "Chosen: **c**.\n\n| a |\n| b |\n\nHow sure" in text
+    assert text.endswith("the best worst F1. u.\n\n| s |\n")
+    assert "Generated tasks of 1–2 steps" in text and "resampled 9 times" in text and "$" not in text
+    part = section(PACKAGE, "report.md", table="t", spread="s", **values)
+    assert part.startswith("\n\n# Learner settings") and part.endswith("the best worst F1. u.\n\ns")

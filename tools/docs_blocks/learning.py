@@ -257,6 +257,33 @@ def learner_settings_clean() -> str:
     )
 
 
+def learner_settings_spread() -> str:
+    """docs/learning.md: how sure the recorded run's choice is, from its bootstrap spread: how often the chosen
+    setting is best, which settings are within one and two standard errors of it, and that the rest are not."""
+    from supportive.experiments.learner_settings.spread import RESAMPLES
+
+    metrics = _ls()
+    chosen, spread = metrics["chosen"], metrics["spread"]
+    others = sorted((name for name in spread if name != chosen), key=lambda name: spread[name]["gap"])
+
+    def behind(name: str) -> str:
+        s = spread[name]
+        return f"`{name}` {s['gap']:.4f} behind (standard error {s['error']:.4f}, {s['gap'] / s['error']:.1f} of them)"
+
+    within = [n for n in others if spread[n]["gap"] <= spread[n]["error"]]
+    near = [n for n in others if spread[n]["error"] < spread[n]["gap"] <= 2 * spread[n]["error"]]
+    rest = len(others) - len(within) - len(near)
+    return (
+        f"Resampling the tasks with mistakes {RESAMPLES:,} times within their cells, the chosen setting has the "
+        f"best worst F1 in {spread[chosen]['best_share']:.1%} of the resamples. Within one standard error of it, "
+        "which this run does not tell from it: "
+        + ("; ".join(behind(n) for n in within) if within else "none")
+        + ". Within two: "
+        + ("; ".join(behind(n) for n in near) if near else "none")
+        + f". The other {rest} qualified settings are more than two standard errors behind.\n"
+    )
+
+
 CLEAN_BANDS = ((1, 9), (10, 19), (20, 49), (50, 99), (100, 200))
 """Bands of the number of clean demonstrations :func:`learner_settings_clean_by_n` reports apart (the clean
 tasks draw it uniformly from 1–200, so an overall rate is mostly that of many demonstrations)."""
@@ -419,6 +446,8 @@ BLOCKS: dict[str, Block] = {
     "learner-settings-clean": Block(_LS, learner_settings_clean, inline=True),
     "learner-settings-clean-by-n": Block(_LS, learner_settings_clean_by_n, inline=True),
     "learner-settings-time": run_time("learner-settings"),
+    "learner-settings-spread": Block(_LS, learner_settings_spread),
+    "learner-settings-spread-table": report_table("learner-settings", "learner-settings.json", "| setting | worst F1 |"),
     "selection-settings-gains": report_table("selection-settings", "selection-settings.json", "| demonstrations | 2 folds"),
     "selection-settings-admitted": report_table(
         "selection-settings", "selection-settings.json", "| demonstrations | general"

@@ -22,6 +22,7 @@ import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any
 
+from supportive.experiments.learner_settings.spread import f1_scores, spread
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate.habits import PEOPLE, executions_by
 from supportive.generate.mistakes import KINDS, PROFILES, inject, random_known_task
@@ -42,6 +43,7 @@ __all__ = [
     "grid_settings",
     "learn_grid",
     "make_trials",
+    "qualified",
     "run_trial",
     "settings_name",
     "summarize",
@@ -188,7 +190,9 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     """Per setting: precision and recall per kind and number of demonstrations (over all the tasks with
     mistakes, and apart for each :data:`PEOPLE`), the share of steps reported on clean data and of clean tasks
     with any report, by people without habits (``clean_*``) and with them (``habits_*``); the chosen setting
-    (see :func:`choose`)."""
+    (see :func:`choose`) and how sure that choice is (``spread``: for each qualified setting, how far behind
+    the chosen one it is, the bootstrap standard error of that, and how often it is best when the tasks with
+    mistakes are resampled; :func:`~supportive.experiments.learner_settings.spread.spread`)."""
     names = list(results[0]["settings"]) if results else []
     table: dict[str, Any] = {}
     for name in names:
@@ -205,7 +209,13 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
             row[f"{prefix}_tasks"] = len(clean)
         row["worst_f1"] = min((k["f1"] for k in row["kinds"].values() if k["mistakes"]), default=0.0)
         table[name] = row
-    return {"settings": table, "chosen": choose(table), "tasks": [dict(r) for r in results]}
+    chosen = choose(table)
+    return {
+        "settings": table,
+        "chosen": chosen,
+        "spread": spread(results, qualified(table), chosen) if chosen else {},
+        "tasks": [dict(r) for r in results],
+    }
 
 
 def _cells(results: Sequence[Mapping[str, Any]], name: str) -> dict[str, dict[str, Any]]:
@@ -217,31 +227,35 @@ def _cells(results: Sequence[Mapping[str, Any]], name: str) -> dict[str, dict[st
         right = sum(r["settings"][name]["right"] for r in cell)
         found = sum(r["settings"][name]["found"] for r in cell)
         mistakes = sum(r["mistakes"] for r in cell)
-        precision = right / reported if reported else 1.0
-        recall = found / mistakes if mistakes else 1.0
-        f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+        precision, recall, f1 = f1_scores(reported, right, found, mistakes)
         cells[f"{kind} {n}"] = {
             "precision": round(precision, 4), "recall": round(recall, 4), "f1": round(f1, 4), "mistakes": mistakes,
         }
     return cells
 
 
-def choose(table: Mapping[str, Mapping[str, Any]]) -> str | None:
-    """The procedure that picks the defaults: among the settings that report at most 0.5 % of the steps of
-    clean demonstrations, by people with habits or without, and a slip in at most 1 % of the clean tasks
-    without habits, the one with the best worst F1 over kinds of mistake and numbers of demonstrations (ties:
-    the first in grid order, i.e. the smaller margin, rate and concentration). None when no setting
-    qualifies. (A slip in a few clean tasks by people with habits is allowed: one person's rare valid order
-    among many who keep the habit cannot always be told from a slip.)"""
-    qualified = [
+def qualified(table: Mapping[str, Mapping[str, Any]]) -> list[str]:
+    """The settings quiet enough on clean data to be chosen, in ``table``'s order: those that report at most
+    0.5 % of the steps of clean demonstrations, by people with habits or without, and a slip in at most 1 % of
+    the clean tasks without habits. (A slip in a few clean tasks by people with habits is allowed: one
+    person's rare valid order among many who keep the habit cannot always be told from a slip.)"""
+    return [
         name
         for name, row in table.items()
         if row["clean_flagged"] <= 0.005
         and row["habits_flagged"] <= 0.005
         and row["clean_tasks_flagged"] <= 0.01 * row["clean_tasks"]
     ]
-    if not qualified:
+
+
+def choose(table: Mapping[str, Mapping[str, Any]]) -> str | None:
+    """The procedure that picks the defaults: among the :func:`qualified` settings, the one with the best
+    worst F1 over kinds of mistake and numbers of demonstrations (ties: the first in grid order, i.e. the
+    smaller margin, rate and concentration). None when no setting qualifies. How sure the choice is, the
+    summary's ``spread`` says (:mod:`~supportive.experiments.learner_settings.spread`)."""
+    names = qualified(table)
+    if not names:
         return None
-    best = max(table[name]["worst_f1"] for name in qualified)
-    return next(name for name in qualified if table[name]["worst_f1"] == best)
+    best = max(table[name]["worst_f1"] for name in names)
+    return next(name for name in names if table[name]["worst_f1"] == best)
 

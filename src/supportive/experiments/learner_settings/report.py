@@ -12,6 +12,7 @@ from supportive.experiments.learner_settings.measure import (
     SHARE,
     SIZES,
 )
+from supportive.experiments.learner_settings.spread import RESAMPLES
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.tables import markdown_table
@@ -47,7 +48,30 @@ def report(metrics: Mapping[str, Any]) -> str:
                 for name, row in sorted(metrics["settings"].items(), key=lambda item: _values(item[0]))
             ],
         ),
+        resamples=f"{RESAMPLES:,}",
+        untold=_untold(metrics),
+        spread=markdown_table(
+            ["setting", "worst F1", "behind the chosen", "standard error", "best in"],
+            [
+                [name, f"{metrics['settings'][name]['worst_f1']:.3f}", f"{s['gap']:.4f}", f"{s['error']:.4f}", f"{s['best_share']:.1%}"]
+                for name, s in sorted(metrics["spread"].items(), key=lambda item: (item[1]["gap"], _values(item[0])))
+            ],
+        ),
     )
+
+
+def _untold(metrics: Mapping[str, Any]) -> str:
+    """Which qualified settings the run does not tell from the chosen one (behind it by at most one standard
+    error), as a sentence."""
+    chosen = metrics["chosen"]
+    if chosen is None:
+        return "No setting qualifies."
+    close = [name for name, s in metrics["spread"].items() if name != chosen and s["gap"] <= s["error"]]
+    if not close:
+        return "Every other qualified setting is behind the chosen one by more than one standard error."
+    return "Behind the chosen one by at most one standard error, so not told apart from it by this run: " + "; ".join(
+        f"`{name}`" for name in sorted(close, key=_values)
+    ) + "."
 
 
 def _parsed(name: str) -> list[tuple[str, float]]:
