@@ -106,6 +106,13 @@ def test_the_summary_carries_the_spread_of_the_qualified_settings() -> None:
     assert summary["spread"] == {"quiet": {"gap": 0.0, "error": 0.0, "best_share": 1.0}}
 
 
+def test_without_tasks_with_mistakes_every_worst_f1_is_0_and_ties_go_to_the_first() -> None:
+    clean = {"case": "none", "demonstrations": 7, "mistakes": 0, "settings": {n: {"reported": 0} for n in NAMES}}
+    assert list(worst_f1s([clean], NAMES)) == [0.0, 0.0, 0.0]
+    out = spread([clean], NAMES, "b", resamples=10)
+    assert out["b"] == {"gap": 0.0, "error": 0.0, "best_share": 0.0} and out["a"]["best_share"] == 1.0
+
+
 def test_a_chosen_setting_must_be_qualified() -> None:
     with pytest.raises(ValueError, match="not among the qualified"):
         spread([], ["a"], "b")

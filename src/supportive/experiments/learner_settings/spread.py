@@ -87,6 +87,8 @@ def worst_f1s(
             sums = {k: v[chosen].sum(axis=1) for k, v in counts.items()}
             total = mistakes[chosen].sum(axis=1)[:, None]
         scores.append(f1_scores(sums["reported"], sums["right"], sums["found"], total)[2])
+    if not scores:  # no task with mistakes: every worst F1 is 0, as in the summary's table
+        return np.zeros(len(names))
     return np.asarray(np.min(scores, axis=0), dtype=float)
 
 
@@ -106,7 +108,7 @@ def spread(
             sizes[cell] = sizes.get(cell, 0) + 1
     draws = {cell: rng.integers(0, n, size=(resamples, n)) for cell, n in sorted(sizes.items())}
     observed = worst_f1s(tasks, qualified)
-    resampled = worst_f1s(tasks, qualified, draws)
+    resampled = worst_f1s(tasks, qualified, draws) if draws else np.zeros((resamples, len(qualified)))
     at = list(qualified).index(chosen)
     best = np.bincount(np.argmax(resampled, axis=1), minlength=len(qualified)) / resamples
     return {
