@@ -122,16 +122,21 @@ def _clean(row: Mapping[str, Any]) -> str:
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     """One row: the chosen setting, its worst precision and recall where the demonstrations are drawn uniformly
-    (issue #23's case) and where people have habits, and its clean reports."""
+    (issue #23's case) and where people have habits, its clean reports, and how sure the choice is (how often
+    it is best when the tasks are resampled, how many settings are within one standard error of it)."""
     chosen = metrics["chosen"]
     if chosen is None:
         return [Finding("slip search defaults on generated tasks", "– (not in the thesis)", (("", "none"),), "no setting qualifies")]
     row = metrics["settings"][chosen]
     worst = {people: worst_cells(cells) for people, cells in row["kinds_by_people"].items()}
     precision, recall = worst["uniform"]
+    spread = metrics["spread"]
+    close = sum(1 for name, s in spread.items() if name != chosen and s["gap"] <= s["error"])
     value = (
         f"{chosen}: worst P {precision:.2f}, worst R {recall:.2f} (with habits {worst['habits'][0]:.2f}, "
-        f"{worst['habits'][1]:.2f}), {_clean(row)}"
+        f"{worst['habits'][1]:.2f}), {_clean(row)}; best in {spread[chosen]['best_share']:.0%} of "
+        f"{RESAMPLES:,} resamples of the tasks, {close} other setting{'' if close == 1 else 's'} within one "
+        "standard error"
     )
     verdict = "meets P ≥ 0.9, R ≥ 0.7" if precision >= 0.9 and recall >= 0.7 else "below P ≥ 0.9 or R ≥ 0.7"
     return [Finding("slip search defaults on generated tasks (issue #23)", "– (not in the thesis)", (("", value),), verdict)]
