@@ -233,6 +233,14 @@ def test_top_level_falls_back_to_the_orders_seen_exactly_beyond_its_state_limit(
     limit = max(1, states + offset)  # about as many states as there are: the boundary
     limited = precedence_top_level(roots, sequences, required, order_support=3, max_states=limit)
     assert limited == (seen_top_level(roots, sequences) if states > limit else unlimited)
+    # the orders seen stand for the partial order that was not built: its established precedences
+    before, together = pair_counts(sequences, roots)
+    established = established_precedences(before, together, 3)
+    cyclic = {(int(u), int(v)) for u, v in zip(*np.nonzero(established & established.T), strict=True)}
+    expected = sorted((int(u), int(v)) for u, v in zip(*np.nonzero(established), strict=True) if (u, v) not in cyclic)
+    if states > limit:
+        assert limited.stands_for is not None and set(limited.stands_for) <= set(expected)
+    assert unlimited.stands_for is None
 
 
 @given(st.lists(st.permutations(list("abcdef")), min_size=1, max_size=6), st.sets(st.sampled_from("abcdef")))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import random
 from collections import Counter
@@ -97,3 +98,32 @@ def test_a_concentration_must_be_above_zero() -> None:
     htn = HTN("t", (ActionNode("a"),))
     with pytest.raises(LearningError, match="concentration"):
         OrderLikelihood(htn, concentration=0.0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.permutations(list("abcdef")), min_size=1, max_size=6), st.sets(st.sampled_from("abcdef")))
+def test_the_orders_seen_in_place_of_a_partial_order_count_as_the_partial_order(
+    orders: list[list[str]], optional: set[str]
+) -> None:
+    # Built without a state limit, the partial order of the roots is the oracle: the top level of the orders
+    # seen that stands in for it (one state allowed) counts the same orders of every set of roots performed.
+    from supportive.learning.general.top_order import precedence_top_level
+
+    sequences = [[ord(x) - 97 for x in o if not (x in optional and i % 2)] for i, o in enumerate(orders)]
+    roots = sorted({x for s in sequences for x in s})
+    required = frozenset(r for r in roots if all(r in s for s in sequences))
+    nodes = tuple(ActionNode(chr(97 + r), optional=r not in required) for r in roots)
+    built = OrderLikelihood(HTN("t", nodes, precedence_top_level(roots, sequences, required, order_support=2)))
+    fallback = precedence_top_level(roots, sequences, required, order_support=2, max_states=1)
+    assert fallback.stands_for is not None
+    standing = OrderLikelihood(HTN("t", nodes, fallback))
+    optional_roots = [r for r in roots if r not in required]
+    for k in range(len(optional_roots) + 1):
+        for extra in itertools.combinations(optional_roots, k):
+            done = frozenset((chr(97 + r), 1) for r in (*required, *extra))
+            assert standing.orders(done) == built.orders(done), sorted(done)
+    demos = [[(chr(97 + r), 1) for r in s] for s in sequences]  # and so reads the demonstrations the same
+    for alpha in (0.25, math.inf):
+        assert OrderLikelihood(HTN("t", nodes, fallback), concentration=alpha).log_probability_of_all(demos) == (
+            pytest.approx(OrderLikelihood(HTN("t", nodes, built.htn.top_level), concentration=alpha).log_probability_of_all(demos))
+        )

@@ -39,6 +39,7 @@ from collections import Counter
 from collections.abc import Iterable, Sequence
 
 from supportive.errors import LearningError
+from supportive.learning.linear_extensions import count_linear_extensions
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, nullable, to_leaves
 
 _Choice = tuple[object, int, tuple[int, ...]]
@@ -109,10 +110,8 @@ class OrderLikelihood:
             for where, admitted, order in self._order_choices(leaves):
                 chosen.setdefault(where, (admitted, Counter()))[1][order] += 1
         for admitted, orders in chosen.values():
-            total += (
-                math.lgamma(admitted * alpha)
-                - math.lgamma(admitted * alpha + orders.total())
-                + sum(math.lgamma(times + alpha) - math.lgamma(alpha) for times in orders.values())
+            total += _rising_log(admitted, alpha, orders.total()) + sum(
+                math.lgamma(times + alpha) - math.lgamma(alpha) for times in orders.values()
             )
         return total
 
@@ -144,11 +143,11 @@ class OrderLikelihood:
         performed = [i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves)]
         if top is not None and len(performed) > 1:
             skippable = frozenset(i for i, root in enumerate(self.htn.roots) if i not in performed and nullable(root))
-            key = ("root orders", top, tuple(performed), skippable)
+            key = ("root orders", top, top.stands_for, tuple(performed), skippable)
             admitted = self._shared.get(key)
             if admitted is None:
                 ones = [1] * len(self.htn.roots)
-                admitted = self._shared[key] = self._walk(top, ones, performed, set(skippable))
+                admitted = self._shared[key] = self._top_orders(top, ones, performed, set(skippable))
             order = tuple(sorted(performed, key=lambda i: start(self.htn.roots[i])))
             out.append((("top", tuple(performed)), admitted, order))
         return out
@@ -191,11 +190,28 @@ class OrderLikelihood:
             return math.prod(c for c in counts if c)
         performed = sorted(i for i, root in enumerate(self.htn.roots) if not done.isdisjoint(root.leaves))
         skippable = {i for i, root in enumerate(self.htn.roots) if i not in performed and nullable(root)}
-        key = (top, tuple(counts), tuple(performed), frozenset(skippable))
+        key = (top, top.stands_for, tuple(counts), tuple(performed), frozenset(skippable))
         known = self._shared.get(key)
         if known is None:
-            known = self._shared[key] = self._walk(top, counts, performed, skippable)
+            known = self._shared[key] = self._top_orders(top, counts, performed, skippable)
         return known
+
+    def _top_orders(
+        self, top: TopLevel, counts: Sequence[int], performed: Sequence[int], skippable: set[int]
+    ) -> int:
+        """The orders a partial top level admits of the ``performed`` roots, each weighted by that root's
+        ``counts``. A top level keeping the orders seen in place of a partial order too large to build counts
+        those the partial order admits (:attr:`~supportive.tasks.htn.TopLevel.stands_for`: its precedences bind
+        roots both performed), unless that count is past
+        :func:`~supportive.learning.linear_extensions.count_linear_extensions`' bound; any other is walked
+        (:meth:`_walk`)."""
+        if top.stands_for is not None:
+            place = {root: k for k, root in enumerate(performed)}
+            binding = [(place[u], place[v]) for u, v in top.stands_for if u in place and v in place]
+            orders = count_linear_extensions(len(performed), binding)
+            if orders:
+                return orders * math.prod(counts[i] for i in performed)
+        return self._walk(top, counts, performed, skippable)
 
     def _walk(
         self, top: TopLevel, counts: Sequence[int], performed: Sequence[int], skippable: set[int]
@@ -255,6 +271,28 @@ class OrderLikelihood:
             return total
 
         return sum(paths(state, len(performed)) for state in top.initial)
+
+
+EXACT_GAMMA = 1e9
+"""Below this ``K α`` the Dirichlet-multinomial's normaliser is taken from ``lgamma`` (its error is a
+millionth of a nat there); above it, from a sum of logs."""
+
+
+def _rising_log(admitted: int, alpha: float, chosen: int) -> float:
+    """``log Γ(K α) - log Γ(K α + m)`` for ``K = admitted`` orders and ``m = chosen`` choices: minus the log of
+    ``K α (K α + 1) … (K α + m - 1)``. For a large ``K`` (a clique of many children, a top level of many free
+    roots) the difference of two huge ``lgamma`` values loses every digit (``K α + m`` rounds to ``K α``
+    beyond 2^53, and ``K`` itself may be past a float's range), so it is summed as ``log K + log(α + i / K)``.
+
+    >>> round(_rising_log(4, 0.5, 3), 6) == round(-math.log(2 * 3 * 4), 6)
+    True
+    >>> round(_rising_log(10**30, 0.25, 2) / (2 * math.log(0.25 * 10**30)), 9)  # not 0, as lgamma gives
+    -1.0
+    """
+    if admitted * alpha < EXACT_GAMMA:
+        return math.lgamma(admitted * alpha) - math.lgamma(admitted * alpha + chosen)
+    log_k = math.log(admitted)
+    return -sum(log_k + math.log(alpha + i / admitted) for i in range(chosen))
 
 
 def _nodes(node: Node) -> list[Node]:

@@ -244,6 +244,11 @@ class TopLevel:
     """Roots (indices) whose being done never lets another root be done or the task end: leaving one out
     of an execution admits the same orders of the rest as passing through it would (the optional roots of
     a partial order of roots; a hint for counting orders, not part of the language)."""
+    stands_for: tuple[tuple[int, int], ...] | None = field(default=None, compare=False, repr=False)
+    """When this top level keeps the orders of roots seen only because the partial order of roots the
+    evidence establishes had too many states to build, that partial order's precedences (pairs of root
+    indices, binding roots both performed): what the top level stands for when a likelihood counts its
+    orders. In memory only, while learning (a hint, not part of the language; not saved)."""
 
     def __hash__(self) -> int:
         return self._hash

@@ -7,11 +7,16 @@ any order, and an optional root may be skipped (a precedence only binds roots th
 result is an ordinary :class:`~supportive.tasks.htn.TopLevel` whose states are the sets of roots done.
 
 When that graph would exceed ``max_states`` states (many roots of free order) or the roots are too many to
-compare pairwise, the top level falls back to the orders seen, as the ``strict`` learner keeps them.
+compare pairwise, the top level falls back to the orders seen, as the ``strict`` learner keeps them. In the
+first case the fallback carries the precedences it stands for (:attr:`~supportive.tasks.htn.TopLevel.stands_for`):
+the slip search's likelihood counts its orders by them, as it would the partial order's (issue #23: the orders
+seen are fitted to the demonstrations themselves, and counted as they are they made a hierarchy loosened by
+real slips look tighter than the one their removal gives back).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from collections.abc import Sequence
 
@@ -72,7 +77,10 @@ def precedence_top_level(
             preds[v] |= 1 << u
             unlocks[u] |= 1 << v
     enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), tuple(unlocks), need, max_states)
-    return seen_top_level(roots, sequences) if enumerated is None else enumerated
+    if enumerated is not None:
+        return enumerated
+    precedences = tuple(sorted((int(u), int(v)) for u, v in graph.edges()))
+    return dataclasses.replace(seen_top_level(roots, sequences), stands_for=precedences)
 
 
 @functools.lru_cache(maxsize=_ENUMERATIONS_KEPT)
