@@ -127,3 +127,22 @@ def test_the_orders_seen_in_place_of_a_partial_order_count_as_the_partial_order(
         assert OrderLikelihood(HTN("t", nodes, fallback), concentration=alpha).log_probability_of_all(demos) == (
             pytest.approx(OrderLikelihood(HTN("t", nodes, built.htn.top_level), concentration=alpha).log_probability_of_all(demos))
         )
+
+
+def test_a_clique_of_many_children_read_jointly_pays_for_each_new_order() -> None:
+    # 22 children: K = 22! orders, past where lgamma(K a) - lgamma(K a + m) keeps a digit. Five executions in
+    # five different orders: each new order has chance a / (K a + i), i = 0 … 4, exactly (a = 1/4:
+    # K a + i = (K + 4 i) / 4, a ratio of integers).
+    children = [f"c{i}" for i in range(22)]
+    htn = HTN("t", (CliqueNode(tuple(ActionNode(c) for c in children)),))
+    rng = random.Random(5)
+    executions = []
+    for _ in range(5):
+        order = list(children)
+        rng.shuffle(order)
+        executions.append([(c, 1) for c in order])
+    k = math.factorial(22)
+    exact = sum(math.log(0.25) - (math.log(k + 4 * i) - math.log(4)) for i in range(5))
+    reading = OrderLikelihood(htn, concentration=0.25)
+    assert reading.log_probability_of_all(executions) == pytest.approx(exact, rel=1e-12)
+    assert exact < -5 * math.log(k) + 1  # about five times the uniform reading's cost, not a fifth of it
