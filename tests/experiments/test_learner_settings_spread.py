@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from supportive.errors import ExperimentError
 from supportive.experiments.learner_settings.measure import summarize
 from supportive.experiments.learner_settings.spread import spread, worst_f1s
 
@@ -114,5 +115,5 @@ def test_without_tasks_with_mistakes_every_worst_f1_is_0_and_ties_go_to_the_firs
 
 
 def test_a_chosen_setting_must_be_qualified() -> None:
-    with pytest.raises(ValueError, match="not among the qualified"):
+    with pytest.raises(ExperimentError, match="not among the qualified"):
         spread([], ["a"], "b")

@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from supportive.errors import LearningError
 from supportive.learning.linear_extensions import count_linear_extensions
 
 
@@ -63,5 +64,5 @@ def test_a_prime_part_past_the_bound_is_not_counted() -> None:
 
 
 def test_a_precedence_outside_the_steps_is_refused() -> None:
-    with pytest.raises(ValueError, match=r"precedence \(0, 3\) is outside steps 0…2"):
+    with pytest.raises(LearningError, match=r"precedence \(0, 3\) is outside steps 0…2"):
         count_linear_extensions(3, [(0, 3)])

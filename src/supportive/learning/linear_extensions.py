@@ -23,6 +23,8 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 
+from supportive.errors import LearningError
+
 __all__ = ["MAX_DOWN_SETS", "count_linear_extensions"]
 
 MAX_DOWN_SETS = 200_000
@@ -36,12 +38,12 @@ def count_linear_extensions(n: int, precedences: Iterable[tuple[int, int]], max_
     ``max_down_sets`` down-sets of one size.
 
     Raises:
-        ValueError: a precedence names a step outside ``0 … n-1``.
+        LearningError: a precedence names a step outside ``0 … n-1``.
     """
     before = [0] * n  # before[v]: the steps that must come before v, transitively
     for u, v in precedences:
         if not (0 <= u < n and 0 <= v < n):
-            raise ValueError(f"precedence ({u}, {v}) is outside steps 0…{n - 1}")
+            raise LearningError(f"precedence ({u}, {v}) is outside steps 0…{n - 1}")
         before[v] |= 1 << u
     closure = _closed(before)
     if closure is None:

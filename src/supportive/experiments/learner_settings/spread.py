@@ -31,6 +31,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from supportive.errors import ExperimentError
+
 __all__ = ["RESAMPLES", "SEED", "f1_scores", "spread", "worst_f1s"]
 
 RESAMPLES = 1000
@@ -97,9 +99,13 @@ def spread(
 ) -> dict[str, dict[str, float]]:
     """For each setting in ``qualified`` (in grid order; ``chosen`` among them): ``gap`` (the chosen setting's
     worst F1 minus this one's, on the run's tasks), ``error`` (the bootstrap standard error of that difference)
-    and ``best_share`` (the share of resamples in which it has the best worst F1 of ``qualified``)."""
+    and ``best_share`` (the share of resamples in which it has the best worst F1 of ``qualified``).
+
+    Raises:
+        ExperimentError: ``chosen`` is not among ``qualified``.
+    """
     if chosen not in qualified:
-        raise ValueError(f"the chosen setting {chosen!r} is not among the qualified ones")
+        raise ExperimentError(f"the chosen setting {chosen!r} is not among the qualified ones")
     rng = np.random.default_rng(seed)
     sizes: dict[tuple[str, int], int] = {}
     for task in tasks:
