@@ -273,7 +273,7 @@ class OrderLikelihood:
         return sum(paths(state, len(performed)) for state in top.initial)
 
 
-EXACT_GAMMA = 1e9
+_EXACT_GAMMA = 1e9
 """Below this ``K α`` the Dirichlet-multinomial's normaliser is taken from ``lgamma`` (its error is a
 millionth of a nat there); above it, from a sum of logs."""
 
@@ -289,7 +289,7 @@ def _rising_log(admitted: int, alpha: float, chosen: int) -> float:
     >>> round(_rising_log(10**30, 0.25, 2) / (2 * math.log(0.25 * 10**30)), 9)  # not 0, as lgamma gives
     -1.0
     """
-    if admitted * alpha < EXACT_GAMMA:
+    if admitted * alpha < _EXACT_GAMMA:
         return math.lgamma(admitted * alpha) - math.lgamma(admitted * alpha + chosen)
     log_k = math.log(admitted)
     return -sum(log_k + math.log(alpha + i / admitted) for i in range(chosen))
