@@ -67,18 +67,24 @@ def _plain(x: FloatArray) -> Any:
     return float(x) if x.ndim == 0 else x
 
 
+def _cells(tasks: Sequence[Mapping[str, Any]]) -> dict[tuple[str, int], list[Mapping[str, Any]]]:
+    """The tasks with mistakes put in, by cell (kind of mistake, number of demonstrations), as the summary's
+    table groups them; a cell where no mistake could be put in is left out, as its worst F1 leaves it out."""
+    cells: dict[tuple[str, int], list[Mapping[str, Any]]] = {}
+    for task in tasks:
+        if task["case"] != "none":
+            cells.setdefault((task["case"], int(task["demonstrations"])), []).append(task)
+    return {cell: members for cell, members in cells.items() if sum(t["mistakes"] for t in members)}
+
+
 def worst_f1s(
     tasks: Sequence[Mapping[str, Any]], names: Sequence[str], draws: Mapping[tuple[str, int], Any] | None = None
 ) -> FloatArray:
     """Each setting's worst F1 over the cells of ``tasks`` (those with mistakes put in), pooling each cell's
     counts; with ``draws`` (a cell's tasks' indices into that cell, shape ``(resamples, tasks)``), one row per
     resample, the cells' tasks taken as drawn."""
-    cells: dict[tuple[str, int], list[Mapping[str, Any]]] = {}
-    for task in tasks:
-        if task["case"] != "none" and task["mistakes"]:
-            cells.setdefault((task["case"], int(task["demonstrations"])), []).append(task)
     scores = []
-    for cell, members in cells.items():
+    for cell, members in _cells(tasks).items():
         counts = {k: np.array([[t["settings"][n][k] for n in names] for t in members], dtype=float) for k in _COUNTS}
         mistakes = np.array([t["mistakes"] for t in members], dtype=float)
         if draws is None:
@@ -107,12 +113,8 @@ def spread(
     if chosen not in qualified:
         raise ExperimentError(f"the chosen setting {chosen!r} is not among the qualified ones")
     rng = np.random.default_rng(seed)
-    sizes: dict[tuple[str, int], int] = {}
-    for task in tasks:
-        if task["case"] != "none" and task["mistakes"]:
-            cell = (task["case"], int(task["demonstrations"]))
-            sizes[cell] = sizes.get(cell, 0) + 1
-    draws = {cell: rng.integers(0, n, size=(resamples, n)) for cell, n in sorted(sizes.items())}
+    cells = _cells(tasks)
+    draws = {cell: rng.integers(0, len(cells[cell]), size=(resamples, len(cells[cell]))) for cell in sorted(cells)}
     observed = worst_f1s(tasks, qualified)
     resampled = worst_f1s(tasks, qualified, draws) if draws else np.zeros((resamples, len(qualified)))
     at = list(qualified).index(chosen)
