@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import random
@@ -113,7 +114,8 @@ def test_the_orders_seen_in_place_of_a_partial_order_count_as_the_partial_order(
     roots = sorted({x for s in sequences for x in s})
     required = frozenset(r for r in roots if all(r in s for s in sequences))
     nodes = tuple(ActionNode(chr(97 + r), optional=r not in required) for r in roots)
-    built = OrderLikelihood(HTN("t", nodes, precedence_top_level(roots, sequences, required, order_support=2)))
+    walked = dataclasses.replace(precedence_top_level(roots, sequences, required, order_support=2), precedences=None)
+    built = OrderLikelihood(HTN("t", nodes, walked))
     fallback = precedence_top_level(roots, sequences, required, order_support=2, max_states=1)
     assert fallback.stands_for is not None
     standing = OrderLikelihood(HTN("t", nodes, fallback))
@@ -126,6 +128,39 @@ def test_the_orders_seen_in_place_of_a_partial_order_count_as_the_partial_order(
     for alpha in (0.25, math.inf):
         assert OrderLikelihood(HTN("t", nodes, fallback), concentration=alpha).log_probability_of_all(demos) == (
             pytest.approx(OrderLikelihood(HTN("t", nodes, built.htn.top_level), concentration=alpha).log_probability_of_all(demos))
+        )
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.permutations(list("abcdef")), min_size=1, max_size=6),
+    st.sets(st.sampled_from("abcdef")),
+    st.sets(st.sampled_from("abcdef")),
+)
+def test_a_partial_order_of_roots_counted_by_its_precedences_counts_what_walking_its_states_does(
+    orders: list[list[str]], optional: set[str], nullable: set[str]
+) -> None:
+    # The oracle: the same top level with its precedences forgotten, walked state by state. Every set of
+    # roots performed, with roots every demonstration does but that may be done as nothing (``nullable``:
+    # the walk passes through them; the count is not used there).
+    from supportive.learning.general.top_order import precedence_top_level
+
+    sequences = [[ord(x) - 97 for x in o if not (x in optional and i % 2)] for i, o in enumerate(orders)]
+    roots = sorted({x for s in sequences for x in s})
+    required = frozenset(r for r in roots if all(r in s for s in sequences))
+    nodes = tuple(ActionNode(chr(97 + r), optional=r not in required or chr(97 + r) in nullable) for r in roots)
+    top = precedence_top_level(roots, sequences, required, order_support=2)
+    assert top.precedences is not None
+    counted = OrderLikelihood(HTN("t", nodes, top))
+    walked = OrderLikelihood(HTN("t", nodes, dataclasses.replace(top, precedences=None)))
+    for k in range(len(roots) + 1):
+        for performed in itertools.combinations(roots, k):
+            done = frozenset((chr(97 + r), 1) for r in performed)
+            assert counted.orders(done) == walked.orders(done), sorted(done)
+    demos = [[(chr(97 + r), 1) for r in s] for s in sequences]
+    for alpha in (0.25, math.inf):
+        assert OrderLikelihood(counted.htn, concentration=alpha).log_probability_of_all(demos) == pytest.approx(
+            OrderLikelihood(walked.htn, concentration=alpha).log_probability_of_all(demos)
         )
 
 

@@ -97,7 +97,7 @@ def _count(steps: int, before: list[int], after: list[int], limit: int) -> int |
                 return None
             total *= inner
         return total
-    return _down_sets(steps, before, limit)
+    return _down_sets(steps, before, after, limit)
 
 
 def _components(steps: int, neighbours: Callable[[int], int]) -> list[int]:
@@ -119,22 +119,36 @@ def _components(steps: int, neighbours: Callable[[int], int]) -> list[int]:
     return parts
 
 
-def _down_sets(steps: int, before: list[int], limit: int) -> int | None:
+def _down_sets(steps: int, before: list[int], after: list[int], limit: int) -> int | None:
     """The linear extensions of ``steps`` by the dynamic programme over its down-sets (a step may come once
-    every step of ``steps`` before it is done); None past ``limit`` down-sets of one size."""
-    members = [v for v in range(steps.bit_length()) if steps >> v & 1]
-    ways = {0: 1}
-    frontier = [0]
-    for _ in members:  # level by level: the down-sets of k steps, then of k + 1
-        following: dict[int, int] = {}
-        for done in frontier:
-            count = ways[done]
-            for v in members:
-                if not done >> v & 1 and before[v] & steps & ~done == 0:
-                    nxt = done | 1 << v
-                    following[nxt] = following.get(nxt, 0) + count
+    every step of ``steps`` before it is done); None past ``limit`` down-sets of one size. Each down-set
+    carries the steps that may come next, so a step is tried only where it may come."""
+    ready = 0
+    for v in range(steps.bit_length()):
+        if steps >> v & 1 and before[v] & steps == 0:
+            ready |= 1 << v
+    ways = {0: (1, ready)}
+    for _ in range(steps.bit_count()):  # level by level: the down-sets of k steps, then of k + 1
+        following: dict[int, tuple[int, int]] = {}
+        for done, (count, ready) in ways.items():
+            left = ready
+            while left:
+                bit = left & -left
+                left ^= bit
+                nxt = done | bit
+                known = following.get(nxt)
+                if known is not None:
+                    following[nxt] = (known[0] + count, known[1])
+                    continue
+                now = ready ^ bit
+                unlocked = after[bit.bit_length() - 1] & steps & ~nxt
+                while unlocked:
+                    low = unlocked & -unlocked
+                    unlocked ^= low
+                    if before[low.bit_length() - 1] & steps & ~nxt == 0:
+                        now |= low
+                following[nxt] = (count, now)
         if len(following) > limit:
             return None
         ways = following
-        frontier = list(following)
-    return ways.get(steps, 0)
+    return ways[steps][0] if steps in ways else 0

@@ -202,12 +202,17 @@ class OrderLikelihood:
         """The orders a partial top level admits of the ``performed`` roots, each weighted by that root's
         ``counts``. A top level keeping the orders seen in place of a partial order too large to build counts
         those the partial order admits (:attr:`~supportive.tasks.htn.TopLevel.stands_for`: its precedences bind
-        roots both performed), unless that count is past
-        :func:`~supportive.learning.linear_extensions.count_linear_extensions`' bound; any other is walked
+        roots both performed); one built as a partial order counts its linear extensions
+        (:attr:`~supportive.tasks.htn.TopLevel.precedences`) when every root it needs is performed, which is
+        what walking its states gives; either unless that count is past
+        :func:`~supportive.learning.linear_extensions.count_linear_extensions`' bound. Any other is walked
         (:meth:`_walk`)."""
-        if top.stands_for is not None:
+        precedences = top.stands_for
+        if precedences is None and top.free.union(performed) == set(range(len(counts))):
+            precedences = top.precedences
+        if precedences is not None:
             place = {root: k for k, root in enumerate(performed)}
-            binding = [(place[u], place[v]) for u, v in top.stands_for if u in place and v in place]
+            binding = [(place[u], place[v]) for u, v in precedences if u in place and v in place]
             orders = count_linear_extensions(len(performed), binding)
             if orders:
                 return orders * math.prod(counts[i] for i in performed)

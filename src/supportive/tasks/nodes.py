@@ -249,6 +249,11 @@ class TopLevel:
     evidence establishes had too many states to build, that partial order's precedences (pairs of root
     indices, binding roots both performed): what the top level stands for when a likelihood counts its
     orders. In memory only, while learning (a hint, not part of the language; not saved)."""
+    precedences: tuple[tuple[int, int], ...] | None = field(default=None, compare=False, repr=False)
+    """When this top level was built as a partial order of roots, its precedences (pairs of root indices,
+    binding roots both performed): the orders it admits of roots that include every root not ``free`` are
+    that partial order's linear extensions, counted without walking its states. In memory only (a hint, not
+    part of the language; not saved)."""
 
     def __hash__(self) -> int:
         return self._hash

@@ -126,7 +126,8 @@ def _enumerated(
             edges.append((number[done], i, number[after]))
     terminal = tuple(sorted(state for done, state in number.items() if done & need == need))
     free = frozenset(i for i in range(n) if not need >> i & 1)
-    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free)
+    precedences = tuple((u, v) for u in range(n) for v in range(n) if earlier[v] >> u & 1)
+    return TopLevel(initial=(0,), terminal=terminal, edges=tuple(sorted(edges)), free=free, precedences=precedences)
 
 
 def _more_states_than(limit: int, preds: Sequence[int], earlier: Sequence[int]) -> bool:
