@@ -441,6 +441,7 @@ BLOCKS: dict[str, Block] = {
     "generalisation-intervals": Block(_GEN, generalisation_intervals),
     "generalisation-subtasks": Block(_GEN, generalisation_subtasks, inline=True),
     "generalisation-time": run_time("generalisation"),
+    "generalisation-slip-sizes": report_table("generalisation", "generalisation.json", "| steps | people |"),
     "learner-settings-table": report_table("learner-settings", "learner-settings.json", "| setting |"),
     "learner-settings-chosen": Block(_LS, learner_settings_chosen),
     "learner-settings-clean": Block(_LS, learner_settings_clean, inline=True),

@@ -6,10 +6,13 @@
 * CaptainCook4D: learned from the first half of each recipe's error-free recordings, how many of the other
   half are admitted; learned from all error-free recordings, and from all recordings with errors too, the
   precision and recall of the "must come before" pairs against the published graphs.
+* The slip check: generated tasks of sizes the slip settings were not chosen on (3–5, 13–20 and 21–30 steps),
+  a tenth of their demonstrations given one mistake (or none), learned by the default learner and scored as
+  ``learner-settings`` scores its settings, by people drawn uniformly and people with habits.
 
 >>> from supportive.experiments import get
 >>> get("generalisation").default_trials
-324
+756
 """
 
 from supportive.experiments.generalisation import measure, report

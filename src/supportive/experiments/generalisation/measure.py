@@ -1,16 +1,22 @@
-"""Generalisation trials: one generated task, or one CaptainCook4D recipe, measured with both learners."""
+"""Generalisation trials: one generated task, or one CaptainCook4D recipe, measured with both learners; or one
+generated task of a size the slip settings were not chosen on, with mistakes put in (the slip check)."""
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
 from supportive.experiments.captaincook.recipes import FEW_SHOT
+from supportive.experiments.learner_settings import measure as slip_settings
+from supportive.experiments.learner_settings.spread import f1_scores
 from supportive.experiments.statistics import mean_ci, ratio_ci
 from supportive.experiments.trials import Trial, spawn_trials
 from supportive.generate import random_structure
+from supportive.generate.habits import PEOPLE
+from supportive.generate.mistakes import KINDS, PROFILES
 from supportive.io.captaincook import load_captaincook
 from supportive.learning import HTNLearner
 from supportive.learning.graph_edges import edge_scores
@@ -18,13 +24,32 @@ from supportive.learning.precedence import implied_precedences, precedence_score
 from supportive.learning.selection import held_out_log_likelihoods
 from supportive.tasks.htn import HTN, count_orderings, iter_orderings, sample_ordering, to_leaves
 
-__all__ = ["DEFAULT_TRIALS", "LEARNERS", "SYNTHETIC", "make_trials", "run_trial", "summarize"]
+__all__ = [
+    "DEFAULT_TRIALS",
+    "LEARNERS",
+    "SLIP_CASES",
+    "SLIP_SIZES",
+    "SLIP_TASKS",
+    "SYNTHETIC",
+    "make_trials",
+    "run_trial",
+    "summarize",
+]
 
 SYNTHETIC = 300
 """Generated tasks of a full run (half of each profile)."""
-DEFAULT_TRIALS = SYNTHETIC + 24
-"""Trials of a full run: the generated tasks, then the 24 recipes."""
-TRIAL_KINDS = ("generated task", "recipe")
+SLIP_SIZES: tuple[tuple[int, int], ...] = ((3, 5), (13, 20), (21, 30))
+"""Steps per task of the slip check (inclusive ranges): sizes on either side of the 6–12 the slip settings were
+chosen on (``learner-settings``), where settings that fitted their sizes would show it."""
+SLIP_CASES = (*KINDS, "none")
+"""What the slip check puts into a tenth of a task's demonstrations: each kind of mistake, or nothing."""
+SLIP_TASKS = 12
+"""Generated tasks per size, number of demonstrations and case of the slip check (a full run): a sample size,
+not a setting (two of each profile by each kind of people)."""
+SLIP_TRIALS = len(SLIP_SIZES) * len(slip_settings.DEMONSTRATIONS) * len(SLIP_CASES) * SLIP_TASKS
+DEFAULT_TRIALS = SYNTHETIC + 24 + SLIP_TRIALS
+"""Trials of a full run: the generated tasks, the 24 recipes, then the slip check's tasks."""
+TRIAL_KINDS = ("generated task", "recipe", "task of another size")
 """What a run needs a trial of each of (its summary compares them)."""
 LEARNERS = ("auto", "general", "strict")
 """The default learner (``auto``: the reading chosen by held-out likelihood), the ``general`` reading alone, and
@@ -37,22 +62,50 @@ SLIP_CLEAN, SLIPPED = 16, 4
 
 
 def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
-    """Trials 0..: generated tasks (profiles alternating), then the 24 recipes; fewer trials keep the same
-    proportion."""
-    recipes = max(1, round(trials * 24 / (SYNTHETIC + 24)))
-    synthetic = trials - recipes
+    """Trials 0..: generated tasks (profiles alternating), then the 24 recipes, then the slip check's tasks
+    (cycling through size × number of demonstrations × case, the profiles and then the kinds of people
+    alternating from one cycle to the next); fewer trials keep the same proportion."""
+    recipes = min(24, max(1, round(trials * 24 / DEFAULT_TRIALS)))
+    checks = max(1, min(trials - recipes - 1, round(trials * SLIP_TRIALS / DEFAULT_TRIALS)))
+    synthetic = trials - recipes - checks
     params: list[dict[str, Any]] = [
         {"kind": "synthetic", "profile": ("uniform", "ikea")[i % 2]} for i in range(synthetic)
     ]
-    params += [{"kind": "recipe", "recipe": i} for i in range(min(recipes, 24))]
+    params += [{"kind": "recipe", "recipe": i} for i in range(recipes)]
+    cells = list(itertools.product(SLIP_SIZES, slip_settings.DEMONSTRATIONS, SLIP_CASES))
+    for i in range(checks):
+        sizes, n, case = cells[i % len(cells)]
+        turn = i // len(cells)
+        profile, people = PROFILES[turn % len(PROFILES)], PEOPLE[turn // len(PROFILES) % len(PEOPLE)]
+        params.append(
+            {"kind": "slip check", "sizes": list(sizes), "demonstrations": n, "case": case, "profile": profile, "people": people}
+        )
     return spawn_trials(seed, params)
 
 
 def run_trial(trial: Trial) -> dict[str, Any]:
-    """Measure one generated task or one recipe with both learners."""
-    if trial.params["kind"] == "synthetic":
-        return {"index": trial.index, "kind": "synthetic", **_synthetic(trial)}
+    """Measure one generated task or one recipe with both learners, or one task of the slip check with the
+    default learner."""
+    kind = trial.params["kind"]
+    if kind == "synthetic":
+        return {"index": trial.index, "kind": kind, **_synthetic(trial)}
+    if kind == "slip check":
+        return {"index": trial.index, "kind": kind, **_slip_check(trial)}
     return {"index": trial.index, "kind": "recipe", **_recipe(int(trial.params["recipe"]))}
+
+
+def _slip_check(trial: Trial) -> dict[str, Any]:
+    """A generated task of the trial's size, its demonstrations drawn and given mistakes as ``learner-settings``
+    draws them, learned by the default learner: its slips scored as that experiment scores them (under
+    ``settings``, ``"default"``)."""
+    demos, truth, valid = slip_settings.trial_demonstrations(trial)
+    params = trial.params
+    slips = HTNLearner().fit(demos).deviations_
+    return {
+        "sizes": list(params["sizes"]), "demonstrations": len(demos), "case": params["case"],
+        "profile": params["profile"], "people": params["people"], "steps": sum(len(d) for d in demos),
+        "mistakes": len(truth), "settings": {"default": slip_settings.slip_counts(slips, params["case"], demos, truth, valid)},
+    }
 
 
 def _synthetic(trial: Trial) -> dict[str, Any]:
@@ -134,7 +187,20 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     :func:`_edge_summary`)."""
     synthetic = [r for r in results if r["kind"] == "synthetic"]
     recipes = [r for r in results if r["kind"] == "recipe"]
+    checks = [r for r in results if r["kind"] == "slip check"]
     out: dict[str, Any] = {"synthetic": {}, "slips": {}, "captaincook": {}, "tasks": [dict(r) for r in results]}
+    if checks:
+        out["slip_sizes"] = [
+            {
+                "steps": [low, high],
+                "people": {
+                    people: _slip_sizes([r for r in checks if tuple(r["sizes"]) == (low, high) and r["people"] == people])
+                    for people in PEOPLE
+                    if any(tuple(r["sizes"]) == (low, high) and r["people"] == people for r in checks)
+                },
+            }
+            for low, high in sorted({tuple(r["sizes"]) for r in checks})
+        ]
     for profile in sorted({r["profile"] for r in synthetic}):
         rows = [r for r in synthetic if r["profile"] == profile]
         out["synthetic"][profile] = {
@@ -179,6 +245,30 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
                 "edges": {setting: _edge_summary(recipes, mode, setting) for setting in ("full", "5-shot")},
             }
     return out
+
+
+def _slip_sizes(tasks: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """The slip check's tasks of one size by one kind of people: precision, recall and mistakes put in per kind
+    (pooling the numbers of demonstrations; ``cells``: apart for each number, as ``learner-settings`` has
+    them), and on the clean tasks the share of their steps reported and how many had any report."""
+    kinds = {}
+    for kind in KINDS:
+        cell = [t for t in tasks if t["case"] == kind]
+        counts = {k: sum(t["settings"]["default"][k] for t in cell) for k in ("reported", "right", "found")}
+        mistakes = sum(t["mistakes"] for t in cell)
+        precision, recall, _ = f1_scores(counts["reported"], counts["right"], counts["found"], mistakes)
+        kinds[kind] = {"precision": round(precision, 4), "recall": round(recall, 4), "mistakes": mistakes, "tasks": len(cell)}
+    clean = [t for t in tasks if t["case"] == "none"]
+    steps = sum(t["steps"] for t in clean)
+    reported = sum(t["settings"]["default"]["reported"] for t in clean)
+    return {
+        "kinds": kinds,
+        "cells": slip_settings.slip_cells(tasks, "default"),
+        "clean_tasks": len(clean),
+        "clean_steps": steps,
+        "clean_flagged": round(reported / steps, 6) if steps else 0.0,
+        "clean_tasks_flagged": sum(t["settings"]["default"]["wrong_tasks"] for t in clean),
+    }
 
 
 def _bounds(summary: Mapping[str, Any]) -> dict[str, Any]:

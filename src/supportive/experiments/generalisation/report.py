@@ -3,23 +3,35 @@ reading beside the strict one."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from supportive.experiments.captaincook.recipes import FEW_SHOT
-from supportive.experiments.generalisation.measure import DEMONSTRATIONS, LEARNERS, SIZES, SLIP_CLEAN, SLIPPED
+from supportive.experiments.generalisation.measure import (
+    DEMONSTRATIONS,
+    LEARNERS,
+    SIZES,
+    SLIP_CLEAN,
+    SLIPPED,
+)
+from supportive.experiments.learner_settings import measure as slip_settings
+from supportive.experiments.learner_settings.report import worst_cells
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.statistics import format_ci
 from supportive.experiments.tables import markdown_table
 from supportive.experiments.templates import render, section
+from supportive.generate.mistakes import KINDS
 from supportive.learning.graph_edges import PEERS
 
-__all__ = ["findings", "headline", "plots", "report"]
+__all__ = ["SLIP_TARGETS", "findings", "headline", "plots", "report", "slip_check"]
 
 DEFAULT, STRICT = LEARNERS[0], LEARNERS[-1]
 """The learners the headline and findings compare: the default (``auto``) and the thesis's ``strict``."""
+SLIP_TARGETS = (0.9, 0.7, 0.005)
+"""Issue #23's bar for slips on generated tasks: precision and recall per kind, and the share of clean steps
+reported (the findings' verdict on the slip check)."""
 
 
 def report(metrics: Mapping[str, Any]) -> str:
@@ -43,6 +55,7 @@ def report(metrics: Mapping[str, Any]) -> str:
         slips=section(__package__, "slips.md", clean=str(SLIP_CLEAN), slipped=str(SLIPPED), table=_slips_table(slips))
         if slips
         else "",
+        slip_sizes=_slip_sizes_section(metrics["slip_sizes"]) if metrics.get("slip_sizes") else "",
         captaincook=section(
             __package__,
             "captaincook.md",
@@ -63,6 +76,65 @@ def _slips_table(slips: Mapping[str, Any]) -> list[str]:
         ["profile", "clean: recall / precision", "with slips", "with slips, none set aside"],
         [[profile] + [f"{m[d]['recall']:.3f} / {m[d]['precision']:.3f}" for d in data] for profile, m in slips.items()],
     )
+
+
+def _slip_sizes_section(sizes: Sequence[Mapping[str, Any]]) -> str:
+    """The slip check: per size and kind of people, precision / recall per kind of mistake (the numbers of
+    demonstrations pooled), the worst cell (a kind at one number, as ``learner-settings`` scores them) and the
+    clean tasks' reports; a dash where the run put in no mistake of a kind, or had no clean task."""
+
+    def kind(m: Mapping[str, Any]) -> str:
+        return f"{m['precision']:.2f} / {m['recall']:.2f} ({m['mistakes']})" if m["mistakes"] else "–"
+
+    rows = []
+    for size in sizes:
+        for people, m in size["people"].items():
+            precision, recall = worst_cells(m["cells"])
+            rows.append(
+                [
+                    _steps(size),
+                    people,
+                    *(kind(m["kinds"][k]) for k in KINDS),
+                    f"{precision:.2f} / {recall:.2f}",
+                    f"{m['clean_flagged']:.2%} of {m['clean_steps']:,}" if m["clean_tasks"] else "–",
+                    f"{m['clean_tasks_flagged']} of {m['clean_tasks']}" if m["clean_tasks"] else "–",
+                ]
+            )
+    header = [
+        "steps", "people", *(f"{k}: P / R (mistakes)" for k in KINDS), "worst cell: P / R", "clean: steps reported",
+        "clean tasks with a report",
+    ]
+    tasks = sum(
+        k["tasks"] for size in sizes for m in size["people"].values() for k in m["kinds"].values()
+    ) + sum(m["clean_tasks"] for size in sizes for m in size["people"].values())
+    return section(
+        __package__,
+        "slip_sizes.md",
+        chosen_on=f"{slip_settings.SIZES[0]}–{slip_settings.SIZES[1]}",
+        sizes=", ".join(_steps(size) for size in sizes),
+        tasks=f"{tasks:,}",
+        demonstrations=", ".join(str(n) for n in slip_settings.DEMONSTRATIONS),
+        table=markdown_table(header, rows),
+    )
+
+
+def _steps(size: Mapping[str, Any]) -> str:
+    """A slip-check size as text: ``3–5``."""
+    return f"{size['steps'][0]}–{size['steps'][1]}"
+
+
+def slip_check(sizes: Sequence[Mapping[str, Any]]) -> dict[str, tuple[float, float, float]]:
+    """The slip check per kind of people: the worst precision and the worst recall over sizes and cells (a
+    kind of mistake at one number of demonstrations, cells with mistakes put in), and the largest share of
+    clean steps reported."""
+    out: dict[str, tuple[float, float, float]] = {}
+    for people in sorted({p for size in sizes for p in size["people"]}):
+        rows = [size["people"][people] for size in sizes if people in size["people"]]
+        worst = [worst_cells(m["cells"]) for m in rows]
+        out[people] = (
+            min(p for p, _ in worst), min(r for _, r in worst), max(m["clean_flagged"] for m in rows)
+        )
+    return out
 
 
 def _scores_table(captaincook: Mapping[str, Any]) -> list[str]:
@@ -123,12 +195,15 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     if metrics["captaincook"]:
         g, s = metrics["captaincook"][DEFAULT], metrics["captaincook"][STRICT]
         rows.append(("CaptainCook held-out admitted", f"{g['admission']:.3f}", f"strict {s['admission']:.3f}"))
+    if metrics.get("slip_sizes"):
+        for people, (precision, recall, flagged) in slip_check(metrics["slip_sizes"]).items():
+            rows.append((f"slips, other sizes, {people}: P / R · clean", f"{precision:.2f} / {recall:.2f} · {flagged:.2%}", "–"))
     return rows
 
 
 def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     """Recall / precision of orderings per profile, CaptainCook held-out admission and task-graph F1, the default
-    learner vs strict."""
+    learner vs strict; the slip check against issue #23's bar (:data:`SLIP_TARGETS`)."""
     rows = []
     for profile, by_mode in metrics["synthetic"].items():
         g, s = by_mode[DEFAULT], by_mode[STRICT]
@@ -176,4 +251,25 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
                     "above DO and strict" if ours > max(peer, strict) else "not above both DO and strict",
                 )
             )
+    if metrics.get("slip_sizes"):
+        rows.append(_slip_finding(metrics["slip_sizes"]))
     return rows
+
+
+def _slip_finding(sizes: Sequence[Mapping[str, Any]]) -> Finding:
+    """The slip check against issue #23's bar (:data:`SLIP_TARGETS`) where the demonstrations are drawn
+    uniformly (the issue's case), with people with habits beside it, as ``learner-settings`` reports its
+    choice."""
+    checked = slip_check(sizes)
+    values = tuple(
+        (people, f"{precision:.2f} / {recall:.2f} · {flagged:.2%}") for people, (precision, recall, flagged) in checked.items()
+    )
+    precision, recall, flagged = checked.get("uniform", (0.0, 0.0, 1.0))
+    met = precision >= SLIP_TARGETS[0] and recall >= SLIP_TARGETS[1] and flagged <= SLIP_TARGETS[2]
+    return Finding(
+        f"slips on generated tasks of {', '.join(_steps(size) for size in sizes)} steps (settings chosen on "
+        f"{slip_settings.SIZES[0]}–{slip_settings.SIZES[1]}): worst P / R over kinds and numbers · clean steps flagged",
+        "– (not in the thesis)",
+        values,
+        "meets P ≥ 0.9, R ≥ 0.7, ≤ 0.5 % at every size (uniform)" if met else "below P ≥ 0.9, R ≥ 0.7 or ≤ 0.5 % (uniform)",
+    )

@@ -46,6 +46,8 @@ __all__ = [
     "qualified",
     "run_trial",
     "settings_name",
+    "slip_cells",
+    "slip_counts",
     "summarize",
     "trial_demonstrations",
 ]
@@ -112,14 +114,19 @@ def make_trials(trials: int, seed: int) -> tuple[Trial, ...]:
 
 
 def trial_demonstrations(trial: Trial) -> tuple[list[list[str]], set[int], Callable[[Sequence[str]], bool]]:
-    """A trial's generated demonstrations, the indices of those given a mistake, and its task's validity check."""
+    """A trial's generated demonstrations, the indices of those given a mistake, and its task's validity check.
+
+    Its ``params``: ``profile``, ``case`` (a kind of mistake or ``"none"``), ``people``, ``demonstrations``
+    (for a clean task, drawn from :data:`CLEAN_DEMONSTRATIONS` when not given) and ``sizes`` (steps per task,
+    an inclusive range; :data:`SIZES` when not given)."""
     rng = trial.rng()
     profile, case = trial.params["profile"], trial.params["case"]
-    if case == "none":
+    if case == "none" and "demonstrations" not in trial.params:
         n = int(rng.integers(CLEAN_DEMONSTRATIONS[0], CLEAN_DEMONSTRATIONS[1] + 1))
     else:
         n = int(trial.params["demonstrations"])
-    task = random_known_task(profile, int(rng.integers(SIZES[0], SIZES[1] + 1)), rng)
+    low, high = trial.params.get("sizes", SIZES)
+    task = random_known_task(profile, int(rng.integers(low, high + 1)), rng)
     draw = executions_by(task, trial.params["people"], rng)
     demos = [draw(rng) for _ in range(n)]
     truth: set[int] = set()
@@ -160,16 +167,28 @@ def run_trial(trial: Trial) -> dict[str, Any]:
     for settings, learner, seconds in learn_grid(demos, SlipSearchCache()):
         name = settings_name(settings)
         timing[name] = seconds
-        right = [d for d in learner.deviations_ if _right(d, case, demos, valid) and d.demonstration in truth]
-        found = {d.demonstration for d in right}
-        out["settings"][name] = {
-            "reported": len(learner.deviations_),
-            "right": len(right),
-            "found": len(found),
-            "wrong_tasks": int(len(learner.deviations_) > len(right)),
-        }
+        out["settings"][name] = slip_counts(learner.deviations_, case, demos, truth, valid)
     out["timing"] = timing
     return out
+
+
+def slip_counts(
+    slips: Sequence[Deviation],
+    case: str,
+    demos: Sequence[Sequence[str]],
+    truth: set[int],
+    valid: Callable[[Sequence[str]], bool],
+) -> dict[str, int]:
+    """How a learner's reported ``slips`` on ``demos`` (``case`` put into the demonstrations ``truth``) score:
+    ``reported``, ``right`` (the module docstring), ``found`` (mistakes a right slip explains) and
+    ``wrong_tasks`` (1 when any reported slip is wrong)."""
+    right = [d for d in slips if _right(d, case, demos, valid) and d.demonstration in truth]
+    return {
+        "reported": len(slips),
+        "right": len(right),
+        "found": len({d.demonstration for d in right}),
+        "wrong_tasks": int(len(slips) > len(right)),
+    }
 
 
 def _right(slip: Deviation, case: str, demos: Sequence[Sequence[str]], valid: Callable[[Sequence[str]], bool]) -> bool:
@@ -197,8 +216,8 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     table: dict[str, Any] = {}
     for name in names:
         row: dict[str, Any] = {
-            "kinds": _cells(results, name),
-            "kinds_by_people": {people: _cells([r for r in results if r["people"] == people], name) for people in PEOPLE},
+            "kinds": slip_cells(results, name),
+            "kinds_by_people": {people: slip_cells([r for r in results if r["people"] == people], name) for people in PEOPLE},
         }
         for people, prefix in (("uniform", "clean"), ("habits", "habits")):
             clean = [r for r in results if r["case"] == "none" and r["people"] == people]
@@ -218,8 +237,9 @@ def summarize(results: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     }
 
 
-def _cells(results: Sequence[Mapping[str, Any]], name: str) -> dict[str, dict[str, Any]]:
-    """Precision, recall, F1 and mistakes put in of setting ``name``, per kind and number of demonstrations."""
+def slip_cells(results: Sequence[Mapping[str, Any]], name: str) -> dict[str, dict[str, Any]]:
+    """Precision, recall, F1 and mistakes put in of setting ``name`` (the key of each result's ``settings``),
+    per kind and number of demonstrations (``"moved 20"``), pooling the counts of ``results``' tasks."""
     cells: dict[str, dict[str, Any]] = {}
     for kind, n in itertools.product(KINDS, DEMONSTRATIONS):
         cell = [r for r in results if r["case"] == kind and r["demonstrations"] == n]
