@@ -128,3 +128,18 @@ def test_the_summary_pools_each_size_and_kind_of_peoples_counts(drawn: list[Any]
     assert list(checked) == sorted(expected)
     for people, values in expected.items():
         assert checked[people] == pytest.approx(values, abs=1e-4)
+
+
+def test_the_finding_judges_the_uniform_people_by_issue_23s_bar_and_says_when_there_are_none() -> None:
+    from supportive.experiments.generalisation.report import findings
+
+    def finding(tasks: list[dict[str, Any]]) -> Any:
+        metrics = {**summarize(tasks), "captaincook": {}, "synthetic": {}}
+        return findings(metrics)[-1]
+
+    good = [_task((3, 5), "moved", "uniform", 20, (2, 2, 2), 2, 40), _task((3, 5), "moved", "habits", 20, (4, 2, 2), 2, 40)]
+    assert finding(good).verdict.startswith("meets")  # the people with habits are shown, not judged
+    assert dict(finding(good).values)["habits"].startswith("0.50 / 1.00")
+    missed = [_task((3, 5), "moved", "uniform", 20, (1, 1, 1), 2, 40)]
+    assert finding(missed).verdict.startswith("below")
+    assert finding(good[1:]).verdict == "no task drawn uniformly in this run"

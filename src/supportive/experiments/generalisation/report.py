@@ -264,12 +264,16 @@ def _slip_finding(sizes: Sequence[Mapping[str, Any]]) -> Finding:
     values = tuple(
         (people, f"{precision:.2f} / {recall:.2f} · {flagged:.2%}") for people, (precision, recall, flagged) in checked.items()
     )
-    precision, recall, flagged = checked.get("uniform", (0.0, 0.0, 1.0))
-    met = precision >= SLIP_TARGETS[0] and recall >= SLIP_TARGETS[1] and flagged <= SLIP_TARGETS[2]
+    if "uniform" not in checked:
+        verdict = "no task drawn uniformly in this run"
+    else:
+        precision, recall, flagged = checked["uniform"]
+        met = precision >= SLIP_TARGETS[0] and recall >= SLIP_TARGETS[1] and flagged <= SLIP_TARGETS[2]
+        verdict = "meets P ≥ 0.9, R ≥ 0.7, ≤ 0.5 % at every size (uniform)" if met else "below P ≥ 0.9, R ≥ 0.7 or ≤ 0.5 % (uniform)"
     return Finding(
         f"slips on generated tasks of {', '.join(_steps(size) for size in sizes)} steps (settings chosen on "
         f"{slip_settings.SIZES[0]}–{slip_settings.SIZES[1]}): worst P / R over kinds and numbers · clean steps flagged",
         "– (not in the thesis)",
         values,
-        "meets P ≥ 0.9, R ≥ 0.7, ≤ 0.5 % at every size (uniform)" if met else "below P ≥ 0.9, R ≥ 0.7 or ≤ 0.5 % (uniform)",
+        verdict,
     )
