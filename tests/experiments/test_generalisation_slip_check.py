@@ -139,6 +139,7 @@ def test_the_finding_judges_the_uniform_people_by_issue_23s_bar_and_says_when_th
 
     good = [_task((3, 5), "moved", "uniform", 20, (2, 2, 2), 2, 40), _task((3, 5), "moved", "habits", 20, (4, 2, 2), 2, 40)]
     assert finding(good).verdict.startswith("meets")  # the people with habits are shown, not judged
+    assert [people for people, _ in finding(good).values] == ["uniform", "habits"]  # the judged one first
     assert dict(finding(good).values)["habits"].startswith("0.50 / 1.00")
     missed = [_task((3, 5), "moved", "uniform", 20, (1, 1, 1), 2, 40)]
     assert finding(missed).verdict.startswith("below")
