@@ -9,6 +9,7 @@ line (:mod:`supportive.stop_line`; with it the package loads its error classes, 
 
 from __future__ import annotations
 
+import os
 import signal
 import sys
 import threading
@@ -33,7 +34,11 @@ def main() -> None:
 
 
 def _while_loading(signum: int, frame: FrameType | None) -> None:
-    """Stop at once, in the words the command uses for a stop before it wrote anything."""
+    """Stop at once, in the words the command uses for a stop before it wrote anything.
+
+    The program ends here rather than raising :class:`SystemExit`: a signal can land where Python drops an
+    exception (a weak reference's callback — the import system's module locks have them — or a finaliser),
+    and loading would go on. Nothing is written while the command loads, so nothing is left to clean up."""
     sys.stderr.write(stop_line(signum) + "\n")
     sys.stderr.flush()
-    raise SystemExit(128 + signum)
+    os._exit(128 + signum)

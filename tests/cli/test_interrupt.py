@@ -20,6 +20,7 @@ import subprocess
 import sys
 import threading
 import time
+import weakref
 from collections.abc import Callable
 from pathlib import Path
 
@@ -334,36 +335,93 @@ def test_an_error_a_library_raises_from_a_ctrl_c_is_an_interruption(
     assert err.strip().splitlines() == ["supportive: interrupted (Ctrl-C): nothing written"]
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
-def test_a_signal_that_lands_in_a_garbage_collector_callback_is_not_lost(
-    sig: int, capsys: pytest.CaptureFixture[str]
-) -> None:
-    """Python drops an exception raised in a gc callback (dask installs one): a Ctrl-C landing there once let a
-    dask run go on to the end and exit 0. It is delivered again, after the callback, and nothing is printed."""
+class Finalised:
+    """An object whose finaliser runs ``then``."""
+
+    def __init__(self, then: Callable[[], None]) -> None:
+        self.then = then
+
+    def __del__(self) -> None:
+        self.then()
+
+
+def in_a_gc_callback(then: Callable[[], None]) -> None:
+    """Run ``then`` in a garbage collector's callback (dask's scheduler installs one)."""
 
     def callback(phase: str, info: dict[str, int]) -> None:
         if phase == "start":
-            signal.raise_signal(sig)
-            sum(range(100))  # the handler runs here, inside the callback
+            then()
 
     gc.callbacks.append(callback)
     try:
-        with handling() as stopped, pytest.raises(KeyboardInterrupt):
-            gc.collect()
-            for _ in range(500):  # sent again from another thread: it arrives a moment later
-                time.sleep(0.01)
+        gc.collect()
     finally:
         gc.callbacks.remove(callback)
+
+
+def in_a_weakref_callback(then: Callable[[], None]) -> None:
+    """Run ``then`` in a weak reference's callback (the import system's module locks have them)."""
+    target = Finalised(lambda: None)
+    reference = weakref.ref(target, lambda _: then())
+    del target
+    assert reference() is None
+
+
+def in_a_finaliser(then: Callable[[], None]) -> None:
+    """Run ``then`` in an object's ``__del__``."""
+    Finalised(then)
+
+
+@pytest.mark.parametrize("where", [in_a_gc_callback, in_a_weakref_callback, in_a_finaliser])
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_that_lands_where_python_drops_exceptions_is_not_lost(
+    sig: int, where: Callable[[Callable[[], None]], None], capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Python drops an exception raised in a gc callback, a weak reference's callback or a finaliser: a Ctrl-C
+    landing in dask's gc callback once let a dask run go on to the end and exit 0, and one landing in an import
+    lock's weakref callback made a run exit 1. It is delivered again, after the callback, and nothing is
+    printed; an exception of the program's own dropped there is still reported."""
+
+    def land() -> None:
+        signal.raise_signal(sig)
+        sum(range(100))  # the handler runs here, inside the callback
+
+    with handling() as stopped, pytest.raises(KeyboardInterrupt):
+        where(land)
+        for _ in range(500):  # sent again from another thread: it arrives a moment later
+            time.sleep(0.01)
     assert stopped.signal == sig
     assert capsys.readouterr().err == ""
 
 
+def test_an_error_dropped_while_a_command_runs_goes_to_the_hook_there_before(monkeypatch: pytest.MonkeyPatch) -> None:
+    seen: list[BaseException | None] = []
+    before = seen.append  # stands for the hook there was (Python's prints "Exception ignored in")
+    monkeypatch.setattr(sys, "unraisablehook", lambda what: before(what.exc_value))
+
+    def fail() -> None:
+        raise ValueError("a finaliser's own error")
+
+    hook = sys.unraisablehook
+    with handling():
+        in_a_finaliser(fail)
+    assert [str(error) for error in seen] == ["a finaliser's own error"]
+    assert sys.unraisablehook is hook
+
+
 LOADING = """
-import importlib.abc, sys, time
+import importlib.abc, sys, time, weakref
+where = sys.argv[1]
+def hold():
+    sys.stderr.write("LOADING\\n"); sys.stderr.flush(); time.sleep(120)
 class Held(importlib.abc.MetaPathFinder):  # the command's module waits as it is found: the middle of loading
     def find_spec(self, name, path, target=None):
         if name == "supportive.cli":
-            sys.stderr.write("LOADING\\n"); sys.stderr.flush(); time.sleep(120)
+            if where == "import":
+                hold()
+            else:  # in a weak reference's callback, where Python drops an exception raised
+                class Target: pass
+                target = Target(); reference = weakref.ref(target, lambda _: hold()); del target
         return None
 sys.meta_path.insert(0, Held())
 sys.argv = ["supportive", "--help"]
@@ -372,13 +430,14 @@ main()
 """
 
 
+@pytest.mark.parametrize("where", ["import", "weakref callback"])
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
-def test_a_signal_while_the_command_loads_stops_it_with_one_line(tmp_path: Path, sig: int) -> None:
+def test_a_signal_while_the_command_loads_stops_it_with_one_line(tmp_path: Path, sig: int, where: str) -> None:
     # The command's modules take some tenths of a second to import; a Ctrl-C in that time ends it as one later
     # does, not with a traceback from the middle of an import (the `supportive` program starts in
     # supportive.launch, which takes care of the signals before it loads them).
     process = subprocess.Popen(
-        [sys.executable, "-c", LOADING], cwd=tmp_path, stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+        [sys.executable, "-c", LOADING, where], cwd=tmp_path, stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True
     )
     assert process.stderr is not None
     assert process.stderr.readline() == "LOADING\n"

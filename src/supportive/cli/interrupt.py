@@ -13,10 +13,10 @@ the line says nothing was written.
 
 from __future__ import annotations
 
-import gc
 import os
 import queue
 import signal
+import sys
 import threading
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -65,30 +65,38 @@ def handling() -> Iterator[Interruption]:
     was); the previous handlers come back afterwards. Yields the interruption, fresh. Outside the main thread
     (where Python runs signal handlers) only the interruption is made fresh.
 
-    Python runs a signal's handler wherever the main thread is, and an exception raised in a garbage
-    collector's callback (dask's scheduler installs one) or in a finaliser is reported and dropped, not passed
-    on: the signal would be lost and the command go on. A signal that arrives there is sent again, from a
-    thread of the block's own, until it arrives where the interruption can be raised."""
+    Python runs a signal's handler wherever the main thread is, and an exception raised where nothing can
+    catch it — a garbage collector's callback (dask's scheduler installs one), a weak reference's callback
+    (the import system's locks have them), a finaliser — is handed to :func:`sys.unraisablehook` and dropped,
+    not passed on: the signal would be lost and the command go on. While the block runs, an interruption
+    dropped so is not printed but sent again, from a thread of the block's own, until it arrives where it can
+    be raised; other dropped exceptions go to the hook that was there before."""
     _current.signal = signal.SIGINT
     _current.statements.clear()
     if threading.current_thread() is not threading.main_thread():
         yield _current
         return
     again = _Resender()
+    unraisable = sys.unraisablehook
 
     def stop(signum: int, frame: FrameType | None) -> None:
         _current.signal = signum
-        if _dropped_from(frame):
-            again.send(signum)
-            return
         raise KeyboardInterrupt
 
+    def dropped(what: sys.UnraisableHookArgs) -> None:
+        if isinstance(what.exc_value, KeyboardInterrupt):
+            again.send(_current.signal)
+        else:
+            unraisable(what)
+
+    sys.unraisablehook = dropped
     previous = {number: signal.signal(number, stop) for number in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield _current
     finally:
         for number, handler in previous.items():
             signal.signal(number, handler if handler is not None else signal.SIG_DFL)
+        sys.unraisablehook = unraisable
         again.close()
 
 
@@ -114,17 +122,6 @@ class _Resender:
     def _run(self) -> None:
         while (signum := self._queue.get()) is not None:
             signal.pthread_kill(self._main, signum)
-
-
-def _dropped_from(frame: FrameType | None) -> bool:
-    """Whether an exception raised in ``frame`` would be dropped: it runs in (or is called from) a garbage
-    collector's callback or a finaliser (``__del__``)."""
-    callbacks = {code for callback in gc.callbacks if (code := getattr(callback, "__code__", None)) is not None}
-    while frame is not None:
-        if frame.f_code in callbacks or frame.f_code.co_name == "__del__":
-            return True
-        frame = frame.f_back
-    return False
 
 
 @contextmanager
