@@ -28,7 +28,7 @@ import pytest
 from tests.conftest import CliRunner
 
 from supportive import examples
-from supportive.cli.interrupt import handling
+from supportive.cli.interrupt import NOTHING_WRITTEN, handling
 from supportive.generate import generate_task
 from supportive.io.taskfile import parse_task_file, write_task_file
 from supportive.service.launch import free_port
@@ -51,6 +51,12 @@ elif hold == "bag":  # the third frame of a beliefs bag waits: the middle of wri
             sys.stderr.write("WRITING\\n"); sys.stderr.flush(); time.sleep(120)
         write(self, time_, record)
     beliefs.BeliefBag.write = held
+elif hold == "building":  # building the command line waits: before any command starts
+    import typer.main
+    get_command = typer.main.get_command
+    def held(app):
+        sys.stderr.write("BUILDING\\n"); sys.stderr.flush(); time.sleep(120)
+    typer.main.get_command = held
 sys.argv = ["supportive", *sys.argv[2:]]
 from supportive.cli import main
 sys.stderr.write("READY\\n"); sys.stderr.flush()
@@ -74,7 +80,7 @@ def interrupt(
     """Run ``supportive ARGS``; once it has said ``wait_for`` on stderr, ``until()`` holds and it has printed
     ``printed`` on stdout, wait ``after`` seconds and send ``sig`` (to its whole process group with ``group``,
     as a terminal's Ctrl-C does). Its input stays open after ``stdin`` (a person who types nothing more).
-    Returns the status, stdout and the lines of stderr but ``READY`` and ``WRITING``."""
+    Returns the status, stdout and the lines of stderr but ``READY``, ``WRITING`` and ``BUILDING``."""
     process = subprocess.Popen(
         [sys.executable, "-c", WRAPPER, hold, *args],
         cwd=cwd,
@@ -117,7 +123,7 @@ def interrupt(
     err = process.stderr.read()
     process.wait(timeout=120)
     reader.join(timeout=120)
-    lines = [line for line in [*seen, *err.splitlines()] if line not in ("READY", "WRITING")]
+    lines = [line for line in [*seen, *err.splitlines()] if line not in ("READY", "WRITING", "BUILDING")]
     return process.returncode, "".join(output), lines
 
 
@@ -202,6 +208,13 @@ def test_ctrl_c_at_a_terminal_stops_a_dask_run_without_a_worker_traceback(tmp_pa
         code, _, lines = interrupt(args, tmp_path, after=after, group=True)
         assert assert_stopped(code, lines).startswith("nothing written"), lines  # (to run/, once it was running)
         assert list(tmp_path.iterdir()) == []
+
+
+def test_ctrl_c_while_the_command_line_is_built_stops_with_one_line(tmp_path: Path) -> None:
+    # typer builds the command line (some tenths of a second) after the signals are handled: a Ctrl-C there
+    # ended the program with a traceback and the signal's own status (-2), found by sending it at random times
+    code, out, lines = interrupt(["learn", "blocks-tower"], tmp_path, hold="building", wait_for="BUILDING", after=0.2)
+    assert assert_stopped(code, lines) == NOTHING_WRITTEN and out == ""
 
 
 def test_an_interrupted_run_leaves_an_earlier_run_whole(tmp_path: Path) -> None:

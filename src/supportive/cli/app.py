@@ -144,9 +144,9 @@ def _run() -> int:
     """Run the command line; its exit status (typer's 130 for a KeyboardInterrupt)."""
     from supportive.extras import missing_extra
 
-    command = typer.main.get_command(app)
-    _plain_placeholders(command)
     try:
+        command = typer.main.get_command(app)  # building the command line takes some tenths of a second
+        _plain_placeholders(command)
         try:
             code = command.main(standalone_mode=False)
         except Exception as exc:  # a library turned the interruption into an error of its own ("from" it)

@@ -84,7 +84,7 @@ def handling() -> Iterator[Interruption]:
         raise KeyboardInterrupt
 
     def dropped(what: sys.UnraisableHookArgs) -> None:
-        if isinstance(what.exc_value, KeyboardInterrupt):
+        if what.exc_type is not None and issubclass(what.exc_type, KeyboardInterrupt):
             again.send(_current.signal)
         else:
             unraisable(what)
