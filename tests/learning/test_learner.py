@@ -143,6 +143,17 @@ def test_no_demonstrations_is_an_error() -> None:
         HTNLearner().fit(["abc"])
 
 
+@pytest.mark.parametrize("mode", ["strict", "auto"])
+def test_a_step_that_is_not_an_action_id_is_an_error_naming_it(mode: Mode) -> None:
+    # (action, instance) leaves are what iter_orderings yields: a slip of hand, not a TypeError from deep inside
+    with pytest.raises(LearningError, match=r"^demonstration 2, step 1: expected an action id \(a string\), got tuple$"):
+        HTNLearner(mode=mode).fit([["a", "b"], [("b", 1), ("a", 1)]])  # type: ignore[list-item]
+    learner = HTNLearner(mode=mode).fit([["a", "b"]])
+    with pytest.raises(LearningError, match=r"^demonstration 2, step 2: expected an action id \(a string\), got NoneType$"):
+        learner.partial_fit(["b", None])  # type: ignore[list-item]
+    assert not learner.fitted  # as after any fit that raises (supportive.estimator)
+
+
 @pytest.mark.parametrize("mode", ["strict", "general"])
 def test_repeated_actions_learn_as_occurrences(mode: Mode) -> None:
     orders = [["stir", "heat", "stir", "a", "b"], ["stir", "heat", "stir", "b", "a"]] * 2

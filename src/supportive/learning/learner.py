@@ -281,8 +281,7 @@ class HTNLearner(Estimator):
         """
         if not self.fitted:
             return self.fit([demonstration])
-        if isinstance(demonstration, str):
-            raise LearningError("a demonstration is a sequence of action ids, not a string")
+        _check_action_ids(demonstration, len(self._demos))
         started = time.perf_counter()
         if self._strict is not None:
             self._strict.add(demonstration)
@@ -303,10 +302,7 @@ class HTNLearner(Estimator):
         self.task_ = task
         demos = list(source)
         for index, demo in enumerate(demos):
-            if isinstance(demo, str):
-                raise LearningError(
-                    f"demonstration {index + 1}: expected a sequence of action ids, got a string"
-                )
+            _check_action_ids(demo, index)
         return demos
 
     @property
@@ -459,6 +455,24 @@ def _actions(found: GeneralResult, indices: Iterable[int]) -> list[list[str]]:
     strict reading learns from and the selection holds out (a step deleted, not put back, would make it
     optional to the strict learner and a refused demonstration to the others)."""
     return [[action for action, _ in found.restored[i]] for i in indices]
+
+
+def _check_action_ids(demo: DemonstrationLike, index: int) -> None:
+    """A plain demonstration (not a :class:`Demonstration`, which checks itself) is a sequence of action ids:
+    not a string, and every step a string.
+
+    Raises:
+        LearningError: naming the demonstration (1-based) and the first step that is not an action id.
+    """
+    if isinstance(demo, Demonstration):
+        return
+    if isinstance(demo, str):
+        raise LearningError(f"demonstration {index + 1}: expected a sequence of action ids, got a string")
+    for k, step in enumerate(demo):
+        if not isinstance(step, str):
+            raise LearningError(
+                f"demonstration {index + 1}, step {k + 1}: expected an action id (a string), got {type(step).__name__}"
+            )
 
 
 def _check_steps(demo: DemonstrationLike, index: int) -> None:
