@@ -17,6 +17,7 @@ the alternatives a hierarchy reports are its own learner's.
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from collections.abc import Iterable, Sequence
@@ -281,7 +282,7 @@ class HTNLearner(Estimator):
         """
         if not self.fitted:
             return self.fit([demonstration])
-        _check_action_ids(demonstration, len(self._demos))
+        _check_action_ids([demonstration], len(self._demos))
         started = time.perf_counter()
         if self._strict is not None:
             self._strict.add(demonstration)
@@ -301,8 +302,7 @@ class HTNLearner(Estimator):
         self.names_ = self.names or {}
         self.task_ = task
         demos = list(source)
-        for index, demo in enumerate(demos):
-            _check_action_ids(demo, index)
+        _check_action_ids(demos)
         return demos
 
     @property
@@ -457,22 +457,26 @@ def _actions(found: GeneralResult, indices: Iterable[int]) -> list[list[str]]:
     return [[action for action, _ in found.restored[i]] for i in indices]
 
 
-def _check_action_ids(demo: DemonstrationLike, index: int) -> None:
-    """A plain demonstration (not a :class:`Demonstration`, which checks itself) is a sequence of action ids:
-    not a string, and every step a string.
+def _check_action_ids(demos: Sequence[DemonstrationLike], first: int = 0) -> None:
+    """Plain demonstrations (not :class:`Demonstration` objects, which check themselves), numbered from
+    ``first``, are sequences of action ids: none is a string, and every step is a string.
 
     Raises:
-        LearningError: naming the demonstration (1-based) and the first step that is not an action id.
+        LearningError: naming the first demonstration (1-based) and step that is not an action id.
     """
-    if isinstance(demo, Demonstration):
-        return
-    if isinstance(demo, str):
-        raise LearningError(f"demonstration {index + 1}: expected a sequence of action ids, got a string")
-    for k, step in enumerate(demo):
-        if not isinstance(step, str):
-            raise LearningError(
-                f"demonstration {index + 1}, step {k + 1}: expected an action id (a string), got {type(step).__name__}"
-            )
+    plain = [demo for demo in demos if not isinstance(demo, Demonstration)]
+    if not any(map(str.__instancecheck__, plain)) and set(map(type, itertools.chain.from_iterable(plain))) <= {str}:
+        return  # the usual case, checked at C speed
+    for index, demo in enumerate(demos, start=first):
+        if isinstance(demo, str):
+            raise LearningError(f"demonstration {index + 1}: expected a sequence of action ids, got a string")
+        if isinstance(demo, Demonstration):
+            continue
+        for k, step in enumerate(demo):
+            if not isinstance(step, str):
+                raise LearningError(
+                    f"demonstration {index + 1}, step {k + 1}: expected an action id (a string), got {type(step).__name__}"
+                )
 
 
 def _check_steps(demo: DemonstrationLike, index: int) -> None:
