@@ -53,7 +53,6 @@ elif hold == "bag":  # the third frame of a beliefs bag waits: the middle of wri
     beliefs.BeliefBag.write = held
 elif hold == "building":  # building the command line waits: before any command starts
     import typer.main
-    get_command = typer.main.get_command
     def held(app):
         sys.stderr.write("BUILDING\\n"); sys.stderr.flush(); time.sleep(120)
     typer.main.get_command = held
@@ -393,7 +392,7 @@ def test_a_signal_that_lands_where_python_drops_exceptions_is_not_lost(
     """Python drops an exception raised in a gc callback, a weak reference's callback or a finaliser: a Ctrl-C
     landing in dask's gc callback once let a dask run go on to the end and exit 0, and one landing in an import
     lock's weakref callback made a run exit 1. It is delivered again, after the callback, and nothing is
-    printed; an exception of the program's own dropped there is still reported."""
+    printed."""
 
     def land() -> None:
         signal.raise_signal(sig)
