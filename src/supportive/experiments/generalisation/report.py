@@ -261,9 +261,9 @@ def _slip_finding(sizes: Sequence[Mapping[str, Any]]) -> Finding:
     uniformly (the issue's case), with people with habits beside it, as ``learner-settings`` reports its
     choice."""
     checked = slip_check(sizes)
-    judged_first = sorted(checked, key=lambda people: people != "uniform")  # the first value is the one shown bold
+    judged_first = sorted(checked.items(), key=lambda item: item[0] != "uniform")  # the first value is shown bold
     values = tuple(
-        (people, f"{checked[people][0]:.2f} / {checked[people][1]:.2f} · {checked[people][2]:.2%}") for people in judged_first
+        (people, f"{precision:.2f} / {recall:.2f} · {flagged:.2%}") for people, (precision, recall, flagged) in judged_first
     )
     if "uniform" not in checked:
         verdict = "no task drawn uniformly in this run"
