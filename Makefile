@@ -59,9 +59,10 @@ SUITE := PYTHONDONTWRITEBYTECODE= $(BIN)/pytest -q -n auto --dist worksteal
 COMPILE := $(BIN)/python -m compileall -q src
 
 # The whole suite on every core; an idle worker takes queued tests from a busy one (docs/architecture.md).
+# It ends with its 30 slowest tests and their seconds: where the suite's minutes go, in every run's log.
 suite: $(VENV)/.dev
 	@$(COMPILE)
-	$(SUITE)
+	$(SUITE) --durations=30
 
 # The edit-test loop: the suite without the tests marked slow (by a marker, or in SLOW in conftest.py), on every core.
 test-fast: $(VENV)/.dev
