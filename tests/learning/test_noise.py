@@ -298,11 +298,6 @@ def test_transition_surprisal_matches_counting_by_hand(orders: list[list[str]]) 
     assert _transition_surprisal(_Steps.of(demos)) == pytest.approx(expected)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known limit (docs/learning.md, *More than chance*): a subtask formed by chance is broken by a free "
-    "step, and the chance test's looser reference loses the whole chain around it",
-)
 def test_a_clean_sample_whose_free_steps_look_like_a_subtask_by_chance_has_no_slips() -> None:
     # Drawn by a clean-data check outside the suite (seed 85 of 600): 22 steps, 9 uniform demonstrations of a
     # known task; steps 8, 9, 10 are free, 9 came before 10 in all nine and right before it in eight.

@@ -62,6 +62,7 @@ from typing import Literal, cast
 import numpy as np
 
 from supportive.learning.general.evidence import IntMatrix, padded, position_pair_counts, positions_of
+from supportive.learning.general.loosening import loosened_for
 from supportive.learning.general.structure import FittedStructure, StructureSettings, fit_structure
 from supportive.learning.order_likelihood import OrderLikelihood
 from supportive.learning.pair_orders import order_probabilities
@@ -438,23 +439,30 @@ class _Search:
 
     def _chance(self, slips: frozenset[Deviation], group: frozenset[Deviation], tight: OrderLikelihood) -> float:
         """The chance that as few demonstrations as do fall outside the hierarchy learned with ``slips`` taken
-        out (``tight``), were they drawn from the one learned with ``group`` (one step's slips) kept in, every order it
-        admits equally likely (:class:`OrderLikelihood`): each demonstration falls outside with chance
+        out (``tight``), were they drawn from a looser one that admits ``group`` (one step's slips), every order
+        it admits equally likely (:class:`OrderLikelihood`): each demonstration falls outside with chance
         ``1 - tight / loose``, the two hierarchies' numbers of orders of the steps it performs (0 when the
-        tighter has as many), and how many do is Poisson-binomial. The demonstrations other slips touch are left out:
-        their own slips explain them (and when that leaves none, the chance is 1)."""
+        tighter has as many), and how many do is Poisson-binomial. The looser hierarchy is the tighter (fewer
+        orders) of the one learned with ``group`` kept in and ``tight`` loosened only where the slips need it
+        (:func:`~supportive.learning.general.loosening.loosened_for`): kept in, a slip can make the learner read
+        its neighbours otherwise and admit far more than it needs. The demonstrations other slips touch are left
+        out: their own slips explain them (and when that leaves none, the chance is 1)."""
         from scipy.stats import poisson_binom
 
         rest = slips - group
+        cleaned = self._cleaned(rest)
         loose = OrderLikelihood(self._fit(rest).htn(), shared=self._orders)
+        needed = loosened_for(tight.htn, [(cleaned[slip.demonstration], slip.leaf) for slip in group])
+        near = OrderLikelihood(needed, shared=self._orders) if needed is not None else None
         others = {slip.demonstration for slip in rest}
         outside, chances = 0, []
-        for d, demo in enumerate(self._cleaned(rest)):
+        for d, demo in enumerate(cleaned):
             if d in others:
                 continue
             done = frozenset(demo)
             outside += not tight.htn.admits_leaves(demo)
-            chances.append(1.0 - min(1.0, tight.orders(done) / max(loose.orders(done), 1)))
+            reference = loose.orders(done) if near is None else min(loose.orders(done), near.orders(done))
+            chances.append(1.0 - min(1.0, tight.orders(done) / max(reference, 1)))
         if not chances:  # every demonstration has other slips: nothing tells these from chance
             return 1.0
         return float(poisson_binom.cdf(outside, chances))
