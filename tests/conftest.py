@@ -8,10 +8,14 @@ import random
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, settings
+
+if TYPE_CHECKING:
+    from supportive.experiments.captaincook.recipes import RecipeReport
 
 SEED = int(os.environ.get("SUPPORTIVE_TEST_SEED", "20261122"))
 
@@ -83,6 +87,16 @@ def _seed_everything() -> None:
 def rng() -> np.random.Generator:
     """A seeded generator for a test."""
     return np.random.default_rng(SEED)
+
+
+@pytest.fixture(scope="session")
+def captaincook_reports() -> list[RecipeReport]:
+    """The CaptainCook4D report of every recipe (the dataset beside the repository), computed once per worker
+    for the tests that check it, print it and compare it with its record."""
+    from supportive.experiments.captaincook.recipes import captaincook_report
+    from supportive.io.captaincook import load_captaincook
+
+    return captaincook_report(load_captaincook())
 
 
 CliRunner = Callable[[list[str]], tuple[int, str, str]]

@@ -243,12 +243,10 @@ def test_filling_a_template_scales_and_formats() -> None:
 
 
 @pytest.mark.slow
-def test_the_recorded_captaincook_scores_are_what_the_command_gives() -> None:
-    from supportive.experiments.captaincook.recipes import captaincook_report
-    from supportive.io.captaincook import load_captaincook
-
+def test_the_recorded_captaincook_scores_are_what_the_command_gives(request: pytest.FixtureRequest) -> None:
     _captaincook_or_skip()
-    fresh = json.loads(json.dumps([r.as_dict() for r in captaincook_report(load_captaincook())]))
+    reports = request.getfixturevalue("captaincook_reports")  # the command's own report (shared with other tests)
+    fresh = json.loads(json.dumps([r.as_dict() for r in reports]))
     assert fresh == _recorded("captaincook.json")
 
 

@@ -325,9 +325,3 @@ def test_the_rough_edges_a_new_user_met_are_gone(
     result = run(args, tmp_path, typed)
     assert "Traceback" not in result.stderr and holds(result), f"exit {result.returncode}: {result.stdout[-300:]} {result.stderr[-300:]}"
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["steps.txt", *LEFT.get(args[0], [])])
-
-
-def test_a_terminal_that_cannot_encode_unicode_still_learns(tmp_path: Path) -> None:
-    ascii_env = {**os.environ, "PYTHONIOENCODING": "ascii"}
-    result = subprocess.run([str(SCRIPT), "learn", "tea-mistakes"], cwd=tmp_path, capture_output=True, text=True, env=ascii_env, check=False)
-    assert result.returncode == 0 and "Traceback" not in result.stderr, result.stderr[-300:]

@@ -130,7 +130,7 @@ def test_hddl_needs_an_output_directory(cli: CliRunner) -> None:
     assert code == 2 and "--output DIR" in err
 
 
-def test_demo_says_what_was_and_was_not_learned(cli: CliRunner) -> None:
+def test_demo_says_what_was_and_was_not_learned_and_shows_the_caregiver(cli: CliRunner) -> None:
     code, out, _ = cli(["demo"])
     assert code == 0
     assert "Build frame" in out and "Attach seat" in out
@@ -139,6 +139,11 @@ def test_demo_says_what_was_and_was_not_learned(cli: CliRunner) -> None:
     assert "288 of 768" in out
     assert "Watching a teammate" in out and "right action at the end of" in out
     assert "Teaching with questions" in out and "“Can you place the" in out
+    caregiver = out[out.index("Keeping a novice safe") :]
+    assert "75% random moves plays 40 steps in the playroom" in caregiver
+    assert "╭─ playroom" in caregiver and "P(safe|τ)" in caregiver
+    assert "with the caregiver" in caregiver and "without" in caregiver
+    assert "damage over 40 steps:" in caregiver
 
 
 def test_console_script_has_no_traceback(tmp_path: Path) -> None:

@@ -126,16 +126,6 @@ def test_write_gif_needs_frames_and_matplotlib(tmp_path: Path, monkeypatch: pyte
     assert not (tmp_path / "run.gif").exists()
 
 
-def test_demo_shows_the_caregiver(cli: CliRunner) -> None:
-    code, out, _ = cli(["demo"])
-    assert code == 0
-    section = out[out.index("Keeping a novice safe") :]
-    assert "75% random moves plays 40 steps in the playroom" in section
-    assert "╭─ playroom" in section and "P(safe|τ)" in section
-    assert "with the caregiver" in section and "without" in section
-    assert "damage over 40 steps:" in section
-
-
 def test_reaching_a_toy_bin_is_no_collision() -> None:
     """Issue 26: a novice reaching its goal, a toy bin, was counted as a collision. Oracle: the frames."""
     result = run_episode(load_map("playroom"), 0.3, caregiver=False, seed=2, steps=60, record=True)

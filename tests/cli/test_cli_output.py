@@ -61,16 +61,6 @@ def in_process(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPat
     return run
 
 
-@pytest.fixture(scope="module")
-def captaincook_reports() -> list[RecipeReport]:
-    """The CaptainCook4D reports, computed once for the module's runs of ``captaincook`` (which differ only
-    in how they show them)."""
-    from supportive.experiments.captaincook.recipes import captaincook_report
-    from supportive.io.captaincook import load_captaincook
-
-    return captaincook_report(load_captaincook(None))
-
-
 def words(text: str) -> list[str]:
     return GUIDES.sub(" ", text).split()
 
