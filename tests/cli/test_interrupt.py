@@ -10,6 +10,7 @@ signal lands there exactly, as a kill would.
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import json
 import os
@@ -28,7 +29,8 @@ import pytest
 from tests.conftest import CliRunner
 
 from supportive import examples
-from supportive.cli.interrupt import NOTHING_WRITTEN, handling
+from supportive.cli.interrupt import ASTRAY_AFTER, NOTHING_WRITTEN, handling
+from supportive.errors import FormulaError
 from supportive.generate import generate_task
 from supportive.io.taskfile import parse_task_file, write_task_file
 from supportive.service.launch import free_port
@@ -404,6 +406,56 @@ def test_a_signal_that_lands_where_python_drops_exceptions_is_not_lost(
             time.sleep(0.01)
     assert stopped.signal == sig
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_caught_and_let_go_by_code_the_command_runs_is_sent_again(
+    sig: int, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A library's bare ``except:`` (around an import) once caught a Ctrl-C that landed in it and let it go:
+    the demo ran to its end and exited 0. The command, going on as if nothing came, is interrupted again."""
+    deadline = time.monotonic() + 60
+    with handling() as stopped, pytest.raises(KeyboardInterrupt) as raised:
+        with contextlib.suppress(BaseException):  # what a bare except that lets the signal go does
+            signal.raise_signal(sig)
+        while time.monotonic() < deadline:  # the command goes on: the signal comes again, ASTRAY_AFTER later
+            time.sleep(0.01)
+    assert stopped.signal == sig and time.monotonic() < deadline
+    assert raised.value.__context__ is None and capsys.readouterr().err == ""
+
+
+def test_an_error_after_an_interruption_let_go_is_reported_as_the_interruption(
+    cli: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A Ctrl-C that landed in a parser once left it in a wrong state: the demo stopped with exit 2 and an error
+    about a formula it reads every time. The user pressed Ctrl-C: that is what the line says."""
+    from supportive.cli import demo_tour
+
+    def let_go(out: object) -> None:
+        with contextlib.suppress(BaseException):
+            signal.raise_signal(signal.SIGINT)
+        raise FormulaError("cannot read the formula 'present(seat)'")
+
+    monkeypatch.setattr(demo_tour, "run_demo", let_go)
+    code, out, err = cli(["demo"])
+    assert code == 130 and out == ""
+    assert err.strip().splitlines() == [f"supportive: interrupted (Ctrl-C): {NOTHING_WRITTEN}"]
+
+
+@pytest.mark.parametrize("how", ["finally", "except"])
+def test_an_interruption_handled_slowly_on_its_way_up_is_not_sent_again(how: str) -> None:
+    """Cleaning up on an interruption's way up (closing a cluster: seconds) is not going on without it."""
+    with handling(), pytest.raises(KeyboardInterrupt) as raised:
+        try:
+            signal.raise_signal(signal.SIGINT)
+        except KeyboardInterrupt:
+            if how == "except":
+                time.sleep(4 * ASTRAY_AFTER)
+            raise
+        finally:
+            if how == "finally":
+                time.sleep(4 * ASTRAY_AFTER)
+    assert raised.value.__context__ is None  # the interruption raised, not a second one raised in the cleanup
 
 
 def test_an_error_dropped_while_a_command_runs_goes_to_the_hook_there_before(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -17,7 +17,7 @@ from typer.exceptions import TyperException
 
 from supportive.cli import caregiver, chat, demo, infer, learn, reproduce, serve, support, teach, workbench
 from supportive.cli.bag import bag_app
-from supportive.cli.interrupt import handling
+from supportive.cli.interrupt import causes, handling, interruption
 from supportive.cli.output import out, say
 from supportive.cli.tokens import tokens_app
 from supportive.errors import SupportiveError
@@ -124,6 +124,7 @@ def main() -> None:
     with handling() as stopped:
         code = _run()
         if code == INTERRUPTED:
+            stopped.arrived = True
             say(stopped.line(), to_stderr=True, whole=True)
             sys.exit(stopped.status)
     if code:
@@ -149,8 +150,8 @@ def _run() -> int:
         _plain_placeholders(command)
         try:
             code = command.main(standalone_mode=False)
-        except Exception as exc:  # a library turned the interruption into an error of its own ("from" it)
-            if _interrupted(exc):
+        except Exception as exc:  # a library turned the interruption into an error of its own ("from" it), or
+            if _interrupted(exc) or interruption().raised:  # caught it and went on in a wrong state (lark once)
                 return INTERRUPTED
             raise
     except KeyboardInterrupt:  # before the command started (typer turns one inside it into 130)
@@ -197,11 +198,4 @@ def _plain_value_error(message: str) -> str:
 def _interrupted(exc: BaseException) -> bool:
     """Whether ``exc`` was raised because of a Ctrl-C or SIGTERM: a ``KeyboardInterrupt`` among its causes
     and contexts."""
-    seen: set[int] = set()
-    current: BaseException | None = exc
-    while current is not None and id(current) not in seen:
-        if isinstance(current, KeyboardInterrupt):
-            return True
-        seen.add(id(current))
-        current = current.__cause__ or current.__context__
-    return False
+    return any(isinstance(cause, KeyboardInterrupt) for cause in causes(exc))

@@ -18,6 +18,7 @@ import queue
 import signal
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -26,7 +27,21 @@ from types import FrameType
 
 from supportive.stop_line import NOTHING_WRITTEN, stop_line
 
-__all__ = ["NOTHING_WRITTEN", "Interruption", "changes", "explained", "handling", "interruption", "writing"]
+__all__ = [
+    "NOTHING_WRITTEN",
+    "Interruption",
+    "causes",
+    "changes",
+    "explained",
+    "handling",
+    "interruption",
+    "writing",
+]
+
+ASTRAY_AFTER = 0.5
+"""Seconds the main thread may go on after an interruption, neither handling it nor passing it on, before the
+signal is sent again (:func:`handling`): far longer than the moment between a command's end and the line that
+says it was interrupted, far shorter than a person waits before pressing Ctrl-C again."""
 
 
 @dataclass
@@ -36,10 +51,16 @@ class Interruption:
     Attributes:
         signal: The signal that stopped it (``SIGINT`` for Ctrl-C unless SIGTERM was recorded).
         statements: What the command said it kept and did not, innermost first.
+        raised: Whether a signal was raised in the command as a ``KeyboardInterrupt`` (an error that follows
+            may be its doing: code that caught it and let it go can be left in a wrong state).
+        arrived: Whether it reached the top of the command line (set there): from then on it is not sent
+            again, however long saying so takes.
     """
 
     signal: int = signal.SIGINT
     statements: list[str] = field(default_factory=list)
+    raised: bool = False
+    arrived: bool = False
 
     @property
     def status(self) -> int:
@@ -70,9 +91,16 @@ def handling() -> Iterator[Interruption]:
     (the import system's locks have them), a finaliser — is handed to :func:`sys.unraisablehook` and dropped,
     not passed on: the signal would be lost and the command go on. While the block runs, an interruption
     dropped so is not printed but sent again, from a thread of the block's own, until it arrives where it can
-    be raised; other dropped exceptions go to the hook that was there before."""
+    be raised; other dropped exceptions go to the hook that was there before. An interruption can also be
+    caught and let go by code the command runs (a bare ``except:``; the demo once ran to its end and exited
+    0 after a Ctrl-C, and once stopped with an error about a formula it had read many times, the signal
+    having landed in the parser): when the main thread goes on for :data:`ASTRAY_AFTER` seconds neither
+    handling the interruption (an ``except`` or ``finally`` block, a ``with`` block's exit, running on its
+    way up) nor passing it on, the same thread sends the signal again; and an error raised after an
+    interruption is reported as the interruption (:attr:`Interruption.raised`), since it may be its doing."""
     _current.signal = signal.SIGINT
     _current.statements.clear()
+    _current.raised = _current.arrived = False
     if threading.current_thread() is not threading.main_thread():
         yield _current
         return
@@ -81,7 +109,10 @@ def handling() -> Iterator[Interruption]:
 
     def stop(signum: int, frame: FrameType | None) -> None:
         _current.signal = signum
-        raise KeyboardInterrupt
+        _current.raised = True
+        raised = KeyboardInterrupt()
+        again.watch(raised)
+        raise raised
 
     def dropped(what: sys.UnraisableHookArgs) -> None:
         if what.exc_type is not None and issubclass(what.exc_type, KeyboardInterrupt):
@@ -100,13 +131,19 @@ def handling() -> Iterator[Interruption]:
         again.close()
 
 
+_WATCH = 0
+"""Put in the resender's queue when an interruption is to be watched (no signal has the number 0)."""
+
+
 class _Resender:
-    """A thread that sends the main thread a signal again when asked (a queue written from a signal handler:
-    :class:`queue.SimpleQueue` is reentrant)."""
+    """A thread that sends the main thread a signal again: when asked (a queue written from a signal handler:
+    :class:`queue.SimpleQueue` is reentrant), and when the interruption it watches has gone astray (see
+    :func:`handling`)."""
 
     def __init__(self) -> None:
         self._queue: queue.SimpleQueue[int | None] = queue.SimpleQueue()
         self._main = threading.get_ident()
+        self._watched: KeyboardInterrupt | None = None
         self._thread = threading.Thread(target=self._run, name="supportive-signal-again", daemon=True)
         self._thread.start()
 
@@ -114,14 +151,53 @@ class _Resender:
         """Send ``signum`` to the main thread again, from the thread."""
         self._queue.put(signum)
 
+    def watch(self, raised: KeyboardInterrupt) -> None:
+        """Watch ``raised``, just raised in the main thread: it must be handled or passed on there."""
+        self._watched = raised
+        self._queue.put(_WATCH)
+
     def close(self) -> None:
         """Stop the thread."""
         self._queue.put(None)
         self._thread.join()
 
     def _run(self) -> None:
-        while (signum := self._queue.get()) is not None:
-            signal.pthread_kill(self._main, signum)
+        astray_since: float | None = None
+        while True:
+            try:
+                signum = self._queue.get(timeout=None if self._watched is None else ASTRAY_AFTER / 5)
+            except queue.Empty:
+                if not self._astray():
+                    astray_since = None
+                    continue
+                astray_since = time.monotonic() if astray_since is None else astray_since
+                if time.monotonic() - astray_since < ASTRAY_AFTER:
+                    continue
+                signum = _current.signal
+            if signum is None:
+                return
+            astray_since = None
+            if signum != _WATCH:
+                self._watched = None
+                signal.pthread_kill(self._main, signum)
+
+    def _astray(self) -> bool:
+        """Whether the main thread is neither handling the watched interruption nor an exception it caused,
+        and the interruption has not arrived."""
+        if _current.arrived:
+            return False
+        handled = sys._current_exceptions().get(self._main)
+        exception = handled[1] if isinstance(handled, tuple) else handled  # a 3-tuple before Python 3.12
+        return not any(cause is self._watched for cause in causes(exception))
+
+
+def causes(exception: BaseException | None) -> Iterator[BaseException]:
+    """``exception`` and the exceptions it was raised from or while handling, innermost first."""
+    seen: set[int] = set()
+    while exception is not None and id(exception) not in seen:
+        yield exception
+        seen.add(id(exception))
+        exception = exception.__cause__ or exception.__context__
 
 
 @contextmanager
