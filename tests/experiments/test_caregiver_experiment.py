@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from tests.experiments.test_docs_numbers import check_quoted
 
 from supportive.experiments import get, names, run_experiment
 from supportive.experiments.caregiver.measure import (
@@ -28,6 +29,10 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     run_experiment("caregiver", trials=3, seed=5, output=a, progress=False)
     run_experiment("caregiver", trials=3, seed=5, output=b, progress=False)
     return a, b
+
+
+def test_the_docs_quote_this_run(runs: tuple[Path, Path]) -> None:
+    assert check_quoted("supportive reproduce caregiver -n 3 --seed 5", runs[0]) >= 1
 
 
 def test_registered_with_100_episodes_and_three_readings() -> None:

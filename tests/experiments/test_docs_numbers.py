@@ -3,12 +3,14 @@
 The table between the ``small-runs`` markers lists commands (``supportive reproduce NAME -n N [--seed S]
 [--reading R]``), a quantity of the experiment's findings (the rows of ``summary.md``), a reading (empty for
 none) and the value the run gave. Each command is run again here and every value compared as text, but for
-the runs the README's own ``reproduce`` lines make (tests/test_new_user.py runs them with the experiment's
-fewest trials and seed 0): their rows are compared there, on that run (:func:`assert_quoted`).
+the runs other tests make anyway, whose rows are compared there, on that run (:func:`check_quoted`): the
+README's own ``reproduce`` lines (tests/test_new_user.py runs them with the experiment's fewest trials and
+seed 0) and the runs in :data:`CHECKED_WHERE_RUN`.
 """
 
 from __future__ import annotations
 
+import json
 import re
 import shlex
 from collections.abc import Sequence
@@ -51,6 +53,15 @@ def _run(command: str) -> RunResult:
     return run_experiment(name, trials=trials, seed=seed, readings=readings or None, progress=False)
 
 
+CHECKED_WHERE_RUN = {
+    "supportive reproduce goal-inference -n 3 --seed 4": "tests/experiments/test_goal_inference.py",
+    "supportive reproduce caregiver -n 3 --seed 5": "tests/experiments/test_caregiver_experiment.py",
+    "supportive reproduce transfer -n 2 --seed 1": "tests/experiments/test_transfer.py",
+}
+"""Commands of the table whose run the experiment's own test module makes (in process, the same trials and
+seed); that module checks their rows."""
+
+
 def readme_run(args: Sequence[str]) -> str | None:
     """The small-runs command a README ``reproduce`` line makes when run with its experiment's fewest trials
     (as tests/test_new_user.py runs it): ``supportive reproduce NAME -n N``; None when the line sets anything
@@ -69,14 +80,26 @@ def _readme_runs() -> set[str]:
     return {run for args in COMMANDS if (run := readme_run(args)) is not None}
 
 
-def assert_quoted(command: str, findings: Sequence[Finding]) -> None:
-    """Every value the docs quote for ``command`` is what ``findings`` (that run's) say."""
+def check_quoted(command: str, output: Path) -> int:
+    """Check every value the docs quote for ``command`` against the run of it written to ``output`` (its
+    metrics.json, read by the experiment's ``findings``); how many values were checked."""
+    name = shlex.split(command)[2]
+    metrics = json.loads((output / "metrics.json").read_text(encoding="utf-8"))
+    findings = experiments.get(name).findings
+    return _compare(command, findings(metrics) if findings is not None else [])
+
+
+def _compare(command: str, findings: Sequence[Finding]) -> int:
+    """Compare the docs' values for ``command`` with ``findings``; how many were compared."""
+    checked = 0
     for quoted, quantity, reading, value in _rows():
         if quoted != command:
             continue
         finding = next((f for f in findings if f.quantity == quantity), None)
         assert finding is not None, f"{command}: no finding {quantity!r}; it has {[f.quantity for f in findings]}"
         assert finding.value(reading) == value, f"{command}: {quantity} ({reading or 'no reading'})"
+        checked += 1
+    return checked
 
 
 def test_the_docs_quote_small_runs() -> None:
@@ -84,6 +107,10 @@ def test_the_docs_quote_small_runs() -> None:
     assert len(rows) >= 8 and len({r[0] for r in rows}) >= 6  # every experiment's section has one
 
 
-@pytest.mark.parametrize("command", sorted({row[0] for row in _rows()} - _readme_runs()))
+@pytest.mark.parametrize("command", sorted({row[0] for row in _rows()} - _readme_runs() - set(CHECKED_WHERE_RUN)))
 def test_a_quoted_number_matches_a_fresh_run(command: str) -> None:
-    assert_quoted(command, _run(command).findings)
+    assert _compare(command, _run(command).findings)
+
+
+def test_the_runs_checked_where_they_are_made_are_in_the_table() -> None:
+    assert set(CHECKED_WHERE_RUN) <= {row[0] for row in _rows()}

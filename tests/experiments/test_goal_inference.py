@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from tests.experiments.test_docs_numbers import check_quoted
 
 from supportive.errors import ExperimentError
 from supportive.experiments import get, names, run_experiment
@@ -85,9 +86,13 @@ def test_small_run_writes_everything(first_run: tuple[Path, Any]) -> None:
         assert row["operator_entries"] == {"flat": row["subgoals"] ** 2, "hierarchical": row["subgoals"] ** 2}
 
 
+def test_the_docs_quote_this_run(first_run: tuple[Path, Any]) -> None:
+    assert check_quoted(f"supportive reproduce goal-inference -n {TRIALS} --seed {SEED}", first_run[0]) >= 1
+
+
 def test_same_seed_gives_the_same_trials_again_in_this_process(first_run: tuple[Path, Any], tmp_path: Path) -> None:
     """A second run in the process that made the first (whatever it kept) measures its first trial alike: each
-    trial has its own seed, so a shorter run is the longer one's first trials. (Whole runs are compared across
+    trial has its own seed, so a shorter run is the longer one's first trials. (Trials are compared across
     processes by the local-cluster test.)"""
     output, _ = first_run
     run_experiment("goal-inference", trials=1, seed=SEED, output=tmp_path, progress=False)
@@ -95,14 +100,14 @@ def test_same_seed_gives_the_same_trials_again_in_this_process(first_run: tuple[
     assert again["tasks"] == json.loads((output / "metrics.json").read_text())["tasks"][:1]
 
 
-def test_local_cluster_gives_identical_metrics(first_run: tuple[Path, Any], tmp_path: Path) -> None:
+def test_local_cluster_gives_identical_trials(first_run: tuple[Path, Any], tmp_path: Path) -> None:
+    """The first two trials (the smallest tasks) on two worker processes measure what they measured in this
+    process (whole runs' files are compared across processes by tests/experiments/test_execution.py)."""
     output, _ = first_run
-    result = run_experiment(
-        "goal-inference", trials=TRIALS, seed=SEED, workers=2, output=tmp_path, progress=False
-    )
+    result = run_experiment("goal-inference", trials=2, seed=SEED, workers=2, output=tmp_path, progress=False)
     assert result.backend == "dask LocalCluster, 2 worker processes"
-    assert (tmp_path / "metrics.json").read_bytes() == (output / "metrics.json").read_bytes()
-    assert (tmp_path / "report.md").read_text() == (output / "report.md").read_text()
+    tasks = json.loads((tmp_path / "metrics.json").read_text())["tasks"]
+    assert tasks == json.loads((output / "metrics.json").read_text())["tasks"][:2]
     assert {p.name for p in result.files} >= TIMING_FILES
 
 

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from tests.experiments.test_docs_numbers import check_quoted
 
 from supportive.examples.food import transfer_names
 from supportive.experiments import get, names, run_experiment
@@ -144,6 +145,7 @@ def test_tiny_run_is_deterministic(tmp_path: Path) -> None:
     a = run_experiment("transfer", trials=2, seed=1, output=tmp_path / "a", progress=False)
     b = run_experiment("transfer", trials=2, seed=1, output=None, progress=False)
     assert a.metrics == b.metrics
+    assert check_quoted("supportive reproduce transfer -n 2 --seed 1", tmp_path / "a") >= 1  # docs/experiments.md
     metrics = json.loads((tmp_path / "a" / "metrics.json").read_text())
     assert metrics["conditions"]["none"]["episodes"]["n"] == 2
     assert metrics["readings"] == ["any-order", "fixed-order"]
