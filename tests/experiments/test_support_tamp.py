@@ -8,7 +8,7 @@ import pytest
 from supportive.envs.circuits.scenario import thesis_scenario
 from supportive.envs.tabletop.leads import PlanFollowingLead
 from supportive.envs.tabletop.team import run_team
-from supportive.experiments import get, names, run_experiment
+from supportive.experiments import RunResult, get, names, run_experiment
 from supportive.experiments.plotting import PNG_SIGNATURE
 from supportive.experiments.support_tamp.measure import (
     PAIRINGS,
@@ -24,11 +24,10 @@ from supportive.experiments.support_tamp.report import THESIS
 
 
 @pytest.fixture(scope="module")
-def runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
-    a, b = tmp_path_factory.mktemp("st-a"), tmp_path_factory.mktemp("st-b")
-    run_experiment("support-tamp", trials=1, seed=3, output=a, progress=False)
-    run_experiment("support-tamp", trials=1, seed=3, output=b, progress=False)
-    return a, b
+def runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, RunResult]:
+    """A one-table run: its folder and its result."""
+    output = tmp_path_factory.mktemp("st-a")
+    return output, run_experiment("support-tamp", trials=1, seed=3, output=output, progress=False)
 
 
 def test_registered() -> None:
@@ -36,9 +35,8 @@ def test_registered() -> None:
     assert [r.name for r in get("support-tamp").readings] == ["duration", "search-aware"]
 
 
-def test_runs_are_deterministic_and_draw_both_figures(runs: tuple[Path, Path]) -> None:
-    a, b = runs
-    assert (a / "metrics.json").read_bytes() == (b / "metrics.json").read_bytes()
+def test_a_run_draws_both_figures(runs: tuple[Path, RunResult]) -> None:
+    a, _ = runs
     for name in FILES.values():
         assert (a / name).read_bytes().startswith(PNG_SIGNATURE)
     timing = json.loads((a / "timing-summary.json").read_text())
@@ -47,7 +45,7 @@ def test_runs_are_deterministic_and_draw_both_figures(runs: tuple[Path, Path]) -
     assert cell["duration"]["support_planning_seconds"]["mean"] > 0 and "search-aware" in cell
 
 
-def test_metrics_compare_every_pairing_alone_and_supported(runs: tuple[Path, Path]) -> None:
+def test_metrics_compare_every_pairing_alone_and_supported(runs: tuple[Path, RunResult]) -> None:
     metrics = json.loads((runs[0] / "metrics.json").read_text())
     assert metrics["tables"] == 1 and metrics["readings"] == [r.name for r in READINGS]
     for scenario in SCENARIOS:
@@ -72,7 +70,7 @@ def test_metrics_compare_every_pairing_alone_and_supported(runs: tuple[Path, Pat
         assert slow_alone == pytest.approx(3 * fast_alone, rel=0.02)  # a third of the speed, all motion
 
 
-def test_report_puts_the_thesis_beside(runs: tuple[Path, Path]) -> None:
+def test_report_puts_the_thesis_beside(runs: tuple[Path, RunResult]) -> None:
     text = (runs[0] / "report.md").read_text()
     for number in ("44.0 %", "30.5 %", "9.8 %"):
         assert number in text
@@ -81,11 +79,17 @@ def test_report_puts_the_thesis_beside(runs: tuple[Path, Path]) -> None:
         assert words in text
 
 
-def test_a_trial_measures_only_the_readings_asked_for() -> None:
-    """(That a trial gives the same results whoever runs it, twice in one process, is the determinism test's.)"""
-    trial = make_trials(1, 11, readings=["duration"])[0]
-    result = run_trial(trial)
-    assert all(list(cell["supported"]) == ["duration"] for s in result["scenarios"].values() for cell in s.values())
+def test_a_trial_repeats_and_measures_only_the_readings_asked_for(runs: tuple[Path, RunResult]) -> None:
+    """The run's trial, made again in this process with one reading, measures only that one, and alike: the
+    trial repeats, whatever the run before it kept, and the other reading changes nothing. (A run in another
+    process gives the values docs/experiments.md quotes: the README's, tests/test_new_user.py.)"""
+    result = run_trial(make_trials(1, 3, readings=["duration"])[0])
+    every = runs[1].results[0]["scenarios"]
+    for scenario, cells in result["scenarios"].items():
+        for pairing, cell in cells.items():
+            assert list(cell["supported"]) == ["duration"]
+            assert cell["supported"]["duration"] == every[scenario][pairing]["supported"]["duration"]
+            assert cell["alone"] == every[scenario][pairing]["alone"]
 
 
 def test_the_staged_floor_is_the_plan_with_handling_and_hand_travel_only() -> None:
