@@ -92,7 +92,10 @@ def postgres() -> Iterator[Postgres]:
         capture_output=True,
     )
     port = free_port()
-    options = f"-h 127.0.0.1 -p {port} -k {directory} -c fsync=on -c max_connections=200"
+    # A commit is acknowledged before its WAL reaches the disk (synchronous_commit=off): the tests kill the
+    # board's server, never PostgreSQL, so what it acknowledged is there all the same (10,000 operations: 18 s
+    # to 13 s).
+    options = f"-h 127.0.0.1 -p {port} -k {directory} -c fsync=on -c synchronous_commit=off -c max_connections=200"
     subprocess.run(
         [
             *run_as,
