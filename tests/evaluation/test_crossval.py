@@ -48,28 +48,23 @@ def test_scores_add_up() -> None:
     assert rates["log2"] == pytest.approx((-0.5146 - 1.737) / 2, abs=1e-3)
 
 
-def test_the_progress_aware_predictor_beats_the_baselines_on_the_chair() -> None:
-    result = evaluate_task(examples.load("ikea-chair"))
-    scores = {name: s.as_dict() for name, s in result.prediction.items()}
-    ours = scores["progress-aware"]
-    masked, bigram = scores["masked bigram"], scores["bigram"]
-    assert None not in (ours["top1"], ours["log2"], masked["top1"], bigram["top1"], bigram["log2"])
-    assert ours["zero"] == 0.0 and ours["done_top1"] == 0.0
-    assert _number(ours["top1"]) > _number(masked["top1"]) > _number(bigram["top1"])
-    assert _number(ours["log2"]) > _number(bigram["log2"])
-    assert result.held_out == 6 and result.recall is not None and result.precision == 1.0
-
-
-def test_evaluate_cli(cli: CliRunner) -> None:
+def test_the_progress_aware_predictor_beats_the_baselines_on_the_chair(cli: CliRunner) -> None:
+    """`evaluate --json` (leave one out: the default for 6 demonstrations) and its other fold choices."""
     code, out, _ = cli(["evaluate", str(examples.path("ikea-chair")), "--json"])
     assert code == 0
     data = json.loads(out)
-    assert data["held_out"] == 6 and set(data["prediction"]) == {
+    assert data["folds"] == data["held_out"] == 6 and set(data["prediction"]) == {
         "progress-aware",
         "bigram",
         "masked bigram",
         "most frequent not done",
     }
+    ours, masked, bigram = (data["prediction"][name] for name in ("progress-aware", "masked bigram", "bigram"))
+    assert None not in (ours["top1"], ours["log2"], masked["top1"], bigram["top1"], bigram["log2"])
+    assert ours["zero"] == 0.0 and ours["done_top1"] == 0.0
+    assert _number(ours["top1"]) > _number(masked["top1"]) > _number(bigram["top1"])
+    assert _number(ours["log2"]) > _number(bigram["log2"])
+    assert data["recall"] is not None and data["precision"] == 1.0
     code, out, _ = cli(["evaluate", "ikea-chair", "--folds", "3"])
     assert code == 0 and "progress-aware" in out and "held-out demonstrations admitted" in out
     code, out, _ = cli(["evaluate", "ikea-chair", "--folds", "loo"])
