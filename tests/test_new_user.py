@@ -154,10 +154,11 @@ def check_reproduce(result: subprocess.CompletedProcess[str], folder: Path) -> N
     table: tests/experiments/test_docs_numbers.py leaves these rows to this run)."""
     from tests.experiments.test_docs_numbers import check_quoted, readme_run
 
-    assert "this run beside the thesis" in result.stdout
+    output = folder / "out" / "reproduce" / result.args[2]
+    assert (output / "metrics.json").is_file() and "this run beside the thesis" in result.stdout
     command = readme_run(result.args[1:-2])  # without the --trials this test adds
     if command is not None:
-        check_quoted(command, folder / "out" / "reproduce" / result.args[2])
+        check_quoted(command, output)
 
 
 def check_teach(result: subprocess.CompletedProcess[str], folder: Path) -> None:

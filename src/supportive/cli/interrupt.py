@@ -92,9 +92,9 @@ def handling() -> Iterator[Interruption]:
     not passed on: the signal would be lost and the command go on. While the block runs, an interruption
     dropped so is not printed but sent again, from a thread of the block's own, until it arrives where it can
     be raised; other dropped exceptions go to the hook that was there before. An interruption can also be
-    caught and let go by code the command runs (a bare ``except:``; the demo once ran to its end and exited
-    0 after a Ctrl-C, and once stopped with an error about a formula it had read many times, the signal
-    having landed in the parser): when the main thread goes on for :data:`ASTRAY_AFTER` seconds neither
+    caught and let go by code the command runs, as a bare ``except:`` does (the demo once ran to its end and
+    exited 0 after a Ctrl-C, and once stopped with an error about a formula it had read many times, the
+    signal having landed in the parser): when the main thread goes on for :data:`ASTRAY_AFTER` seconds neither
     handling the interruption (an ``except`` or ``finally`` block, a ``with`` block's exit, running on its
     way up) nor passing it on, the same thread sends the signal again; and an error raised after an
     interruption is reported as the interruption (:attr:`Interruption.raised`), since it may be its doing."""
