@@ -403,7 +403,7 @@ def test_while_disconnected_the_controls_are_off_and_a_banner_says_so(
     expect(page.get_by_test_id("live")).to_have_text("offline")
     for button in buttons.all():
         expect(button).to_be_disabled()
-    expect(page.get_by_test_id("banner")).to_contain_text("attempt 3", timeout=10_000)  # retrying, backing off
+    expect(page.get_by_test_id("banner")).to_contain_text("attempt 2", timeout=10_000)  # retrying
     snap(page, "lab-screen-disconnected")
     again = server_factory(board_server.database, board_server.port)
     expect(page.get_by_test_id("banner")).to_be_hidden(timeout=20_000)
