@@ -29,8 +29,8 @@ import pytest
 from tests.conftest import CliRunner
 
 from supportive import examples
-from supportive.cli.interrupt import ASTRAY_AFTER, NOTHING_WRITTEN, handling
-from supportive.errors import FormulaError
+from supportive.cli.interrupt import NOTHING_WRITTEN, handling
+from supportive.errors import FormulaError, OptionError
 from supportive.generate import generate_task
 from supportive.io.taskfile import parse_task_file, write_task_file
 from supportive.service.launch import free_port
@@ -415,10 +415,10 @@ def test_a_signal_caught_and_let_go_by_code_the_command_runs_is_sent_again(
     """A library's bare ``except:`` (around an import) once caught a Ctrl-C that landed in it and let it go:
     the demo ran to its end and exited 0. The command, going on as if nothing came, is interrupted again."""
     deadline = time.monotonic() + 60
-    with handling() as stopped, pytest.raises(KeyboardInterrupt) as raised:
+    with handling(astray_after=0.2) as stopped, pytest.raises(KeyboardInterrupt) as raised:
         with contextlib.suppress(BaseException):  # what a bare except that lets the signal go does
             signal.raise_signal(sig)
-        while time.monotonic() < deadline:  # the command goes on: the signal comes again, ASTRAY_AFTER later
+        while time.monotonic() < deadline:  # the command goes on: the signal comes again, 0.2 s later
             time.sleep(0.01)
     assert stopped.signal == sig and time.monotonic() < deadline
     assert raised.value.__context__ is None and capsys.readouterr().err == ""
@@ -442,19 +442,24 @@ def test_an_error_after_an_interruption_let_go_is_reported_as_the_interruption(
     assert err.strip().splitlines() == [f"supportive: interrupted (Ctrl-C): {NOTHING_WRITTEN}"]
 
 
+def test_the_wait_before_sending_again_must_be_above_zero() -> None:
+    with pytest.raises(OptionError, match="astray_after must be above 0 seconds, got 0"), handling(astray_after=0):
+        pass
+
+
 @pytest.mark.parametrize("how", ["finally", "except"])
 def test_an_interruption_handled_slowly_on_its_way_up_is_not_sent_again(how: str) -> None:
     """Cleaning up on an interruption's way up (closing a cluster: seconds) is not going on without it."""
-    with handling(), pytest.raises(KeyboardInterrupt) as raised:
+    with handling(astray_after=0.2), pytest.raises(KeyboardInterrupt) as raised:
         try:
             signal.raise_signal(signal.SIGINT)
         except KeyboardInterrupt:
             if how == "except":
-                time.sleep(4 * ASTRAY_AFTER)
+                time.sleep(1.0)  # five times astray_after
             raise
         finally:
             if how == "finally":
-                time.sleep(4 * ASTRAY_AFTER)
+                time.sleep(1.0)
     assert raised.value.__context__ is None  # the interruption raised, not a second one raised in the cleanup
 
 

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import FrameType
 
+from supportive.errors import OptionError
 from supportive.stop_line import NOTHING_WRITTEN, stop_line
 
 __all__ = [
@@ -37,11 +38,6 @@ __all__ = [
     "interruption",
     "writing",
 ]
-
-ASTRAY_AFTER = 0.5
-"""Seconds the main thread may go on after an interruption, neither handling it nor passing it on, before the
-signal is sent again (:func:`handling`): far longer than the moment between a command's end and the line that
-says it was interrupted, far shorter than a person waits before pressing Ctrl-C again."""
 
 
 @dataclass
@@ -81,7 +77,7 @@ def interruption() -> Interruption:
 
 
 @contextmanager
-def handling() -> Iterator[Interruption]:
+def handling(astray_after: float = 0.5) -> Iterator[Interruption]:
     """While the block runs, SIGTERM raises ``KeyboardInterrupt`` like Ctrl-C does (recording which signal it
     was); the previous handlers come back afterwards. Yields the interruption, fresh. Outside the main thread
     (where Python runs signal handlers) only the interruption is made fresh.
@@ -94,17 +90,29 @@ def handling() -> Iterator[Interruption]:
     be raised; other dropped exceptions go to the hook that was there before. An interruption can also be
     caught and let go by code the command runs, as a bare ``except:`` does (the demo once ran to its end and
     exited 0 after a Ctrl-C, and once stopped with an error about a formula it had read many times, the
-    signal having landed in the parser): when the main thread goes on for :data:`ASTRAY_AFTER` seconds neither
+    signal having landed in the parser): when the main thread goes on for ``astray_after`` seconds neither
     handling the interruption (an ``except`` or ``finally`` block, a ``with`` block's exit, running on its
     way up) nor passing it on, the same thread sends the signal again; and an error raised after an
-    interruption is reported as the interruption (:attr:`Interruption.raised`), since it may be its doing."""
+    interruption is reported as the interruption (:attr:`Interruption.raised`), since it may be its doing.
+
+    Args:
+        astray_after: Seconds (above 0) the main thread may go on after an interruption, neither handling it
+            nor passing it on, before the signal is sent again. Not fitted to data: the default, half a second,
+            is far longer than the moment between a command's end and the line saying it was interrupted and
+            far shorter than a person waits before pressing Ctrl-C again.
+
+    Raises:
+        OptionError: when ``astray_after`` is not above 0.
+    """
+    if not astray_after > 0:
+        raise OptionError(f"astray_after must be above 0 seconds, got {astray_after}")
     _current.signal = signal.SIGINT
     _current.statements.clear()
     _current.raised = _current.arrived = False
     if threading.current_thread() is not threading.main_thread():
         yield _current
         return
-    again = _Resender()
+    again = _Resender(astray_after)
     unraisable = sys.unraisablehook
 
     def stop(signum: int, frame: FrameType | None) -> None:
@@ -140,7 +148,8 @@ class _Resender:
     :class:`queue.SimpleQueue` is reentrant), and when the interruption it watches has gone astray (see
     :func:`handling`)."""
 
-    def __init__(self) -> None:
+    def __init__(self, astray_after: float) -> None:
+        self._astray_after = astray_after
         self._queue: queue.SimpleQueue[int | None] = queue.SimpleQueue()
         self._main = threading.get_ident()
         self._watched: KeyboardInterrupt | None = None
@@ -165,13 +174,13 @@ class _Resender:
         astray_since: float | None = None
         while True:
             try:
-                signum = self._queue.get(timeout=None if self._watched is None else ASTRAY_AFTER / 5)
+                signum = self._queue.get(timeout=None if self._watched is None else self._astray_after / 5)
             except queue.Empty:
                 if not self._astray():
                     astray_since = None
                     continue
                 astray_since = time.monotonic() if astray_since is None else astray_since
-                if time.monotonic() - astray_since < ASTRAY_AFTER:
+                if time.monotonic() - astray_since < self._astray_after:
                     continue
                 signum = _current.signal
             if signum is None:
