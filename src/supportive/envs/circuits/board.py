@@ -78,18 +78,19 @@ class BoardPose:
 
     def snap_points(self, kind: str | PieceType) -> tuple[Point, ...]:
         """The points of a piece's snaps, in the order of its terminals."""
-        return _points(self, _kind(kind), True)
+        return _points(self.col, self.row, self.rotation, _kind(kind).snaps)
 
     def footprint(self, kind: str | PieceType) -> tuple[Point, ...]:
         """Every point the piece covers, first snap to last."""
-        return _points(self, _kind(kind), False)
+        return _points(self.col, self.row, self.rotation, _kind(kind).reach)
 
 
 @lru_cache(maxsize=65536)
-def _points(pose: BoardPose, kind: PieceType, snaps_only: bool) -> tuple[Point, ...]:
-    """A piece's snap points or footprint at a pose (remembered: planners ask for the same ones often)."""
-    offsets = kind.snaps if snaps_only else range(kind.span + 1)
-    return tuple(pose.point(offset) for offset in offsets)
+def _points(col: int, row: int, rotation: int, offsets: tuple[int, ...]) -> tuple[Point, ...]:
+    """The points ``offsets`` steps along the axis of a piece whose first snap is at ``(col, row)``
+    (remembered: planners ask for the same ones often; keyed by plain numbers, which hash fast)."""
+    dc, dr = DIRECTIONS[rotation]
+    return tuple((col + offset * dc, row + offset * dr) for offset in offsets)
 
 
 @dataclass(frozen=True)

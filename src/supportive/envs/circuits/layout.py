@@ -26,8 +26,9 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
+from functools import cache
 
-from supportive.envs.circuits.board import DIRECTIONS, Board, BoardPose, Point
+from supportive.envs.circuits.board import DIRECTIONS, Board, BoardPose, Placement, Point
 from supportive.envs.circuits.goals import CircuitGoal
 from supportive.envs.circuits.pieces import PIECE_TYPES, piece_type
 from supportive.errors import CircuitError, PlanningError, SearchLimitError
@@ -63,10 +64,8 @@ class Loop:
         Raises:
             CircuitError: when a piece breaks a placement rule.
         """
-        board = Board(columns, rows)
-        for index, segment in enumerate(self.build_order):
-            board = board.place(f"p{index}", segment.kind, segment.pose)
-        return board
+        placements = (Placement(f"p{index}", s.kind, s.pose) for index, s in enumerate(self.build_order))
+        return Board(columns, rows, placements)
 
 
 def required_pieces(goal: CircuitGoal) -> Counter[str]:
@@ -91,6 +90,13 @@ class _Walk:
     used: Counter[str]
     visited: set[Point]
     reused: int = 0
+
+
+@cache
+def _pose(col: int, row: int, rotation: int, level: int) -> BoardPose:
+    """The pose, made once: the search asks for the same few hundred poses again and again (a loop's
+    pieces lie at levels 0 and 1, so a board has ``columns × rows × 8`` of them)."""
+    return BoardPose(col, row, rotation, level)
 
 
 class LayoutSearch:
@@ -155,34 +161,46 @@ class LayoutSearch:
         pieces = () if board is None else tuple(board)
         placed = {(p.pose.level, point): p for p in pieces for point in p.footprint}
         fixed = {(p.kind, p.pose) for p in pieces}
-        catalogue = list(PIECE_TYPES)
-        rank = order or (lambda kind, pose: float(catalogue.index(kind)))
+        catalogue = {kind: float(index) for index, kind in enumerate(PIECE_TYPES)}
+
+        def by_catalogue(kind: str, pose: BoardPose) -> float:
+            return catalogue[kind]
+
+        rank = order or by_catalogue
+        kinds = sorted(set(inventory) | {kind for kind, _ in fixed})
         walk = _Walk(self.start, 0, 0, [], [], Counter(), {self.start})
-        yield from self._extend(walk, dict(inventory), placed, fixed, rank)
+        yield from self._extend(walk, dict(inventory), kinds, placed, fixed, rank)
 
     def _extend(
         self,
         walk: _Walk,
         inventory: dict[str, int],
+        kinds: list[str],
         placed: Mapping[tuple[int, Point], object],
         fixed: set[tuple[str, BoardPose]],
         rank: Order,
     ) -> Iterator[Loop]:
+        """The loops that go on from ``walk``; ``kinds``: every kind the search may lay, sorted."""
         count = len(walk.pieces)
         if count >= self.max_pieces:
             return
-        missing = sum(max(0, n - walk.used[kind]) for kind, n in self.need.items())
+        used = walk.used
+        missing = sum(max(0, n - used[kind]) for kind, n in self.need.items())
         if missing > self.max_pieces - count:
             return
         level = count % 2
-        kinds = sorted({kind for kind, left in inventory.items() if left > 0} | {kind for kind, _ in fixed})
-        turns = [0, 1] if count and walk.length and walk.side < 3 else [0]
-        poses = [BoardPose(walk.point[0], walk.point[1], walk.side + turn, level) for turn in turns]
-        candidates = sorted((rank(kind, poses[turn]), turn, kind) for turn in turns for kind in kinds)
+        turns = (0, 1) if count and walk.length and walk.side < 3 else (0,)
+        poses = [_pose(walk.point[0], walk.point[1], walk.side + turn, level) for turn in turns]
+        candidates = sorted(
+            (rank(kind, poses[turn]), turn, kind)
+            for turn in turns
+            for kind in kinds
+            if inventory.get(kind, 0) > 0 or (kind, poses[turn]) in fixed
+        )
         for _, turn, kind in candidates:
             side = walk.side + turn
             pose = poses[turn]
-            is_fixed = (kind, pose) in fixed
+            is_fixed = bool(fixed) and (kind, pose) in fixed
             if inventory.get(kind, 0) <= 0 and not is_fixed:
                 continue
             step = self._step(walk, turn, kind, pose, placed, is_fixed)
@@ -191,25 +209,27 @@ class LayoutSearch:
             self.nodes += 1
             if self.nodes > self.node_limit:
                 raise SearchLimitError(f"the circuit search tried {self.node_limit:,} pieces, its limit")
-            end, length, sides, closed, footprint = step
+            end, length, closed, footprint = step
             if not is_fixed:
                 inventory[kind] -= 1
             walk.pieces.append(Segment(kind, pose))
-            walk.used[kind] += 1
+            used[kind] += 1
             new_points = [pt for pt in footprint[1:] if pt != self.start or not closed]
             walk.visited.update(new_points)
             saved = (walk.point, walk.side, walk.length, walk.sides, walk.reused)
-            walk.point, walk.side, walk.length, walk.sides = end, side, length, sides
+            walk.point, walk.side, walk.length = end, side, length
+            if turn:
+                walk.sides = [*walk.sides, saved[2]]
             walk.reused += is_fixed
             if closed:
                 loop = self._finish(walk, fixed)
                 if loop is not None:
                     yield loop
             else:
-                yield from self._extend(walk, inventory, placed, fixed, rank)
+                yield from self._extend(walk, inventory, kinds, placed, fixed, rank)
             walk.point, walk.side, walk.length, walk.sides, walk.reused = saved
             walk.visited.difference_update(new_points)
-            walk.used[kind] -= 1
+            used[kind] -= 1
             walk.pieces.pop()
             if not is_fixed:
                 inventory[kind] += 1
@@ -222,29 +242,30 @@ class LayoutSearch:
         pose: BoardPose,
         placed: Mapping[tuple[int, Point], object],
         is_fixed: bool,
-    ) -> tuple[Point, int, list[int], bool, tuple[Point, ...]] | None:
-        """Where laying ``kind`` at ``pose`` ends the walk (and the points the piece covers), or None when it
-        cannot go there."""
-        span = piece_type(kind).span
+    ) -> tuple[Point, int, bool, tuple[Point, ...]] | None:
+        """Where laying ``kind`` at ``pose`` ends the walk, the length of the side it is on, whether it closes
+        the loop, and the points the piece covers; None when it cannot go there. (The side before the
+        turn, ``walk.length``, is not yet in ``walk.sides``; the sides this compares with are.)"""
+        span = PIECE_TYPES[kind].span
         side = pose.rotation
-        sides = [*walk.sides, walk.length] if turn else list(walk.sides)
         length = span if turn else walk.length + span
-        if side >= 2 and length > sides[side - 2]:
+        if side >= 2 and length > walk.sides[side - 2]:
             return None  # longer than the opposite side
         dc, dr = DIRECTIONS[side]
         end = (walk.point[0] + span * dc, walk.point[1] + span * dr)
         if not (0 <= end[0] < self.columns and 0 <= end[1] < self.rows):
             return None
-        closed = side == 3 and length == sides[1]
+        closed = side == 3 and length == walk.sides[1]
         if closed and (end != self.start or (len(walk.pieces) + 1) % 2):
             return None
         footprint = pose.footprint(kind)
+        visited = walk.visited
         for point in footprint[1:]:
-            if point in walk.visited and not (closed and point == self.start and point == footprint[-1]):
+            if point in visited and not (closed and point == self.start and point == footprint[-1]):
                 return None
-        if not is_fixed and any((pose.level, point) in placed for point in footprint):
+        if placed and not is_fixed and any((pose.level, point) in placed for point in footprint):
             return None
-        return end, length, sides, closed, footprint
+        return end, length, closed, footprint
 
     def _finish(self, walk: _Walk, fixed: set[tuple[str, BoardPose]]) -> Loop | None:
         """The walk as a loop, if it holds every placed piece, has what the goal needs and meets it."""

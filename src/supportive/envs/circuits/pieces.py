@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from types import MappingProxyType
 from typing import Literal
 
@@ -117,6 +118,11 @@ class PieceType:
     def span(self) -> int:
         """Grid steps from the first snap to the last."""
         return self.snaps[-1]
+
+    @cached_property
+    def reach(self) -> tuple[int, ...]:
+        """The offsets of every grid point the piece covers, first snap to last (``0 … span``)."""
+        return tuple(range(self.span + 1))
 
     @property
     def polar(self) -> bool:
