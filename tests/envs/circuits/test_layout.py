@@ -5,12 +5,12 @@ from __future__ import annotations
 from collections import Counter
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.envs.circuits.board import Board, BoardPose
 from supportive.envs.circuits.goals import CircuitGoal
-from supportive.envs.circuits.layout import LayoutSearch, required_pieces
+from supportive.envs.circuits.layout import LayoutSearch, Loop, Segment, required_pieces
 from supportive.envs.circuits.pieces import PIECE_TYPES
 from supportive.errors import CircuitError, PlanningError, SearchLimitError
 
@@ -91,3 +91,67 @@ def test_search_limits_and_bad_input() -> None:
         next(LayoutSearch(6, 5, GOAL).loops({"capacitor": 1}))
     with pytest.raises(SearchLimitError, match="the circuit search tried 50 pieces, its limit"):
         list(LayoutSearch(7, 6, GOAL, max_pieces=8, node_limit=50).loops({**BASE, "wire2": 3, "wire3": 3}))
+
+
+def _brute_force_loops(
+    columns: int, rows: int, goal: CircuitGoal, inventory: dict[str, int], max_pieces: int, fixed: frozenset[Segment]
+) -> set[tuple[Segment, ...]]:
+    """Every loop from (0, 0), found without the search: each rectangle that fits the board, each way of
+    filling its four sides with pieces end to end (any kinds at hand, the fixed pieces besides), levels
+    alternating, kept when it is a valid board holding every fixed piece that meets the goal."""
+    spans = {kind: PIECE_TYPES[kind].span for kind in set(inventory) | {s.kind for s in fixed}}
+    found: set[tuple[Segment, ...]] = set()
+
+    def fill(sides: list[int], side: int, point: tuple[int, int], left: int, laid: list[Segment], stock: Counter[str]) -> None:
+        if side == 4:
+            if len(laid) % 2 == 0 and fixed <= set(laid):
+                loop = Loop(tuple(laid))
+                try:
+                    board = loop.board(columns, rows)
+                except CircuitError:
+                    return
+                if goal.satisfied(board):
+                    found.add(loop.pieces)
+            return
+        if left == 0:
+            fill(sides, side + 1, point, sides[side + 1] if side < 3 else 0, laid, stock)
+            return
+        if len(laid) == max_pieces:
+            return
+        for kind, span in sorted(spans.items()):
+            if span > left:
+                continue
+            pose = BoardPose(point[0], point[1], side, len(laid) % 2)
+            segment = Segment(kind, pose)
+            if stock[kind] <= 0 and segment not in fixed:
+                continue
+            dc, dr = ((1, 0), (0, 1), (-1, 0), (0, -1))[side]
+            taken = Counter() if segment in fixed else Counter({kind: 1})
+            fill(sides, side, (point[0] + span * dc, point[1] + span * dr), left - span, [*laid, segment], stock - taken)
+
+    for width in range(1, columns):
+        for height in range(1, rows):
+            fill([width, height, width, height], 0, (0, 0), width, [], Counter(inventory))
+    return {loop for loop in found if Counter(s.kind for s in loop) >= required_pieces(goal)}
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    extra=st.dictionaries(st.sampled_from(["wire2", "wire3", "wire4", "lamp"]), st.integers(1, 2), max_size=3),
+    columns=st.integers(3, 5),
+    rows=st.integers(3, 4),
+    max_pieces=st.sampled_from([4, 6]),
+    placed=st.booleans(),
+)
+def test_the_search_finds_exactly_the_loops_a_brute_force_enumeration_finds(
+    extra: dict[str, int], columns: int, rows: int, max_pieces: int, placed: bool
+) -> None:
+    inventory = dict(Counter(BASE) + Counter(extra))
+    board = Board(columns, rows).place("w", "battery", BoardPose(0, 0, 0, 0)) if placed else None
+    fixed = frozenset({Segment("battery", BoardPose(0, 0, 0, 0))}) if placed else frozenset()
+    if placed:
+        inventory["battery"] -= 1
+    search = LayoutSearch(columns, rows, GOAL, max_pieces=max_pieces)
+    loops = [loop.pieces for loop in search.loops(inventory, board)]
+    assert len(loops) == len(set(loops))  # no loop twice
+    assert set(loops) == _brute_force_loops(columns, rows, GOAL, inventory, max_pieces, fixed)
