@@ -66,7 +66,7 @@ class TabletopState(Generic[GoalT]):
 
     def held_by(self, status: Status) -> int | None:
         """The object held with ``status`` (HELD_LEAD or HELD_SUPPORT), if any."""
-        for item, s in enumerate(self.status):
-            if s is status:
-                return item
-        return None
+        try:
+            return self.status.index(status)
+        except ValueError:
+            return None

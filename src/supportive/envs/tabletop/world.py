@@ -35,6 +35,9 @@ GoalT = TypeVar("GoalT")
 TargetT = TypeVar("TargetT", bound=Hashable)
 
 _GOAL_AREA = "goal-area"
+_Binding = tuple[int | None, float, float, int]
+"""The object an Install binds (None: none), the lead's seconds of travel to it and on to the target, and the
+quarter turns it needs."""
 _POSITION_STEP = 1.0  # sampled positions are whole centimetres: a discretised task area
 
 
@@ -91,7 +94,7 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
         self._by_kind: dict[str, tuple[int, ...]] = {}
         for i, item in enumerate(self.items):
             self._by_kind[item.kind] = (*self._by_kind.get(item.kind, ()), i)
-        self._bound: tuple[object, object, int | None] = (None, None, None)
+        self._bound: tuple[object, object, _Binding] = (None, None, (None, 0.0, 0.0, 0))
 
     # -- what a concrete world says ------------------------------------------------------------------------
 
@@ -230,32 +233,35 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
     def bind(self, state: TabletopState[GoalT], op: Install[TargetT]) -> int | None:
         """The object the lead would use for ``op``: of its kind, on the table within reach, soonest at the
         target (travel and turns); ties go to the first object."""
-        last_state, last_op, last_item = self._bound
-        if last_state is state and last_op == op:
-            return last_item
-        arm = self.lead_arm
-        target = self.target_point(op.target)
-        rotation = self.target_rotation(op.target)
+        return self._binding(state, op)[0]
+
+    def _binding(self, state: TabletopState[GoalT], op: Install[TargetT]) -> _Binding:
+        """:meth:`bind`'s object, with the lead's seconds of travel to it and from it to the target and the
+        quarter turns it needs (what :meth:`duration` adds up); remembered for the last state and operator,
+        which the planner's estimates ask about three times in a row (preconditions, duration, effects)."""
+        last_state, last_op, last = self._bound
+        if last_state is state and (last_op is op or last_op == op):
+            return last
+        best: _Binding = (None, 0.0, 0.0, 0)
         kind = self.types.get(op.kind)
-        best: int | None = None
-        best_cost = float("inf")
         if kind is not None:
+            arm = self.lead_arm
+            target = self.target_point(op.target)
+            rotation = self.target_rotation(op.target)
+            reach = self.layout.reach(True)
             hand = state.hands[0]
+            poses, status = state.poses, state.status
+            best_cost = float("inf")
             for item in self._by_kind.get(op.kind, ()):
-                pose = state.poses[item]
-                if (
-                    state.status[item] is not Status.TABLE
-                    or pose is None
-                    or not self.reachable(state, LEAD, item)
-                ):
-                    continue
-                cost = (
-                    arm.travel(hand, pose.point)
-                    + arm.handling(turns=quarter_turns(pose.rotation, rotation, kind.symmetric))
-                    + arm.travel(pose.point, target)
-                )
+                pose = poses[item]
+                if status[item] is not Status.TABLE or pose is None or not reach.contains(pose.point):
+                    continue  # (what reachable() says of an object on the table)
+                there = arm.travel(hand, pose.point)
+                turns = quarter_turns(pose.rotation, rotation, kind.symmetric)
+                back = arm.travel(pose.point, target)
+                cost = there + arm.handling(turns=turns) + back
                 if cost < best_cost:
-                    best, best_cost = item, cost
+                    best, best_cost = (item, there, back, turns), cost
         self._bound = (state, op, best)
         return best
 
@@ -320,18 +326,14 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
         arm = self.arm(agent)
         hand = state.hands[0 if agent == LEAD else 1]
         if isinstance(operator, Install):
-            item = self.bind(state, operator)
-            pose = state.poses[item] if item is not None else None
-            if item is None or pose is None:
+            item, there, back, turns = self._binding(state, operator)
+            if item is None:
                 return float("inf")
-            symmetric = self.types[operator.kind].symmetric
-            turns = quarter_turns(pose.rotation, self.target_rotation(operator.target), symmetric)
-            target = self.target_point(operator.target)
-            return (
-                arm.travel(hand, pose.point)
-                + arm.travel(pose.point, target)
-                + arm.handling(grasps=1, turns=turns, releases=1)
-            )
+            if agent != LEAD:  # the lead binds the object; another arm's travel is its own
+                pose = state.poses[item]
+                assert pose is not None  # bound: it lies on the table
+                there, back = arm.travel(hand, pose.point), arm.travel(pose.point, self.target_point(operator.target))
+            return there + back + arm.handling(grasps=1, turns=turns, releases=1)
         if isinstance(operator, Pick):
             return arm.travel(hand, self._point_of(state, operator.item)) + arm.handling(grasps=1)
         if isinstance(operator, Put):
