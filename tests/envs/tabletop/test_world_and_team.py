@@ -3,6 +3,7 @@ agreeing with Algorithm 5 when the lead works alone."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -12,6 +13,7 @@ from hypothesis import strategies as st
 
 from supportive.envs.circuits.scenario import thesis_scenario
 from supportive.envs.tabletop import Install, Pick, PlanFollowingLead, Put, Status, TablePose, run_team
+from supportive.envs.tabletop.items import quarter_turns
 from supportive.errors import PlanningError
 from supportive.planning import Hypothetical, SupportPlanner, SupportProblem, estimate_duration
 from supportive.planning.prototypes import Prototype, matching
@@ -31,6 +33,33 @@ def test_install_binds_the_object_reached_soonest(thesis_table: tuple[Any, Any])
         assert near is not None
         closer = state.changed(other, near, Status.TABLE)
         assert world.bind(closer, op) == other
+
+
+def test_an_installs_duration_is_the_agents_travel_to_the_bound_object_and_on_to_its_target(
+    thesis_table: tuple[Any, Any],
+) -> None:
+    scenario, plans = thesis_table
+    world = scenario.world
+    state = world.initial_state
+    op = plans[0][0]
+    target = world.target_point(op.target)
+    symmetric = world.types[op.kind].symmetric
+
+    def expected(state: Any, agent: str) -> float:  # from the definitions, for the object the lead binds
+        pose = state.poses[world.bind(state, op)]
+        arm, hand = (world.lead_arm, state.hands[0]) if agent == "lead" else (world.support_arm, state.hands[1])
+        speed = arm.speed * arm.speed_factor
+        turns = quarter_turns(pose.rotation, op.target.rotation, symmetric)
+        handling = (arm.grasp + turns * arm.turn + arm.release) / arm.speed_factor
+        return float(math.dist(hand, pose.point) / speed + math.dist(pose.point, target) / speed + handling)
+
+    for agent in ("lead", "support"):
+        assert world.duration(state, op, agent) == pytest.approx(expected(state, agent), rel=1e-12)
+    item = world.bind(state, op)
+    pose = state.poses[item]
+    turned = state.changed(item, TablePose(pose.x, pose.y, (pose.rotation + 1) % 4), Status.TABLE)
+    assert world.duration(turned, op, "lead") == pytest.approx(expected(turned, "lead"), rel=1e-12)
+    assert world.duration(turned, op, "lead") != world.duration(state, op, "lead")  # nothing kept from another state
 
 
 def test_a_plan_applied_step_by_step_reaches_the_goal(thesis_table: tuple[Any, Any]) -> None:
