@@ -80,6 +80,7 @@ lint: $(VENV)/.dev
 bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_learn.py
 	$(BIN)/python benchmarks/bench_admission.py
+	$(BIN)/python benchmarks/bench_detector_demos.py
 	$(BIN)/python benchmarks/bench_habits.py
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_backoff.py

@@ -72,6 +72,26 @@ def admission_benchmark() -> str:
     )
 
 
+def detector_demos_benchmark() -> str:
+    """docs/inference.md: the mistake detector's false alarms and recall by the demonstrations it learned from."""
+    result = read_json(BENCHMARKS / "detector-demos.json")
+    sizes = list(result["false_alarms_per_step"])
+
+    def row(label: str, values: dict[str, float]) -> str:
+        return f"| {label} | " + " | ".join(f"{values[n]:.3f}" for n in sizes) + " |"
+
+    rows = [
+        "| demonstrations | " + " | ".join(sizes) + " |",
+        "|---|" + "---:|" * len(sizes),
+        row(f"**steps of valid executions flagged**, {result['tasks']} tasks", result["false_alarms_per_step"]),
+        row("tasks with a flagged valid step", result["tasks_with_a_false_alarm"]),
+        *(row(f"recall: {kind}", values) for kind, values in result["recall"].items()),
+    ]
+    rates = result["false_alarms_per_step"]
+    said = ", ".join(f"1 in {1 / rates[n]:,.0f} from {n}" for n in sizes if rates[n] > 0)
+    return "\n".join(rows) + f"\n\nSteps of a correct execution flagged: {said} demonstrations.\n"
+
+
 def habits_benchmark() -> str:
     """docs/learning.md: fits that set a step aside, and the share of steps set aside, in clean
     demonstrations by people with habits, per learner, habit strength and number of demonstrations."""
@@ -139,6 +159,7 @@ BLOCKS: dict[str, Block] = {
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
     "bench-admission": Block("benchmarks/results/admission.json (make bench)", admission_benchmark),
     "bench-habits": Block("benchmarks/results/habits.json (make bench)", habits_benchmark),
+    "bench-detector-demos": Block("benchmarks/results/detector-demos.json (make bench)", detector_demos_benchmark),
     "bench-backoff": Block("benchmarks/results/backoff.json (make bench)", backoff_benchmark),
     "bench-service": from_benchmark(
         "service",
