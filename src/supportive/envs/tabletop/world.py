@@ -258,10 +258,10 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
                     continue  # (what reachable() says of an object on the table)
                 there = arm.travel(hand, pose.point)
                 turns = quarter_turns(pose.rotation, rotation, kind.symmetric)
-                back = arm.travel(pose.point, target)
-                cost = there + arm.handling(turns=turns) + back
+                onward = arm.travel(pose.point, target)
+                cost = there + arm.handling(turns=turns) + onward
                 if cost < best_cost:
-                    best, best_cost = (item, there, back, turns), cost
+                    best, best_cost = (item, there, onward, turns), cost
         self._bound = (state, op, best)
         return best
 
@@ -326,14 +326,14 @@ class TabletopWorld(ABC, Generic[GoalT, TargetT]):
         arm = self.arm(agent)
         hand = state.hands[0 if agent == LEAD else 1]
         if isinstance(operator, Install):
-            item, there, back, turns = self._binding(state, operator)
+            item, there, onward, turns = self._binding(state, operator)
             if item is None:
                 return float("inf")
             if agent != LEAD:  # the lead binds the object; another arm's travel is its own
                 pose = state.poses[item]
                 assert pose is not None  # bound: it lies on the table
-                there, back = arm.travel(hand, pose.point), arm.travel(pose.point, self.target_point(operator.target))
-            return there + back + arm.handling(grasps=1, turns=turns, releases=1)
+                there, onward = arm.travel(hand, pose.point), arm.travel(pose.point, self.target_point(operator.target))
+            return there + onward + arm.handling(grasps=1, turns=turns, releases=1)
         if isinstance(operator, Pick):
             return arm.travel(hand, self._point_of(state, operator.item)) + arm.handling(grasps=1)
         if isinstance(operator, Put):
