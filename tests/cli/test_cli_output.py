@@ -173,6 +173,14 @@ def test_version_and_license() -> None:
     assert (REPO / "LICENSE").read_text().startswith("MIT License")
 
 
+def test_python_dash_m_supportive_is_the_program() -> None:
+    """``python -m supportive`` (what one tries without the console script on the PATH) runs the program."""
+    result = subprocess.run([sys.executable, "-m", "supportive", "--version"], capture_output=True, text=True, check=False)
+    assert (result.returncode, result.stdout.strip()) == (0, f"supportive {version('supportive')}"), result.stderr
+    result = subprocess.run([sys.executable, "-m", "supportive", "learn", "no-such-task"], capture_output=True, text=True, check=False)
+    assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1, result.stderr
+
+
 def test_docs_cite_only_files_the_repository_has() -> None:
     """Issue 16.8: the docs cited a DESIGN.md that is not in the repository."""
     for doc in [REPO / "README.md", *(REPO / "docs").glob("*.md")]:
