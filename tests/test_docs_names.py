@@ -1,6 +1,6 @@
 """Every dotted ``supportive.…`` name the README and docs/ quote in backticks is one a user can import or reach:
 docs/inference.md once named ``supportive.inference.MistakeDetector`` and ``supportive.evaluation.evaluate_mistakes``,
-which only their modules had."""
+which only their modules had. And docs/architecture.md's table of what each package exports is its ``__all__``."""
 
 from __future__ import annotations
 
@@ -56,3 +56,23 @@ def test_a_quoted_name_resolves(page: str, name: str) -> None:
 def test_a_name_that_is_not_there_does_not_resolve() -> None:
     with pytest.raises(AttributeError):
         resolve("supportive.inference.NoSuchDetector")
+
+
+ARCHITECTURE = ROOT / "docs" / "architecture.md"
+LISTED = re.compile(r"^\| `(supportive[\w.]*)` \| ((?:`\w+`(?:, )?)+) \|$", re.M)
+
+
+def listed_exports() -> list[tuple[str, frozenset[str]]]:
+    """docs/architecture.md's public-API table: each package whose row is a plain list of names, and the names."""
+    text = ARCHITECTURE.read_text(encoding="utf-8")
+    return [(m.group(1), frozenset(re.findall(r"`(\w+)`", m.group(2)))) for m in LISTED.finditer(text)]
+
+
+def test_the_api_table_lists_packages() -> None:
+    assert len(listed_exports()) > 15
+
+
+@pytest.mark.parametrize(("package", "names"), listed_exports(), ids=[p for p, _ in listed_exports()])
+def test_the_api_table_lists_what_each_package_exports(package: str, names: frozenset[str]) -> None:
+    """docs/architecture.md once left out what later issues exported (the detector, the known-task generators)."""
+    assert names == frozenset(importlib.import_module(package).__all__)
