@@ -27,12 +27,6 @@ from supportive.generate import inject, random_known_task
 from supportive.generate.mistakes import MistakeKind
 from supportive.inference import MistakeDetector
 
-SIZES = (2, 3, 4, 6, 8, 12, 16, 20, 32)
-"""The numbers of demonstrations measured (20: what the threshold was chosen with)."""
-TASKS_PER_PROFILE = 20
-"""Random tasks per profile: a sample size (the curve's precision), not a setting of the detector."""
-EXECUTIONS = 6
-"""Fresh executions judged per task, clean and with each kind of mistake."""
 KINDS: tuple[MistakeKind, ...] = ("early", "dropped", "repeated")
 """The mistakes put in, one per execution."""
 
@@ -49,23 +43,33 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--output", type=Path, default=Path(__file__).parent / "results" / "detector-demos.json")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument(
+        "--sizes", type=int, nargs="+", default=[2, 3, 4, 6, 8, 12, 16, 20, 32],
+        help="the numbers of demonstrations measured (20: what the threshold was chosen with)",
+    )
+    parser.add_argument(
+        "--tasks-per-profile", type=int, default=20,
+        help="random tasks per profile: a sample size (the curve's precision), not a setting of the detector",
+    )
+    parser.add_argument("--executions", type=int, default=6, help="fresh executions judged per task, clean and with each mistake")
     args = parser.parse_args()
+    sizes: list[int] = args.sizes
     started = time.perf_counter()
     rng = np.random.default_rng(args.seed)
-    steps = dict.fromkeys(SIZES, 0)
-    alarms = dict.fromkeys(SIZES, 0)
-    tasks_alarmed = dict.fromkeys(SIZES, 0)
-    found = {n: dict.fromkeys(KINDS, 0) for n in SIZES}
-    put_in = {n: dict.fromkeys(KINDS, 0) for n in SIZES}
+    steps = dict.fromkeys(sizes, 0)
+    alarms = dict.fromkeys(sizes, 0)
+    tasks_alarmed = dict.fromkeys(sizes, 0)
+    found = {n: dict.fromkeys(KINDS, 0) for n in sizes}
+    put_in = {n: dict.fromkeys(KINDS, 0) for n in sizes}
     tasks = 0
     for profile in ("ikea", "uniform", "partial order"):
-        for _ in range(TASKS_PER_PROFILE):
+        for _ in range(args.tasks_per_profile):
             task = random_known_task(profile, int(rng.integers(6, 13)), rng)
-            demos = [task.sample(rng) for _ in range(max(SIZES))]
-            clean = [task.sample(rng) for _ in range(EXECUTIONS)]
+            demos = [task.sample(rng) for _ in range(max(sizes))]
+            clean = [task.sample(rng) for _ in range(args.executions)]
             slipped = {kind: inject(clean, kind, 1.0, task.admits, rng) for kind in KINDS}
             tasks += 1
-            for n in SIZES:
+            for n in sizes:
                 detector = MistakeDetector(detection_model(demos[:n]))
                 raised = [flags(detector, execution) for execution in clean]
                 steps[n] += sum(len(execution) + 1 for execution in clean)
@@ -81,18 +85,18 @@ def main() -> None:
         "machine": {"python": platform.python_version(), "processor": platform.machine()},
         "seed": args.seed,
         "tasks": tasks,
-        "executions_per_task": EXECUTIONS,
-        "false_alarms_per_step": {str(n): round(alarms[n] / steps[n], 4) for n in SIZES},
-        "tasks_with_a_false_alarm": {str(n): round(tasks_alarmed[n] / tasks, 4) for n in SIZES},
-        "recall": {kind: {str(n): round(found[n][kind] / put_in[n][kind], 4) for n in SIZES} for kind in KINDS},
+        "executions_per_task": args.executions,
+        "false_alarms_per_step": {str(n): round(alarms[n] / steps[n], 4) for n in sizes},
+        "tasks_with_a_false_alarm": {str(n): round(tasks_alarmed[n] / tasks, 4) for n in sizes},
+        "recall": {kind: {str(n): round(found[n][kind] / put_in[n][kind], 4) for n in sizes} for kind in KINDS},
         "seconds": round(time.perf_counter() - started, 1),
     }
     args.output.parent.mkdir(parents=True, exist_ok=True)
     args.output.write_text(json.dumps(result, indent=2) + "\n")
-    print("n:            " + " ".join(f"{n:6d}" for n in SIZES))
-    print("false alarms: " + " ".join(f"{result['false_alarms_per_step'][str(n)]:6.3f}" for n in SIZES))
+    print("n:            " + " ".join(f"{n:6d}" for n in sizes))
+    print("false alarms: " + " ".join(f"{result['false_alarms_per_step'][str(n)]:6.3f}" for n in sizes))
     for kind in KINDS:
-        print(f"{kind + ':':14s}" + " ".join(f"{result['recall'][kind][str(n)]:6.3f}" for n in SIZES))
+        print(f"{kind + ':':14s}" + " ".join(f"{result['recall'][kind][str(n)]:6.3f}" for n in sizes))
 
 
 if __name__ == "__main__":
