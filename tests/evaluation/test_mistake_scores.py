@@ -16,6 +16,7 @@ from supportive.evaluation.mistakes import (
     MistakeEvaluation,
     _true_precondition,
     evaluate_mistakes,
+    kind_rows,
 )
 from supportive.tasks.htn import Leaf
 from supportive.tasks.spec import Demonstration, Step, TaskSpec
@@ -177,3 +178,16 @@ def test_learning_from_the_correct_ones_needs_two_of_them() -> None:
         evaluate_mistakes(spec.with_demonstrations(last[1:]), learn_from="correct")
     with pytest.raises(TaskFileError, match="learn from all or correct"):
         evaluate_mistakes(spec, learn_from="some")
+
+
+def test_the_kind_table_leaves_undefined_rates_blank() -> None:
+    """A kind no label has (a claim where the labels say only `mistake: true`) has no recall and no F1; a kind
+    never claimed has no precision; they were shown as 0.000, as if measured."""
+    scores = MethodScores()
+    scores.kinds = {"order": [3, 2, 0, 0], "true": [0, 0, 4, 3], "missing": [2, 1, 2, 1]}
+    rows = kind_rows({DETECTOR: scores.as_dict()})
+    assert rows == [
+        [DETECTOR, "missing", "2", "0.500", "2", "0.500", "0.500"],
+        [DETECTOR, "order", "3", "0.667", "0", "–", "–"],
+        [DETECTOR, "true", "0", "–", "4", "0.750", "–"],
+    ]

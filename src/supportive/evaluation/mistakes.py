@@ -418,12 +418,15 @@ KIND_HEADERS = ("method", "kind", "claimed", "precision", "positives", "recall",
 
 def kind_rows(methods: Mapping[str, Mapping[str, Any]]) -> list[list[str]]:
     """The per-kind table of :meth:`MistakeEvaluation.as_dict`'s ``methods``, one row per method and kind
-    (precision and F1 "–" for a kind the method never claimed: it names no kind, or not that one)."""
+    (precision "–" for a kind the method never claimed: it names no kind, or not that one; recall "–" for a
+    kind no label has, such as a kind claimed where the labels say only that a step was a mistake; F1 "–"
+    where either is)."""
     rows = []
     for name, method in methods.items():
         for kind, k in method["kinds"].items():
-            claimed = int(k["claimed"])
+            claimed, positives = int(k["claimed"]), int(k["positives"])
             precision = f"{k['precision']:.3f}" if claimed else "–"
-            f1 = f"{k['f1']:.3f}" if claimed else "–"
-            rows.append([name, kind, str(claimed), precision, str(k["positives"]), f"{k['recall']:.3f}", f1])
+            recall = f"{k['recall']:.3f}" if positives else "–"
+            f1 = f"{k['f1']:.3f}" if claimed and positives else "–"
+            rows.append([name, kind, str(claimed), precision, str(positives), recall, f1])
     return rows
