@@ -17,6 +17,7 @@ from supportive.evaluation.mistakes import (
     _true_precondition,
     evaluate_mistakes,
     kind_rows,
+    shown_rates,
 )
 from supportive.tasks.htn import Leaf
 from supportive.tasks.spec import Demonstration, Step, TaskSpec
@@ -180,10 +181,12 @@ def test_learning_from_the_correct_ones_needs_two_of_them() -> None:
         evaluate_mistakes(spec, learn_from="some")
 
 
-def test_the_kind_table_leaves_undefined_rates_blank() -> None:
+def test_the_tables_leave_undefined_rates_blank() -> None:
     """A kind no label has (a claim where the labels say only `mistake: true`) has no recall and no F1; a kind
-    never claimed has no precision; they were shown as 0.000, as if measured."""
-    scores = MethodScores()
+    or method that claimed nothing has no precision; they were shown as 0.000, as if measured."""
+    scores = MethodScores(positives=6, found=4)
+    assert shown_rates(scores.as_dict()) == ("–", "0.667", "–")  # nothing flagged
+    assert shown_rates(MethodScores(flagged=2, right=0).as_dict()) == ("0.000", "–", "–")  # nothing to find
     scores.kinds = {"order": [3, 2, 0, 0], "true": [0, 0, 4, 3], "missing": [2, 1, 2, 1]}
     rows = kind_rows({DETECTOR: scores.as_dict()})
     assert rows == [

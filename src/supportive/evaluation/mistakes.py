@@ -69,6 +69,7 @@ __all__ = [
     "detection_model",
     "evaluate_mistakes",
     "kind_rows",
+    "shown_rates",
 ]
 
 LEARN_FROM = ("all", "correct")
@@ -416,17 +417,25 @@ KIND_HEADERS = ("method", "kind", "claimed", "precision", "positives", "recall",
 """The columns of :func:`kind_rows`."""
 
 
+def shown_rates(rates: Mapping[str, Any]) -> tuple[str, str, str]:
+    """Precision, recall and F1 of one method or kind (:meth:`MethodScores.as_dict`) as the tables show them:
+    "–" where a rate is not defined — precision when nothing was claimed, recall when there was nothing to find
+    (a kind no label has, such as one claimed where the labels say only that a step was a mistake), F1 where
+    either is — rather than the 0 the JSON keeps."""
+    claimed, positives = int(rates["claimed"]), int(rates["positives"])
+    return (
+        f"{rates['precision']:.3f}" if claimed else "–",
+        f"{rates['recall']:.3f}" if positives else "–",
+        f"{rates['f1']:.3f}" if claimed and positives else "–",
+    )
+
+
 def kind_rows(methods: Mapping[str, Mapping[str, Any]]) -> list[list[str]]:
-    """The per-kind table of :meth:`MistakeEvaluation.as_dict`'s ``methods``, one row per method and kind
-    (precision "–" for a kind the method never claimed: it names no kind, or not that one; recall "–" for a
-    kind no label has, such as a kind claimed where the labels say only that a step was a mistake; F1 "–"
-    where either is)."""
+    """The per-kind table of :meth:`MistakeEvaluation.as_dict`'s ``methods``, one row per method and kind (rates
+    as :func:`shown_rates` shows them)."""
     rows = []
     for name, method in methods.items():
         for kind, k in method["kinds"].items():
-            claimed, positives = int(k["claimed"]), int(k["positives"])
-            precision = f"{k['precision']:.3f}" if claimed else "–"
-            recall = f"{k['recall']:.3f}" if positives else "–"
-            f1 = f"{k['f1']:.3f}" if claimed and positives else "–"
-            rows.append([name, kind, str(claimed), precision, str(positives), recall, f1])
+            precision, recall, f1 = shown_rates(k)
+            rows.append([name, kind, str(k["claimed"]), precision, str(k["positives"]), recall, f1])
     return rows

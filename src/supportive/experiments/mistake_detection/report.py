@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from supportive.evaluation.mistakes import DETECTOR, KIND_HEADERS, REFERENCE, kind_rows
+from supportive.evaluation.mistakes import DETECTOR, KIND_HEADERS, REFERENCE, kind_rows, shown_rates
 from supportive.experiments.mistake_detection.measure import KINDS, POSITIVES, SIZES, TEST, TRAIN
 from supportive.experiments.plotting import new_figure, save_png
 from supportive.experiments.readings import Finding
@@ -81,15 +81,18 @@ def _methods_table(methods: Mapping[str, Mapping[str, Any]]) -> list[str]:
         [
             [
                 name,
-                f"{m['precision']:.3f}",
-                f"{m['recall']:.3f}",
-                f"**{m['f1']:.3f}**",
+                *_bold_f1(shown_rates(m)),
                 f"{m['clean_flagged']:.4f}",
                 f"{m['not_visible']['flagged']}/{m['not_visible']['labels']}",
             ]
             for name, m in methods.items()
         ],
     )
+
+
+def _bold_f1(rates: tuple[str, str, str]) -> tuple[str, str, str]:
+    precision, recall, f1 = rates
+    return precision, recall, f"**{f1}**" if f1 != "–" else f1
 
 
 def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
