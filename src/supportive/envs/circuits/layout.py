@@ -137,6 +137,11 @@ class LayoutSearch:
         self.node_limit = node_limit
         self.need = required_pieces(goal)
         self.nodes = 0
+        # Whether a loop meets the goal, by its kinds in walking order. A loop's pieces meet only end to end
+        # (the walk never comes back to a point it covered but to close), snap on snap, each lying with the
+        # walk (polar pieces forwards): one ring of them in that order, whatever the rectangle, so its circuit
+        # and the goal's verdict depend on that sequence alone; the board is still built, for its rules.
+        self._verdicts: dict[tuple[str, ...], bool] = {}
 
     def loops(
         self,
@@ -278,4 +283,8 @@ class LayoutSearch:
             board = loop.board(self.columns, self.rows)
         except CircuitError:
             return None
-        return loop if self.goal.satisfied(board) else None
+        kinds = tuple(segment.kind for segment in loop.pieces)
+        meets = self._verdicts.get(kinds)
+        if meets is None:
+            meets = self._verdicts[kinds] = self.goal.satisfied(board)
+        return loop if meets else None
