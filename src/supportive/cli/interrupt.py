@@ -139,8 +139,8 @@ def handling(astray_after: float = 0.5) -> Iterator[Interruption]:
         again.close()
 
 
-_WATCH = 0
-"""Put in the resender's queue when an interruption is to be watched (no signal has the number 0)."""
+_WATCH = "watch"
+"""Put in the resender's queue when an interruption is to be watched (a word, where signals are numbers)."""
 
 
 class _Resender:
@@ -150,7 +150,7 @@ class _Resender:
 
     def __init__(self, astray_after: float) -> None:
         self._astray_after = astray_after
-        self._queue: queue.SimpleQueue[int | None] = queue.SimpleQueue()
+        self._queue: queue.SimpleQueue[int | str | None] = queue.SimpleQueue()
         self._main = threading.get_ident()
         self._watched: KeyboardInterrupt | None = None
         self._thread = threading.Thread(target=self._run, name="supportive-signal-again", daemon=True)
@@ -186,7 +186,7 @@ class _Resender:
             if signum is None:
                 return
             astray_since = None
-            if signum != _WATCH:
+            if isinstance(signum, int):  # not _WATCH
                 self._watched = None
                 signal.pthread_kill(self._main, signum)
 
