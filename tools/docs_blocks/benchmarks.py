@@ -92,6 +92,23 @@ def detector_demos_benchmark() -> str:
     return "\n".join(rows) + f"\n\nSteps of a correct execution flagged: {said} demonstrations.\n"
 
 
+def clean_slips_benchmark() -> str:
+    """docs/learning.md: how often the default learner sets a step aside in clean uniform demonstrations of the
+    property tests' distribution, with 95 % upper bounds, and the draws where it did."""
+    result = read_json(BENCHMARKS / "clean-slips.json")
+    rows = ["| tasks | drawn | a step set aside or a demonstration refused | share | 95 % upper bound |", "|---|---:|---:|---:|---:|"]
+    for key, rate in result["rates"].items():
+        label = f"{key.removeprefix('n ').replace('-', '–')} demonstrations" if key.startswith("n ") else key
+        rows.append(f"| {label} | {rate['tasks']:,} | {rate['failed']} | {rate['share']:.2%} | {rate['upper_95']:.2%} |")
+    failures = result["failures"]
+    said = "; ".join(
+        f"{f['kind']}, {f['size']} steps" + (f" in {f['chains']} chains" if "chains" in f else "") + f", {f['n']} demonstrations: "
+        f"{f['set_aside']} set aside, {f['refused']} refused"
+        for f in failures
+    )
+    return "\n".join(rows) + ("\n\nThe draws that failed: " + said + ".\n" if failures else "\n\nNo draw failed.\n")
+
+
 def habits_benchmark() -> str:
     """docs/learning.md: fits that set a step aside, and the share of steps set aside, in clean
     demonstrations by people with habits, per learner, habit strength and number of demonstrations."""
@@ -158,6 +175,7 @@ def active_learning_benchmark() -> str:
 BLOCKS: dict[str, Block] = {
     "learn-benchmark": Block("benchmarks/results/learn.json (make bench)", learn_benchmark),
     "bench-admission": Block("benchmarks/results/admission.json (make bench)", admission_benchmark),
+    "bench-clean-slips": Block("benchmarks/results/clean-slips.json (make bench)", clean_slips_benchmark),
     "bench-habits": Block("benchmarks/results/habits.json (make bench)", habits_benchmark),
     "bench-detector-demos": Block("benchmarks/results/detector-demos.json (make bench)", detector_demos_benchmark),
     "bench-backoff": Block("benchmarks/results/backoff.json (make bench)", backoff_benchmark),
