@@ -194,3 +194,15 @@ def test_the_tables_leave_undefined_rates_blank() -> None:
         [DETECTOR, "order", "3", "0.667", "0", "–", "–"],
         [DETECTOR, "true", "0", "–", "4", "0.750", "–"],
     ]
+
+
+def test_the_json_gives_undefined_rates_as_null() -> None:
+    """A rate that is not defined is None (null), not a 0 a reader would average in: precision of a method
+    that claimed nothing, recall where there was nothing to find, F1 where either is, the share flagged when no
+    demonstration was clean; a defined rate of 0 stays 0."""
+    quiet = MethodScores(positives=6, found=4).as_dict()
+    assert (quiet["precision"], quiet["recall"], quiet["f1"], quiet["clean_flagged"]) == (None, 0.6667, None, None)
+    wrong = MethodScores(flagged=2, right=0, positives=3, found=0, clean_steps=10).as_dict()
+    assert (wrong["precision"], wrong["recall"], wrong["f1"], wrong["clean_flagged"]) == (0.0, 0.0, 0.0, 0.0)
+    kinds = MethodScores(kinds={"order": [3, 2, 0, 0]}).as_dict()["kinds"]
+    assert kinds == {"order": {"claimed": 3, "positives": 0, "precision": 0.6667, "recall": None, "f1": None}}

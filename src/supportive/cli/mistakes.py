@@ -8,7 +8,14 @@ import json
 from typing import Any
 
 from supportive.cli.output import out, say
-from supportive.evaluation.mistakes import KIND_HEADERS, METHODS, MistakeEvaluation, kind_rows, shown_rates
+from supportive.evaluation.mistakes import (
+    KIND_HEADERS,
+    METHODS,
+    MistakeEvaluation,
+    kind_rows,
+    shown,
+    shown_rates,
+)
 from supportive.render.tables import fitted_table
 
 __all__ = ["print_mistakes"]
@@ -27,7 +34,7 @@ def print_mistakes(evaluation: MistakeEvaluation, title: str, *, as_json: bool, 
         f"{others}; {evaluation.steps} steps, detector threshold {evaluation.thresholds[0]}"
     )
     rows = [
-        [name, *shown_rates(m), f"{m['clean_flagged']:.4f}", f"{m['not_visible']['flagged']}/{m['not_visible']['labels']}"]
+        [name, *shown_rates(m), shown(m["clean_flagged"], ".4f"), f"{m['not_visible']['flagged']}/{m['not_visible']['labels']}"]
         for name, m in methods.items()
     ]
     headers = ["method", "precision", "recall", "F1", "flagged on clean", "not-visible labels flagged"]

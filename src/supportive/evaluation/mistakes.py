@@ -37,7 +37,9 @@ What counts (the labels of the task file, ``Step.mistake`` and ``Demonstration.s
 
 Precision, recall and F1 are reported for the mistake class overall and per kind (the detector's kinds
 ``out-of-order`` ↔ ``order``, ``repeated``, ``unknown-step`` ↔ ``unknown``, ``missing``), with the share of
-steps flagged in demonstrations that carry no label at all.
+steps flagged in demonstrations that carry no label at all. A rate that is not defined is None in the JSON and
+"–" in the tables: precision when a method claimed nothing, recall when there was nothing to find, F1 when either
+is, the share flagged when no demonstration was without labels.
 """
 
 from __future__ import annotations
@@ -69,6 +71,7 @@ __all__ = [
     "detection_model",
     "evaluate_mistakes",
     "kind_rows",
+    "shown",
     "shown_rates",
 ]
 
@@ -121,7 +124,8 @@ class MethodScores:
                 mine[i] += value
 
     def as_dict(self) -> dict[str, object]:
-        """Precision, recall and F1 overall and per kind; missing-step delays; clean and invisible counts."""
+        """Precision, recall and F1 overall and per kind (None where not defined); missing-step delays; clean
+        and invisible counts."""
         kinds = {
             label: _rates(claimed, right, positives, found)
             for label, (claimed, right, positives, found) in sorted(self.kinds.items())
@@ -136,22 +140,30 @@ class MethodScores:
                 "median": delays[len(delays) // 2] if delays else None,
             },
             "clean_steps": self.clean_steps,
-            "clean_flagged": round(self.clean_flagged / self.clean_steps, 6) if self.clean_steps else 0.0,
+            "clean_flagged": round(self.clean_flagged / self.clean_steps, 6) if self.clean_steps else None,
             "not_visible": {"labels": self.invisible, "flagged": self.invisible_flagged},
         }
 
 
-def _rates(claimed: int, right: int, positives: int, found: int) -> dict[str, float | int]:
-    precision = right / claimed if claimed else 0.0
-    recall = found / positives if positives else 0.0
-    f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+def _rates(claimed: int, right: int, positives: int, found: int) -> dict[str, float | int | None]:
+    """Counts and rates; a rate that is not defined is None: precision when nothing was claimed, recall when
+    there was nothing to find, F1 when either is."""
+    precision = right / claimed if claimed else None
+    recall = found / positives if positives else None
+    f1 = None
+    if precision is not None and recall is not None:
+        f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
     return {
         "claimed": claimed,
         "positives": positives,
-        "precision": round(precision, 4),
-        "recall": round(recall, 4),
-        "f1": round(f1, 4),
+        "precision": _rounded(precision),
+        "recall": _rounded(recall),
+        "f1": _rounded(f1),
     }
+
+
+def _rounded(rate: float | None) -> float | None:
+    return None if rate is None else round(rate, 4)
 
 
 @dataclass
@@ -419,15 +431,15 @@ KIND_HEADERS = ("method", "kind", "claimed", "precision", "positives", "recall",
 
 def shown_rates(rates: Mapping[str, Any]) -> tuple[str, str, str]:
     """Precision, recall and F1 of one method or kind (:meth:`MethodScores.as_dict`) as the tables show them:
-    "–" where a rate is not defined — precision when nothing was claimed, recall when there was nothing to find
-    (a kind no label has, such as one claimed where the labels say only that a step was a mistake), F1 where
-    either is — rather than the 0 the JSON keeps."""
-    claimed, positives = int(rates["claimed"]), int(rates["positives"])
-    return (
-        f"{rates['precision']:.3f}" if claimed else "–",
-        f"{rates['recall']:.3f}" if positives else "–",
-        f"{rates['f1']:.3f}" if claimed and positives else "–",
-    )
+    "–" where a rate is not defined (None in the JSON) — precision when nothing was claimed, recall when there
+    was nothing to find (a kind no label has, such as one claimed where the labels say only that a step was a
+    mistake), F1 where either is."""
+    return shown(rates["precision"]), shown(rates["recall"]), shown(rates["f1"])
+
+
+def shown(rate: float | None, form: str = ".3f") -> str:
+    """A rate as the tables show it: "–" when it is not defined (None)."""
+    return "–" if rate is None else format(rate, form)
 
 
 def kind_rows(methods: Mapping[str, Mapping[str, Any]]) -> list[list[str]]:

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from supportive.evaluation.mistakes import DETECTOR, KIND_HEADERS, REFERENCE, kind_rows, shown_rates
+from supportive.evaluation.mistakes import DETECTOR, KIND_HEADERS, REFERENCE, kind_rows, shown, shown_rates
 from supportive.experiments.mistake_detection.measure import KINDS, POSITIVES, SIZES, TEST, TRAIN
 from supportive.experiments.plotting import new_figure, save_png
 from supportive.experiments.readings import Finding
@@ -82,7 +82,7 @@ def _methods_table(methods: Mapping[str, Mapping[str, Any]]) -> list[str]:
             [
                 name,
                 *_bold_f1(shown_rates(m)),
-                f"{m['clean_flagged']:.4f}",
+                shown(m["clean_flagged"], ".4f"),
                 f"{m['not_visible']['flagged']}/{m['not_visible']['labels']}",
             ]
             for name, m in methods.items()
@@ -108,13 +108,14 @@ def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
     if "learned_from_correct" in cc:
         parts.append((cc["learned_from_correct"], ", learned from correct recordings", "D"))
     for part, said, marker in parts:
-        curve = sorted(part["curve"].items(), key=lambda kv: float(kv[0]))
+        curve = [(t, m) for t, m in sorted(part["curve"].items(), key=lambda kv: float(kv[0])) if _placed(m)]
         points = [(m["recall"], m["precision"]) for _, m in curve]
-        axes.plot(*zip(*points, strict=True), marker="o", label=DETECTOR + said)
+        if points:
+            axes.plot(*zip(*points, strict=True), marker="o", label=DETECTOR + said)
         for point, thresholds in _alike(points, [t for t, _ in curve]):
             axes.annotate(thresholds, point, fontsize=7, xytext=(3, 3), textcoords="offset points")
         for name, m in part["methods"].items():
-            if name != DETECTOR:
+            if name != DETECTOR and _placed(m):
                 axes.plot([m["recall"]], [m["precision"]], marker=marker, linestyle="none", label=name + said)
     axes.set_xlim(0, 1)
     axes.set_ylim(0, 1)
@@ -123,6 +124,11 @@ def plots(metrics: Mapping[str, Any], directory: Path) -> list[Path]:
     axes.set_title("CaptainCook4D: online mistake detection", fontsize=9)
     axes.legend(fontsize=7)
     return [save_png(figure, directory / "precision-recall.png")]
+
+
+def _placed(rates: Mapping[str, Any]) -> bool:
+    """Whether a method's point has a place on the precision-recall plane (both rates defined)."""
+    return rates["precision"] is not None and rates["recall"] is not None
 
 
 def _alike(points: list[tuple[float, float]], thresholds: list[str]) -> list[tuple[tuple[float, float], str]]:
@@ -143,9 +149,9 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
     rows: list[HeadlineRow] = [("threshold chosen on generated tasks", str(metrics["chosen"]), "–")]
     cc = metrics["captaincook"]
     for name, m in cc.get("methods", {}).items():
-        rows.append((f"CaptainCook4D mistake F1, {name}", f"{m['f1']:.3f}", "–"))
+        rows.append((f"CaptainCook4D mistake F1, {name}", shown(m["f1"]), "–"))
     for name, m in cc.get("learned_from_correct", {}).get("methods", {}).items():
-        rows.append((f"CaptainCook4D mistake F1, {name}, learned from correct recordings", f"{m['f1']:.3f}", "–"))
+        rows.append((f"CaptainCook4D mistake F1, {name}, learned from correct recordings", shown(m["f1"]), "–"))
     return rows
 
 
@@ -176,12 +182,18 @@ def _against_baselines(label: str, methods: Mapping[str, Mapping[str, Any]]) -> 
     """The detector's F1 beside the best baseline's (its precision), against issue #24's target (the
     reference is no baseline: no robot knows the published graph)."""
     ours = methods[DETECTOR]
-    best = max(m["f1"] for name, m in methods.items() if name not in (DETECTOR, REFERENCE))
+    best = max(
+        (m["f1"] for name, m in methods.items() if name not in (DETECTOR, REFERENCE) and m["f1"] is not None),
+        default=None,
+    )
+    ahead = (
+        ours["f1"] is not None
+        and ours["precision"] >= 0.6
+        and (best is None or ours["f1"] >= best + 0.05)
+    )
     return Finding(
         f"{label}, detector / best baseline (precision)",
         "– (not in the thesis)",
-        (("", f"{ours['f1']:.3f} / {best:.3f} ({ours['precision']:.3f})"),),
-        "ahead by ≥ 0.05 at precision ≥ 0.6"
-        if ours["f1"] >= best + 0.05 and ours["precision"] >= 0.6
-        else "not ahead by 0.05 at precision ≥ 0.6",
+        (("", f"{shown(ours['f1'])} / {shown(best)} ({shown(ours['precision'])})"),),
+        "ahead by ≥ 0.05 at precision ≥ 0.6" if ahead else "not ahead by 0.05 at precision ≥ 0.6",
     )
