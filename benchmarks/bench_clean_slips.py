@@ -27,9 +27,6 @@ from supportive.generate import random_partial_order, random_structure
 from supportive.learning import HTNLearner
 from supportive.tasks.htn import sample_ordering
 
-BANDS = ((1, 10), (11, 50), (51, 200))
-"""The numbers of demonstrations reported apart (inclusive ranges)."""
-
 
 def draw(rng: np.random.Generator, kind: str) -> tuple[dict[str, object], list[list[str]]]:
     """One task of the property's distribution and its clean demonstrations: what was drawn, and the draws."""
@@ -69,6 +66,7 @@ def main() -> None:
     )
     args = parser.parse_args()
     started = time.perf_counter()
+    bands = ((1, 10), (11, 50), (51, 200))  # the numbers of demonstrations reported apart (inclusive)
     failures: list[dict[str, object]] = []
     counts: dict[str, list[int]] = {}  # key -> [failed, tasks]
     for number, kind in enumerate(("nested", "partial order")):
@@ -79,7 +77,7 @@ def main() -> None:
             refused = sum(not learner.htn_.admits(demo) for demo in demos)
             failed = bool(learner.deviations_ or refused)
             n = len(demos)
-            band = next(f"{low}-{high}" for low, high in BANDS if low <= n <= high)
+            band = next(f"{low}-{high}" for low, high in bands if low <= n <= high)
             for key in ("all", kind, f"n {band}"):
                 counts.setdefault(key, [0, 0])
                 counts[key][0] += failed
@@ -90,7 +88,7 @@ def main() -> None:
         "benchmark": "clean-slips",
         "machine": {"python": platform.python_version(), "processor": platform.machine()},
         "seed": args.seed,
-        "rates": {key: rate(*counts[key]) for key in ("all", "nested", "partial order", *(f"n {a}-{b}" for a, b in BANDS))},
+        "rates": {key: rate(*counts[key]) for key in ("all", "nested", "partial order", *(f"n {a}-{b}" for a, b in bands))},
         "failures": failures,
         "seconds": round(time.perf_counter() - started, 1),
     }

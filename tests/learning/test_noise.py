@@ -4,7 +4,8 @@ mistakes put into generated demonstrations are found, each as the kind it was.
 The clean-data properties draw their examples deterministically (``derandomize``): no detector can promise
 that no sample of valid executions ever looks like one with a slip (a partial order's rare order may happen to
 come up once in 25 where it is due six times), so the rate at which it happens on generated tasks is measured
-by ``supportive reproduce learner-settings`` and quoted in docs/learning.md, and these tests pin that the
+by ``supportive reproduce learner-settings`` and, over fresh draws of these tests' own distributions, by
+``benchmarks/bench_clean_slips.py`` (``make bench``), both quoted in docs/learning.md, and these tests pin that the
 defaults keep clean data clean on a varied sample of tasks and sizes (the same sample in every run: see
 ``_without_local_constants`` in tests/conftest.py; before it, a run collecting fewer tests drew the clean sample
 pinned below, where a step was set aside before slips had to be more than chance would show).
