@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import random
 
 import pytest
 from hypothesis import given, settings
@@ -44,6 +45,19 @@ def test_a_bound_on_the_work_gives_the_count_or_none(poset: tuple[int, list[tupl
     n, precedences = poset
     bounded = count_linear_extensions(n, precedences, max_down_sets=2)
     assert bounded is None or bounded == _brute(n, precedences)
+
+
+@settings(max_examples=100, deadline=None)
+@given(_posets(), st.randoms(use_true_random=False))
+def test_the_count_is_remembered_by_the_precedences_whatever_their_order(
+    poset: tuple[int, list[tuple[int, int]]], rng: random.Random
+) -> None:
+    # counts are remembered: the same precedences asked in another order, or some twice, are the same question
+    n, precedences = poset
+    first = count_linear_extensions(n, precedences)
+    shuffled = precedences + precedences[: len(precedences) // 2]
+    rng.shuffle(shuffled)
+    assert count_linear_extensions(n, shuffled) == first == _brute(n, precedences)
 
 
 def test_parts_that_split_are_counted_without_their_down_sets() -> None:

@@ -20,6 +20,7 @@ by the dynamic programme, with a bound on its down-sets; past it the count is no
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Iterable
 
@@ -37,9 +38,17 @@ def count_linear_extensions(n: int, precedences: Iterable[tuple[int, int]], max_
     ``precedences``: 0 when they form a cycle, None when a part that does not split has more than
     ``max_down_sets`` down-sets of one size.
 
+    Counts are remembered by the precedences asked (the slip search asks for the same ones from many
+    hierarchies whose top levels differ only where these steps are not concerned).
+
     Raises:
         LearningError: a precedence names a step outside ``0 … n-1``.
     """
+    return _counted(n, tuple(sorted(set(precedences))), max_down_sets)
+
+
+@functools.lru_cache(maxsize=1024)  # a bound on memory: the count never depends on it
+def _counted(n: int, precedences: tuple[tuple[int, int], ...], max_down_sets: int) -> int | None:
     before = [0] * n  # before[v]: the steps that must come before v, transitively
     for u, v in precedences:
         if not (0 <= u < n and 0 <= v < n):
