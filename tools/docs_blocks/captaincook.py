@@ -33,7 +33,7 @@ def captaincook_precedence() -> str:
         f"Measured: mean precision {_f(mean(r['precision'] for r in recipes))}, "
         f"recall {_f(mean(r['recall'] for r in recipes))}, F1 {_f(mean(r['f1'] for r in recipes))} over the "
         f"{len(recipes)} recipes; {admitted} of {len(recipes)} learned models admit all their recordings. Recall is "
-        f"below 1 in {len(below)} recipes: {misses}. Precision is lowest in `{lowest['recipe']}` "
+        f"below 1 in {len(below)} recipe{'' if len(below) == 1 else 's'}: {misses}. Precision is lowest in `{lowest['recipe']}` "
         f"({_f(lowest['precision'])}).\n"
     )
 
