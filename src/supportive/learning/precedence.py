@@ -32,8 +32,10 @@ from collections import defaultdict
 from collections.abc import Hashable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
+from supportive.learning.general.alternatives import required_roots
 from supportive.learning.reachability import reachable
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, nullable
+from supportive.tasks.nodes import shape
 
 __all__ = ["PrecedenceScore", "implied_precedences", "precedence_scores"]
 
@@ -126,19 +128,11 @@ def _always_done(htn: HTN) -> set[Leaf]:
             for child in node.children:
                 walk(child)
 
-    for index, root in enumerate(htn.roots):
-        if htn.top_level is None or len(htn.roots) == 1 or _on_every_path(htn.top_level, index):
-            walk(root)
+    every = range(len(htn.roots))
+    roots = every if htn.top_level is None or len(htn.roots) == 1 else required_roots(htn.top_level, len(htn.roots))
+    for index in roots:
+        walk(htn.roots[index])
     return out
-
-
-def _on_every_path(top: TopLevel, root: int) -> bool:
-    """Whether every path of ``top`` from an initial to a terminal state performs ``root``."""
-    out: dict[int, list[int]] = defaultdict(list)
-    for src, performed, dst in top.edges:
-        if performed != root:
-            out[src].append(dst)
-    return not reachable(top.initial, out) & set(top.terminal)
 
 
 def _tree_pairs(node: Node) -> Iterator[Pair]:
@@ -160,19 +154,12 @@ def _in_turn(children: Sequence[Node]) -> Sequence[Node]:
     any other clique (its children in any order)."""
     if len(children) < 2 or any(nullable(child) for child in children):
         return ()
-    shape = _shape(children[0])
-    if any(_shape(child) != shape for child in children[1:]):
+    first = shape(children[0])
+    if any(shape(child) != first for child in children[1:]):
         return ()
     ordered = sorted(children, key=lambda child: [occurrence for _, occurrence in child.leaves])
     places = zip(*([occurrence for _, occurrence in child.leaves] for child in ordered), strict=True)
     return ordered if all(a < b for place in places for a, b in itertools.pairwise(place)) else ()
-
-
-def _shape(node: Node) -> object:
-    """``node`` with its leaves' occurrences left out: what two performances of the same steps share."""
-    if isinstance(node, ActionNode):
-        return node.action, node.optional
-    return type(node).__name__, node.optional, tuple(_shape(child) for child in node.children)
 
 
 def _root_precedences(top: TopLevel, n_roots: int) -> Iterator[tuple[int, int]]:
