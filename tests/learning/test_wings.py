@@ -15,7 +15,7 @@ from supportive.errors import NotFittedError, TaskGraphError
 from supportive.generate import generate_task, inject, random_partial_order
 from supportive.generate.mistakes import KINDS
 from supportive.learning import HTNLearner
-from supportive.learning.general.alternatives import complete_alternative, required_roots
+from supportive.learning.general.alternatives import complete_alternative
 from supportive.learning.strict import Compaction, StrictLearner
 from supportive.tasks.executions import Progress
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, CliqueNode, Leaf, TopLevel, iter_orderings
@@ -129,7 +129,7 @@ def test_a_root_the_top_level_may_leave_out_is_optional_in_the_alternative() -> 
     first, second = ChainNode((ActionNode("a"), ActionNode("b"))), ActionNode("c")
     top = TopLevel((0,), (1, 2), ((0, 0, 1), (1, 1, 2)))
     alternative = HTN("", (complete_alternative((first, second), top),))
-    assert required_roots(top, 2) == {0}
+    assert top.required_roots(2) == {0}
     assert alternative.admits(["a", "b"]) and alternative.admits(["a", "b", "c"])
     demos = [["a", "b", "c"]] * 4 + [["a", "b", "c", "b"]]
     htn = HTNLearner(slips=False).fit(demos).htn_
@@ -137,8 +137,8 @@ def test_a_root_the_top_level_may_leave_out_is_optional_in_the_alternative() -> 
 
 
 def test_an_initial_state_with_no_move_requires_no_root() -> None:
-    assert required_roots(TopLevel((0,), (), ()), 2) == set()
-    assert required_roots(TopLevel((0,), (2,), ((0, 0, 1), (1, 1, 2))), 2) == {0, 1}
+    assert TopLevel((0,), (), ()).required_roots(2) == set()
+    assert TopLevel((0,), (2,), ((0, 0, 1), (1, 1, 2))).required_roots(2) == {0, 1}
 
 
 def test_strict_alternatives_are_still_restrictions_of_the_known_executions() -> None:

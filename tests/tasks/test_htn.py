@@ -264,3 +264,19 @@ def test_a_top_level_with_a_cycle_is_refused_when_roots_pass_silently() -> None:
     looping = TopLevel(initial=(0,), terminal=(1,), edges=((0, 0, 1), (1, 1, 0)))
     with pytest.raises(TaskModelError, match="cycle"):
         looping.count_orderings(None, [1])
+
+
+@settings(max_examples=200, deadline=None)
+@given(htn=st.one_of(partial_htns(), partial_order_htns()))
+def test_the_required_leaves_are_those_every_admitted_sequence_performs(htn: HTN) -> None:
+    """Brute force: the leaves common to every leaf sequence of every path of the top level."""
+    assert htn.top_level is not None
+    sequences = [
+        {leaf for part in parts for leaf in part}
+        for path in _paths(htn.top_level, htn.top_level.initial[0])
+        for parts in itertools.product(*(set(iter_orderings(htn.roots[r])) for r in path))
+    ]
+    assert set(htn.required_leaves) == set.intersection(*sequences)
+    assert HTN("t", (htn.roots[0],)).required_leaves == tuple(
+        leaf for leaf in htn.roots[0].leaves if all(leaf in s for s in map(set, iter_orderings(htn.roots[0])))
+    )

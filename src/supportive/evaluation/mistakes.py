@@ -437,9 +437,14 @@ def shown_rates(rates: Mapping[str, Any]) -> tuple[str, str, str]:
     return shown(rates["precision"]), shown(rates["recall"]), shown(rates["f1"])
 
 
-def shown(rate: float | None, form: str = ".3f") -> str:
-    """A rate as the tables show it: "–" when it is not defined (None)."""
-    return "–" if rate is None else format(rate, form)
+def shown(value: float | None, form: str = ".3f") -> str:
+    """A number as the tables show it (in ``form``): "–" when it is not defined (None) — a rate nothing
+    defines, or a figure a run did not measure.
+
+    >>> shown(0.5), shown(None), shown(-0.25, "+.2f")
+    ('0.500', '–', '-0.25')
+    """
+    return "–" if value is None else format(value, form)
 
 
 def kind_rows(methods: Mapping[str, Mapping[str, Any]]) -> list[list[str]]:

@@ -117,8 +117,8 @@ class _Requirements:
     def of(cls, htn: HTN) -> _Requirements:
         leaves, always = required_orders(htn)
         index = {leaf: i for i, leaf in enumerate(leaves)}
-        required = _required_leaves(htn)
-        need = [bool(required.get(leaf, False)) for leaf in leaves]
+        required = set(htn.required_leaves)
+        need = [leaf in required for leaf in leaves]
         prerequisites = [[int(i) for i in np.flatnonzero(always[:, j]) if need[int(i)]] for j in range(len(leaves))]
         subtasks = sorted(
             (frozenset(index[leaf] for leaf in node.leaves) for node in _subtasks(htn)), key=len
@@ -146,23 +146,6 @@ def _subtasks(htn: HTN) -> list[Node]:
         if not isinstance(node, ActionNode):
             out.append(node)
             stack.extend(node.children)
-    return out
-
-
-def _required_leaves(htn: HTN) -> dict[Leaf, bool]:
-    """Leaf -> whether every execution performs it (it and every node above it not optional)."""
-    out: dict[Leaf, bool] = {}
-
-    def walk(node: Node, required: bool) -> None:
-        here = required and not node.optional
-        if isinstance(node, ActionNode):
-            out[node.leaf] = here
-        else:
-            for child in node.children:
-                walk(child, here)
-
-    for root in htn.roots:
-        walk(root, True)
     return out
 
 

@@ -103,7 +103,7 @@ class _Builder:
             self.problem.add_action(action)
             self.actions[leaf] = action
         self.problem.task_network.add_subtask(self._top(htn), ident="s1")
-        required = [self.done[leaf] for leaf in _required(htn, skippable)]
+        required = [self.done[leaf] for leaf in htn.required_leaves]
         if required:  # true after every plan of the task network: it says what a plan achieves, cuts none
             self.problem.add_goal(up.And(*required))
         setattr(self.problem, _LEAVES, {name: leaf for leaf, name in self.leaf_names.items()})
@@ -174,32 +174,6 @@ class _Builder:
         steps = [method.add_subtask(subtask, ident=f"s{i}") for i, subtask in enumerate(subtasks, 1)]
         method.set_ordered(*steps)
         self.problem.add_method(method)
-
-
-def _required(htn: HTN, skippable: set[Leaf]) -> list[Leaf]:
-    """The leaves every execution of ``htn`` performs: those of no optional node, in roots that every order of
-    the top level passes through (every root of a complete hierarchy)."""
-    top = htn.top_level
-    roots: set[int] = set(range(len(htn.roots)))
-    if top is not None:
-        successors = top.successors()
-        terminal = set(top.terminal)
-        memo: dict[int, frozenset[int] | None] = {}
-
-        def always(state: int) -> frozenset[int] | None:
-            """The roots on every path from ``state`` to a terminal state (None: no path)."""
-            if state not in memo:
-                memo[state] = None  # a cycle (none in a task graph) is no path
-                ways: list[frozenset[int] | None] = [frozenset() if state in terminal else None]
-                ways += [None if (rest := always(dst)) is None else rest | {root} for root, dst in successors.get(state, {}).items()]
-                found = [way for way in ways if way is not None]
-                memo[state] = frozenset.intersection(*found) if found else None
-            return memo[state]
-
-        starts = [always(state) for state in top.initial]
-        found = [way for way in starts if way is not None]
-        roots = set(frozenset.intersection(*found)) if found else set()
-    return [leaf for i in sorted(roots) for leaf in htn.roots[i].leaves if leaf not in skippable]
 
 
 def _skippable(node: Node, inside_optional: bool) -> list[Leaf]:

@@ -29,10 +29,9 @@ from __future__ import annotations
 
 import itertools
 from collections import defaultdict
-from collections.abc import Hashable, Iterable, Iterator, Sequence
+from collections.abc import Collection, Hashable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
-from supportive.learning.general.alternatives import required_roots
 from supportive.learning.reachability import reachable
 from supportive.tasks.htn import HTN, ActionNode, ChainNode, Leaf, Node, TopLevel, nullable
 from supportive.tasks.nodes import shape
@@ -77,10 +76,10 @@ def implied_precedences(htn: HTN) -> frozenset[Pair]:
         by_action[leaf[0]].append(leaf)
     if all(len(group) == 1 for group in by_action.values()):
         return frozenset(pairs)
-    return frozenset(_as_performed(pairs, by_action, _always_done(htn)))
+    return frozenset(_as_performed(pairs, by_action, frozenset(htn.required_leaves)))
 
 
-def _as_performed(pairs: set[Pair], by_action: dict[str, list[Leaf]], always: set[Leaf]) -> set[Pair]:
+def _as_performed(pairs: set[Pair], by_action: dict[str, list[Leaf]], always: Collection[Leaf]) -> set[Pair]:
     """The tree's ``pairs`` as executions name the steps (see the module docstring and
     :func:`_performed_orders`); the performances of one action always in their order. ``always``: the
     leaves every execution performs."""
@@ -94,7 +93,7 @@ def _as_performed(pairs: set[Pair], by_action: dict[str, list[Leaf]], always: se
     return out
 
 
-def _performed_orders(xs: list[Leaf], zs: list[Leaf], pairs: set[Pair], always: set[Leaf]) -> Iterator[tuple[int, int]]:
+def _performed_orders(xs: list[Leaf], zs: list[Leaf], pairs: set[Pair], always: Collection[Leaf]) -> Iterator[tuple[int, int]]:
     """``(k, m)`` such that the ``k``-th performance of ``x`` comes before the ``m``-th of ``z`` in every
     execution doing both, ``xs`` and ``zs`` their leaves: some leaves ``A`` of ``x`` all come before some
     leaves ``B`` of ``z`` (in ``pairs``, which bind executions doing both), at most ``m - 1`` leaves of ``z``
@@ -112,27 +111,6 @@ def _performed_orders(xs: list[Leaf], zs: list[Leaf], pairs: set[Pair], always: 
     for k in range(1, len(xs) + 1):
         best = max(everyone, after(required[:k]) if k <= len(required) else 0)
         yield from ((k, m) for m in range(len(zs) - best + 1, len(zs) + 1))
-
-
-def _always_done(htn: HTN) -> set[Leaf]:
-    """The leaves every execution performs: none of their nodes optional, in a root every top-level path
-    performs."""
-    out: set[Leaf] = set()
-
-    def walk(node: Node) -> None:
-        if node.optional:
-            return
-        if isinstance(node, ActionNode):
-            out.add(node.leaf)
-        else:
-            for child in node.children:
-                walk(child)
-
-    every = range(len(htn.roots))
-    roots = every if htn.top_level is None or len(htn.roots) == 1 else required_roots(htn.top_level, len(htn.roots))
-    for index in roots:
-        walk(htn.roots[index])
-    return out
 
 
 def _tree_pairs(node: Node) -> Iterator[Pair]:

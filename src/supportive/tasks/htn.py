@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Collection, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -308,6 +308,17 @@ def _allowed(node: Node, done: frozenset[Leaf]) -> frozenset[Leaf]:
     return frozenset().union(*(_allowed(child, done) for child in fresh))
 
 
+def _required_under(node: Node) -> Iterator[Leaf]:
+    """The leaves under ``node`` whose every node from ``node`` down is not optional."""
+    if node.optional:
+        return
+    if isinstance(node, ActionNode):
+        yield node.leaf
+        return
+    for child in node.children:
+        yield from _required_under(child)
+
+
 def node_count(node: Node) -> int:
     """Nodes in the tree under ``node``, leaves included."""
     if isinstance(node, ActionNode):
@@ -376,6 +387,16 @@ class HTN:
     def leaves(self) -> tuple[Leaf, ...]:
         """Every leaf, root by root."""
         return tuple(leaf for root in self.roots for leaf in root.leaves)
+
+    @cached_property
+    def required_leaves(self) -> tuple[Leaf, ...]:
+        """The leaves every execution performs, root by root: none of their nodes optional, in a root every
+        path of the top level performs (every root of a complete hierarchy or one without a top level)."""
+        if self.top_level is None or len(self.roots) == 1:
+            roots: Collection[int] = range(len(self.roots))
+        else:
+            roots = self.top_level.required_roots(len(self.roots))
+        return tuple(leaf for i, root in enumerate(self.roots) if i in roots for leaf in _required_under(root))
 
     @cached_property
     def executions(self) -> Executions:

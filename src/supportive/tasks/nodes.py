@@ -297,6 +297,27 @@ class TopLevel:
         states = out.keys() | set(self.terminal) | set(self.initial) | {d for e in out.values() for d in e.values()}
         return _reverse_topological(sorted(states), out)
 
+    def required_roots(self, n_roots: int) -> frozenset[int]:
+        """The roots (of ``n_roots``) every execution performs: on every path from an initial state to a
+        terminal one (an initial state with no move and no end requires nothing).
+
+        >>> TopLevel((0,), (3,), ((0, 0, 1), (1, 1, 3), (0, 2, 2), (2, 1, 3))).required_roots(3)  # 0 1, or 2 1
+        frozenset({1})
+        """
+        out = self.successors()
+        terminal = set(self.terminal)
+        every = -1  # all roots, as bits
+        on_all: dict[int, int] = {}  # state -> roots (bits) on every path from it to a terminal state
+        for state in self.successors_first():
+            bits = 0 if state in terminal else every
+            for root, dst in out.get(state, {}).items():
+                bits &= 1 << root | on_all[dst]
+            on_all[state] = bits
+        found = every
+        for state in self.initial:
+            found &= on_all[state] if state in out or state in terminal else 0
+        return frozenset(r for r in range(n_roots) if found >> r & 1)
+
     def count_orderings(self, weights: Sequence[int] | None = None, silent: Collection[int] = ()) -> int:
         """How many root orders this top level allows (exact, by dynamic programming); with ``weights``, each
         root performed on a path counts ``weights[root]`` times (its own orderings, say).

@@ -16,6 +16,7 @@ from functools import cache
 from itertools import combinations
 from typing import Any
 
+from supportive.evaluation.mistakes import shown
 from supportive.examples import load
 from supportive.experiments.active_learning.common import (
     NO_QUERIES,
@@ -250,7 +251,7 @@ def _task_section(metrics: Mapping[str, Any], task: Mapping[str, Any]) -> str:
     gains_rows = []
     for group, g in ((k, task["groups"][k]) for k in GROUPS):
         gains, test = g["gain_over_random"], g["anova"]
-        median = "–" if test["median_F"] is None else f"{test['median_F']:.1f}"
+        median = shown(test["median_F"], ".1f")
         gains_rows.append(
             [
                 group,

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from supportive.evaluation.mistakes import shown
 from supportive.experiments.edge_reduction.summary import MODELS
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
@@ -46,10 +47,6 @@ DEFAULT_TRIALS = THESIS["tasks"]
 """Trials of a full run: one per task of the thesis."""
 
 
-def _f(value: float | None, digits: int = 1) -> str:
-    return "–" if value is None else f"{value:.{digits}f}"
-
-
 def _depth(summary: Mapping[str, Any] | None) -> str:
     if summary is None:
         return "–"
@@ -76,7 +73,7 @@ def verdict(metrics: Mapping[str, Any], model: str) -> str:
     fewer_bins = sum(gap > 0 for gap in gaps)
     text = (
         f"**{LABELS[model]}.** The flat model has {summary['flat_edges']:.1f} edges per task against "
-        f"{summary['htn_edges']:.1f} in the CC-HTN (flat ÷ CC-HTN {_f(summary['flat_per_htn'], 2)}); the "
+        f"{summary['htn_edges']:.1f} in the CC-HTN (flat ÷ CC-HTN {shown(summary['flat_per_htn'], '.2f')}); the "
         f"CC-HTN needs fewer edges in {summary['fewer_edges']} of {summary['tasks']} tasks, more in "
         f"{summary['more_edges']}, and fewer on average in {fewer_bins} of {len(bins)} size bins"
     )
@@ -158,10 +155,10 @@ def _bins_table(metrics: Mapping[str, Any]) -> list[str]:
         a, g, c = b["learned"], b["ground_truth"], b["all_orderings"]
         cells = [b["label"], str(g["tasks"])]
         for m in (a, g):
-            cells += [f"{m['flat_edges']:.1f}", f"{m['htn_edges']:.1f}", _f(m["flat_per_htn"], 2)]
+            cells += [f"{m['flat_edges']:.1f}", f"{m['htn_edges']:.1f}", shown(m["flat_per_htn"], ".2f")]
         cells.append(str(0 if c is None else c["tasks"]))
-        cells += [_f(None if c is None else c[k]) for k in ("flat_edges", "htn_edges")]
-        cells.append(_f(None if c is None else c["flat_per_htn"], 2))
+        cells += [shown(None if c is None else c[k], ".1f") for k in ("flat_edges", "htn_edges")]
+        cells.append(shown(None if c is None else c["flat_per_htn"], ".2f"))
         rows.append(cells)
     header = [
         "subgoals", "tasks", "(a) flat", "(a) CC-HTN", "(a) ÷", "(b) flat", "(b) CC-HTN", "(b) ÷", "(c) tasks",
@@ -183,7 +180,7 @@ def _models_table(models: Mapping[str, Any]) -> list[str]:
             str(s["complete"]),
             f"{s['flat_edges']:.1f}",
             f"{s['htn_edges']:.1f}",
-            _f(s["flat_per_htn"], 2),
+            shown(s["flat_per_htn"], ".2f"),
             str(s["fewer_edges"]),
             str(s["more_edges"]),
         ]
@@ -211,12 +208,12 @@ def headline(metrics: Mapping[str, Any]) -> list[HeadlineRow]:
         ("primitive depth, (b) ground truth", _depth(models["ground_truth"]), "–"),
         (
             "flat ÷ CC-HTN edges, (a) learned",
-            _f(models["learned"]["flat_per_htn"], 2),
+            shown(models["learned"]["flat_per_htn"], ".2f"),
             "dramatic reduction (Fig. 2.5)",
         ),
         (
             "flat ÷ CC-HTN edges, (b) ground truth",
-            _f(models["ground_truth"]["flat_per_htn"], 2),
+            shown(models["ground_truth"]["flat_per_htn"], ".2f"),
             "dramatic reduction (Fig. 2.5)",
         ),
         (
@@ -236,7 +233,7 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
     for the ground-truth structures."""
     models = metrics["models"]
     depth = metrics["thesis"]["mean_action_depth"]
-    shown = [m for m in _SHORT if models.get(m) is not None]
+    listed = [m for m in _SHORT if models.get(m) is not None]
 
     def close(model: str) -> bool:
         return bool(abs(models[model]["depth"]["mean"] - depth["mean"]) <= 0.1)
@@ -253,10 +250,10 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
                 else "paths the learner leaves unproven parts flat"
             )
         )
-        if "ground_truth" in shown and close("ground_truth")
+        if "ground_truth" in listed and close("ground_truth")
         else "not reproduced"
     )
-    fewer = {m: (models[m]["fewer_edges"], models[m]["tasks"]) for m in shown}
+    fewer = {m: (models[m]["fewer_edges"], models[m]["tasks"]) for m in listed}
     edges_verdict = (
         "fewer CC-HTN edges in "
         + ", ".join(f"{a} of {n} tasks {m.replace('_', ' ')}" for m, (a, n) in fewer.items())
@@ -266,13 +263,13 @@ def findings(metrics: Mapping[str, Any]) -> list[Finding]:
         Finding(
             "mean depth of a primitive (min–max)",
             f"{depth['mean']:.2f} ({depth['min']:.2f}–{depth['max']:.2f})",
-            (("", " · ".join(f"{_SHORT[m]} {_depth(models[m])}" for m in shown)),),
+            (("", " · ".join(f"{_SHORT[m]} {_depth(models[m])}" for m in listed)),),
             depth_verdict,
         ),
         Finding(
             "flat ÷ CC-HTN edges",
             "\"a dramatic reduction\" (no values)",
-            (("", " · ".join(f"{_SHORT[m]} {_f(models[m]['flat_per_htn'], 2)}" for m in shown)),),
+            (("", " · ".join(f"{_SHORT[m]} {shown(models[m]['flat_per_htn'], '.2f')}" for m in listed)),),
             edges_verdict,
         ),
     ]

@@ -12,6 +12,7 @@ import itertools
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from supportive.evaluation.mistakes import shown
 from supportive.experiments.goal_inference.design import MEAN_DURATION, steps_for
 from supportive.experiments.goal_inference.summary import LEVELS
 from supportive.experiments.goal_inference.thesis import THESIS
@@ -245,7 +246,7 @@ def timing_markdown(document: Mapping[str, Any]) -> str:
 
 
 def _ratio(row: Mapping[str, Any]) -> str:
-    return "–" if row["ratio"] is None else format(row["ratio"], ".2f")
+    return shown(row["ratio"], ".2f")
 
 
 def _timing_table(document: Mapping[str, Any]) -> list[str]:

@@ -37,7 +37,7 @@ def report(metrics: Mapping[str, Any]) -> str:
                     f"**{t}**" if chosen is not None and float(t) == chosen else t,
                     f"{row['false_alarms']:.4f}",
                     *(f"{row['recall'][k]:.3f}" for k in KINDS),
-                    "–" if row["skip_delay"] is None else f"{row['skip_delay']:.2f}",
+                    shown(row["skip_delay"], ".2f"),
                 ]
                 for t, row in metrics["generated"].items()
             ],

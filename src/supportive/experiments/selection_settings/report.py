@@ -6,6 +6,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
+from supportive.evaluation.mistakes import shown
 from supportive.experiments.readings import Finding
 from supportive.experiments.registry import HeadlineRow
 from supportive.experiments.selection_settings.evidence import CONVENTIONAL_EVIDENCE, LEVELS
@@ -93,8 +94,7 @@ PEOPLE_NAMES = {"uniform": "without habits", "habits": "with habits"}
 
 def _mean_of(row: Mapping[str, Any], people: str) -> str:
     """A row's mean gain over the tasks by ``people`` (– where the run had none)."""
-    mean = row["people"].get(people)
-    return "–" if mean is None else f"{mean:+.3f}"
+    return shown(row["people"].get(people), "+.3f")
 
 
 def _evidence(evidence: Mapping[str, Any]) -> dict[str, object]:
@@ -106,7 +106,7 @@ def _evidence(evidence: Mapping[str, Any]) -> dict[str, object]:
     def level(value: float) -> list[str]:
         row = rows[str(value)]
         gain = f"{row['gain']:+.3f}" + ("" if row["qualifies"] else " ✗")
-        recall = "–" if row["recall"] is None else f"{row['recall']:.3f}"
+        recall = shown(row["recall"])
         name = f"**{value}**" if value == evidence["chosen"] else str(value)
         return [name, gain, recall, f"{row['gap']:.3f}", f"{row['error']:.3f}"]
 

@@ -26,7 +26,7 @@ from supportive.tasks.htn import ChainNode, CliqueNode, Node, TopLevel
 if TYPE_CHECKING:  # imported where used: networkx is a fifth of every command's start-up
     import networkx as nx
 
-__all__ = ["complete_alternative", "may_precede", "required_roots"]
+__all__ = ["complete_alternative", "may_precede"]
 
 
 def complete_alternative(roots: Sequence[Node], top_level: TopLevel) -> Node:
@@ -46,7 +46,7 @@ def complete_alternative(roots: Sequence[Node], top_level: TopLevel) -> Node:
     graph: nx.DiGraph[int] = nx.DiGraph()
     graph.add_nodes_from(range(len(roots)))
     graph.add_edges_from((s, r) for s, later in enumerate(may_precede(top_level, len(roots))) for r in later)
-    required = required_roots(top_level, len(roots))
+    required = top_level.required_roots(len(roots))
     roots = [root if root.optional or i in required else replace(root, optional=True) for i, root in enumerate(roots)]
     blocks = nx.condensation(graph)
     members: dict[int, list[int]] = {b: sorted(blocks.nodes[b]["members"]) for b in blocks.nodes}
@@ -77,21 +77,3 @@ def may_precede(top_level: TopLevel, n_roots: int) -> list[set[int]]:
         for root, dst in moves.items():
             after[root] |= ahead[dst]
     return [{r for r in range(n_roots) if bits >> r & 1 and r != s} for s, bits in enumerate(after)]
-
-
-def required_roots(top_level: TopLevel, n_roots: int) -> set[int]:
-    """The roots (of ``n_roots``) every execution of ``top_level`` performs: on every path from an initial
-    state to a terminal one."""
-    out = top_level.successors()
-    terminal = set(top_level.terminal)
-    every = -1  # all roots, as bits
-    on_all: dict[int, int] = {}  # state -> roots (bits) on every path from it to a terminal state
-    for state in top_level.successors_first():
-        bits = 0 if state in terminal else every
-        for root, dst in out.get(state, {}).items():
-            bits &= 1 << root | on_all[dst]
-        on_all[state] = bits
-    found = every
-    for state in top_level.initial:
-        found &= on_all[state] if state in out or state in terminal else 0  # one with no move requires nothing
-    return {r for r in range(n_roots) if found >> r & 1}
