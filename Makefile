@@ -82,6 +82,7 @@ bench: $(VENV)/.dev
 	$(BIN)/python benchmarks/bench_admission.py
 	$(BIN)/python benchmarks/bench_detector_demos.py
 	$(BIN)/python benchmarks/bench_clean_slips.py
+	$(BIN)/python benchmarks/bench_order_penalty.py
 	$(BIN)/python benchmarks/bench_habits.py
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_backoff.py

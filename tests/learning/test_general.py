@@ -6,14 +6,21 @@ import itertools
 import math
 
 import numpy as np
+import numpy.typing as npt
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
 from supportive import examples
+from supportive.errors import LearningError
 from supportive.io.htn_json import htn_from_dict, htn_to_dict
 from supportive.learning import HTNLearner
-from supportive.learning.general.evidence import contiguity_chance, established_precedences, pair_counts
+from supportive.learning.general.evidence import (
+    contiguity_chance,
+    established_precedences,
+    pair_counts,
+    weighed_precedences,
+)
 from supportive.learning.general.labelling import label_performances
 from supportive.learning.general.top_order import _enumerated, precedence_top_level, seen_top_level
 from supportive.tasks.htn import (
@@ -180,6 +187,19 @@ def test_fewer_demonstrations_than_subtask_demonstrations_keep_only_established_
     assert made.complete and made.count_orderings() == 2 and not made.admits(list("bacd"))
 
 
+def test_with_an_order_penalty_the_top_level_keeps_the_orders_worth_it() -> None:
+    two = [list("abcd"), list("acbd")]
+    every_order = HTNLearner(subtask_demonstrations=3, order_penalty=0.0).fit(two).htn_
+    assert not every_order.complete and every_order.top_level is not None
+    # a < b, a < c, b < d, c < d: the two orders seen
+    assert every_order.count_orderings() == 2 and every_order.admits(list("acbd"))
+    # no order two demonstrations keep is worth more than 2 ln 2 nats (a free pair's): above that, none is kept
+    none = HTNLearner(subtask_demonstrations=3, order_penalty=1.4).fit(two).htn_
+    assert none.count_orderings() == 24
+    with pytest.raises(LearningError, match="order_penalty"):
+        HTNLearner(order_penalty=-1.0)
+
+
 def test_glasses_learn_the_partial_order_they_show() -> None:
     spec = examples.load("two-glasses")
     htn = HTNLearner().fit(spec).htn_
@@ -191,16 +211,39 @@ def test_glasses_learn_the_partial_order_they_show() -> None:
     assert alternative.complete and all(alternative.admits(o) for o in valid)
 
 
-@given(st.lists(st.permutations(list("abcde")), min_size=1, max_size=7), st.sets(st.sampled_from("abcde")))
-def test_top_level_admits_exactly_the_linear_extensions(orders: list[list[str]], optional: set[str]) -> None:
+def _kept_orders(sequences: list[list[int]], roots: list[int], penalty: float | None) -> npt.NDArray[np.bool_]:
+    """The orders a top level keeps: established (the coin test of order_support 3 without a penalty, else
+    kept without exception by two demonstrations or more), none part of a contradiction, and, with a
+    ``penalty``, each worth it (weighed_precedences)."""
+    before, together = pair_counts(sequences, roots)
+    established = established_precedences(before, together, 3 if penalty is None else 2)
+    established &= ~_reaches(established).T
+    return established if penalty is None else weighed_precedences(established, together, penalty)
+
+
+def _reaches(relation: npt.NDArray[np.bool_]) -> npt.NDArray[np.bool_]:
+    """``R*[i, j]``: a path of one or more pairs of ``relation`` leads from i to j."""
+    reach = relation.copy()
+    for k in range(len(reach)):
+        reach |= reach[:, [k]] & reach[[k], :]
+    return reach
+
+
+@given(
+    st.lists(st.permutations(list("abcde")), min_size=1, max_size=7),
+    st.sets(st.sampled_from("abcde")),
+    st.sampled_from([None, 0.0, 1.0, 3.0]),
+)
+def test_top_level_admits_exactly_the_linear_extensions(
+    orders: list[list[str]], optional: set[str], penalty: float | None
+) -> None:
     sequences = [[ord(x) - 97 for x in o if not (x in optional and i % 2)] for i, o in enumerate(orders)]
     roots = list(range(5))
     present = {x for s in sequences for x in s}
     roots = [r for r in roots if r in present]
     required = frozenset(r for r in roots if all(r in s for s in sequences))
-    top = precedence_top_level(roots, sequences, required, order_support=3)
-    before, together = pair_counts(sequences, roots)
-    order = established_precedences(before, together, 3)
+    top = precedence_top_level(roots, sequences, required, order_support=3, order_penalty=penalty)
+    order = _kept_orders(sequences, roots, penalty)
     for size in range(len(roots) + 1):
         for subset in itertools.permutations(roots, size):
             rank = {r: i for i, r in enumerate(subset)}
@@ -233,13 +276,10 @@ def test_top_level_falls_back_to_the_orders_seen_exactly_beyond_its_state_limit(
     limit = max(1, states + offset)  # about as many states as there are: the boundary
     limited = precedence_top_level(roots, sequences, required, order_support=3, max_states=limit)
     assert limited == (seen_top_level(roots, sequences) if states > limit else unlimited)
-    # the orders seen stand for the partial order that was not built: its established precedences
-    before, together = pair_counts(sequences, roots)
-    established = established_precedences(before, together, 3)
-    cyclic = {(int(u), int(v)) for u, v in zip(*np.nonzero(established & established.T), strict=True)}
-    expected = sorted((int(u), int(v)) for u, v in zip(*np.nonzero(established), strict=True) if (u, v) not in cyclic)
+    # the orders seen stand for the partial order that was not built: the orders it keeps
+    expected = sorted((int(u), int(v)) for u, v in zip(*np.nonzero(_kept_orders(sequences, roots, None)), strict=True))
     if states > limit:
-        assert limited.stands_for is not None and set(limited.stands_for) <= set(expected)
+        assert limited.stands_for is not None and list(limited.stands_for) == expected
     assert unlimited.stands_for is None
 
 

@@ -241,7 +241,13 @@ def partial_order_htns(draw: st.DrawFn) -> HTN:
         for _ in range(draw(st.integers(1, 6)))
     ]
     required = frozenset.intersection(*(frozenset(order) for order in orders))
-    top = precedence_top_level(range(len(roots)), orders, required, order_support=draw(st.integers(1, 3)))
+    top = precedence_top_level(
+        range(len(roots)),
+        orders,
+        required,
+        order_support=draw(st.integers(1, 3)),
+        order_penalty=draw(st.sampled_from([None, 0.0, 1.0, 3.0])),
+    )
     return HTN("t", roots, top)
 
 

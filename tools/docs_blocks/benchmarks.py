@@ -109,6 +109,24 @@ def clean_slips_benchmark() -> str:
     return "\n".join(rows) + ("\n\nThe draws that failed: " + said + ".\n" if failures else "\n\nNo draw failed.\n")
 
 
+def order_penalty_benchmark() -> str:
+    """docs/learning.md: the default learner's task-graph F1 on generated tasks and its learning time with the
+    top level's orders weighed at each penalty, against the coin test (the default)."""
+    result = read_json(BENCHMARKS / "order-penalty.json")
+    rows = [
+        "| top level's orders | edge F1 (95 % interval) | minus the coin test's (± s.e.) | uniform people | people with habits | learning time |",
+        "|---|---:|---:|---:|---:|---:|",
+    ]
+    for name, row in result["settings"].items():
+        f1 = row["f1"]
+        rows.append(
+            f"| {name} | {f1['mean']:.3f} [{f1['low']:.3f}, {f1['high']:.3f}] | {row['minus_coin_test']:+.3f} ± "
+            f"{row['standard_error']:.3f} | {row['by_people']['uniform']:.3f} | {row['by_people']['habits']:.3f} | "
+            f"{row['time_ratio_to_coin_test']:.2f}× |"
+        )
+    return "\n".join(rows) + f"\n\n{result['tasks']:,} generated tasks ({result['tasks_per_cell']} per profile, kind of people and number of demonstrations).\n"
+
+
 def habits_benchmark() -> str:
     """docs/learning.md: fits that set a step aside, and the share of steps set aside, in clean
     demonstrations by people with habits, per learner, habit strength and number of demonstrations."""
@@ -177,6 +195,7 @@ BLOCKS: dict[str, Block] = {
     "bench-admission": Block("benchmarks/results/admission.json (make bench)", admission_benchmark),
     "bench-clean-slips": Block("benchmarks/results/clean-slips.json (make bench)", clean_slips_benchmark),
     "bench-habits": Block("benchmarks/results/habits.json (make bench)", habits_benchmark),
+    "bench-order-penalty": Block("benchmarks/results/order-penalty.json (make bench)", order_penalty_benchmark),
     "bench-detector-demos": Block("benchmarks/results/detector-demos.json (make bench)", detector_demos_benchmark),
     "bench-backoff": Block("benchmarks/results/backoff.json (make bench)", backoff_benchmark),
     "bench-service": from_benchmark(

@@ -45,7 +45,7 @@ __all__ = ["END_LABEL", "Calibration", "PredictionSession", "StepPredictor"]
 _LEARNER = (
     "mode", "slips", "slip_margin", "slip_rate", "slip_rate_weight", "order_concentration", "max_slip_candidates",
     "evidence",
-    "order_support", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
+    "order_support", "order_penalty", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
 )
 _TRACKER = ("slip", "restart", "max_states", "beam")
 
@@ -89,7 +89,7 @@ class StepPredictor(Estimator):
 
     Args:
         mode, slips, slip_margin, slip_rate, slip_rate_weight, order_concentration, max_slip_candidates, evidence,
-            order_support,
+            order_support, order_penalty,
             subtask_demonstrations, selection_folds, selection_demonstrations: The hierarchy learner's settings
             (see :class:`HTNLearner`); None (the default) keeps the learner's own default.
         slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
@@ -128,6 +128,7 @@ class StepPredictor(Estimator):
         max_slip_candidates: int | None = None,
         evidence: float | None = None,
         order_support: int | None = None,
+        order_penalty: float | None = None,
         subtask_demonstrations: int | None = None,
         selection_folds: int | None = None,
         selection_demonstrations: int | None = None,
@@ -162,6 +163,7 @@ class StepPredictor(Estimator):
         self.max_slip_candidates = max_slip_candidates
         self.evidence = evidence
         self.order_support = order_support
+        self.order_penalty = order_penalty
         self.subtask_demonstrations = subtask_demonstrations
         self.selection_folds = selection_folds
         self.selection_demonstrations = selection_demonstrations

@@ -34,6 +34,7 @@ class StructureSettings:
     evidence: float
     order_support: int | None
     subtask_demonstrations: int
+    order_penalty: float | None = None
 
     @property
     def support_needed(self) -> int:
@@ -91,7 +92,11 @@ def fit_structure(
     if len(roots) > 1:
         required = frozenset(r for r, node in zip(decomposition.roots, roots, strict=True) if not node.optional)
         top = precedence_top_level(
-            decomposition.roots, decomposition.sequences, required, order_support=settings.support_needed
+            decomposition.roots,
+            decomposition.sequences,
+            required,
+            order_support=settings.support_needed,
+            order_penalty=settings.order_penalty,
         )
         top = top.with_counts(annotated.top_counts())
     return FittedStructure(roots, top)

@@ -1,10 +1,13 @@
 """The top level of a partial hierarchy as a partial order of its roots (the ``general`` learner).
 
 When no chain or clique holds the roots left by decomposition, they are kept in the orders the evidence
-establishes (:func:`~supportive.learning.general.evidence.established_precedences`) rather than only in the orders
-seen: any order that respects every established precedence is admitted, roots of unrelated order may come in
-any order, and an optional root may be skipped (a precedence only binds roots that are both performed). The
-result is an ordinary :class:`~supportive.tasks.htn.TopLevel` whose states are the sets of roots done.
+establishes rather than only in the orders seen: by the coin test of ``order_support``
+(:func:`~supportive.learning.general.evidence.established_precedences`), or, with an ``order_penalty``, the
+orders every demonstration doing both roots keeps (two at least) that are worth more than that many nats against
+what the other orders already predict (:func:`~supportive.learning.general.evidence.weighed_precedences`). Any
+order that respects every order kept is admitted, roots of unrelated order may come in any order, and an
+optional root may be skipped (a precedence only binds roots that are both performed). The result is an
+ordinary :class:`~supportive.tasks.htn.TopLevel` whose states are the sets of roots done.
 
 When that graph would exceed ``max_states`` states (many roots of free order) or the roots are too many to
 compare pairwise, the top level falls back to the orders seen, as the ``strict`` learner keeps them. In the
@@ -22,7 +25,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from supportive.learning.general.evidence import established_precedences, pair_counts
+from supportive.learning.general.evidence import (
+    BoolMatrix,
+    established_precedences,
+    pair_counts,
+    weighed_precedences,
+)
 from supportive.tasks.htn import TopLevel
 
 __all__ = ["MAX_PAIRWISE_ROOTS", "precedence_top_level", "seen_top_level"]
@@ -40,29 +48,32 @@ def precedence_top_level(
     required: frozenset[int],
     *,
     order_support: int,
+    order_penalty: float | None = None,
     max_states: int = 50_000,
 ) -> TopLevel:
-    """The top level admitting every order of ``roots`` that keeps the established precedences.
+    """The top level admitting every order of ``roots`` that keeps the precedences the evidence establishes.
 
     Args:
         roots: Root node ids, in the order of the hierarchy's ``roots``.
         sequences: Every demonstration as a sequence of root ids.
         required: Roots every demonstration performs (the others may be skipped).
-        order_support: See :func:`~supportive.learning.general.evidence.established_precedences`.
+        order_support: Without ``order_penalty``: see
+            :func:`~supportive.learning.general.evidence.established_precedences`.
+        order_penalty: None, or what an order every demonstration doing both roots keeps (two at least) must
+            be worth to be kept, in nats (:func:`~supportive.learning.general.evidence.weighed_precedences`;
+            0 keeps every such order); ``order_support`` is then not read.
         max_states: Fall back to :func:`seen_top_level` beyond this many states.
     """
     if len(roots) > MAX_PAIRWISE_ROOTS:
         return seen_top_level(roots, sequences)
     before, together = pair_counts(sequences, list(roots))
-    established = established_precedences(before, together, order_support)
-    import networkx as nx  # here: networkx is a fifth of every command's start-up
-
-    graph = nx.DiGraph()
-    graph.add_nodes_from(range(len(roots)))
-    graph.add_edges_from((int(u), int(v)) for u, v in zip(*np.nonzero(established), strict=True))
-    for component in nx.strongly_connected_components(graph):
-        if len(component) > 1:  # orders established over different demonstrations that contradict: drop
-            graph.remove_edges_from([(u, v) for u in component for v in component if graph.has_edge(u, v)])
+    # weighed: an order two demonstrations keep (one is no evidence) without exception is where weighing starts
+    established = established_precedences(before, together, order_support if order_penalty is None else 2)
+    for component in _cycles(established):  # orders shown by different demonstrations that contradict: dropped
+        established[np.ix_(component, component)] = False
+    if order_penalty is not None:
+        established = weighed_precedences(established, together, order_penalty)
+    kept = [(int(u), int(v)) for u, v in zip(*np.nonzero(established), strict=True)]
     # no transitive closure: through a root that may be skipped, an order is only as established as it is
     preds = [0] * len(roots)  # the required roots that must come before each root
     earlier = [0] * len(roots)  # the roots that must come before each root (none may come after it)
@@ -71,7 +82,7 @@ def precedence_top_level(
     for i, root in enumerate(roots):
         if root in required:
             need |= 1 << i
-    for u, v in graph.edges():
+    for u, v in kept:
         earlier[v] |= 1 << u
         if roots[u] in required:
             preds[v] |= 1 << u
@@ -79,8 +90,17 @@ def precedence_top_level(
     enumerated = _enumerated(len(roots), tuple(preds), tuple(earlier), tuple(unlocks), need, max_states)
     if enumerated is not None:
         return enumerated
-    precedences = tuple(sorted((int(u), int(v)) for u, v in graph.edges()))
+    precedences = tuple(sorted(kept))
     return dataclasses.replace(seen_top_level(roots, sequences), stands_for=precedences)
+
+
+def _cycles(relation: BoolMatrix) -> list[list[int]]:
+    """The strongly connected components of ``relation`` (``R[i, j]``: an edge i -> j) of two steps or more."""
+    import networkx as nx  # here: networkx is a fifth of every command's start-up
+
+    graph = nx.DiGraph()
+    graph.add_edges_from((int(u), int(v)) for u, v in zip(*np.nonzero(relation), strict=True))
+    return [sorted(c) for c in nx.strongly_connected_components(graph) if len(c) > 1]
 
 
 @functools.lru_cache(maxsize=_ENUMERATIONS_KEPT)
