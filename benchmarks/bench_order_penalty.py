@@ -8,8 +8,8 @@ default) and with each penalty; each learned "a before b" relation is scored aga
 edge, with the protocol of *Differentiable Task Graph Learning* (:mod:`supportive.learning.graph_edges`), and
 the learning is timed. Reported: each setting's mean F1 with its 95 % interval, its difference from the coin
 test's (paired by task) with the standard error, per kind of people and number of demonstrations, and the
-learning time as a ratio to the coin test's in the same run. Accuracy and cost of a setting, measured; which
-one is the default is docs/learning.md's call.
+learning time as a ratio to the coin test's in the same run, and the penalty a stated procedure picks
+(:func:`candidate_penalty`, the JSON's ``candidate``); whether it is the default is docs/learning.md's call.
 """
 
 from __future__ import annotations
@@ -49,6 +49,25 @@ def truth(task: KnownTask) -> tuple[frozenset[Pair], list[Leaf]]:
 def name(setting: float | None) -> str:
     """A setting as the JSON names it."""
     return "coin test" if setting is None else f"order_penalty={setting:g}"
+
+
+def candidate_penalty(summary: dict[str, dict[str, object]], time_bound: float = 1.5) -> float | None:
+    """The procedure that picks the candidate for ``HTNLearner``'s ``order_penalty``: of the penalties whose learning takes
+    at most ``time_bound`` times the coin test's (1.5: the bound issue #23 sets the general learner against the
+    strict one), the one with the best mean F1, the smaller on a tie; None when none is within the bound.
+
+    >>> row = lambda f1, ratio: {"f1": {"mean": f1}, "time_ratio_to_coin_test": ratio}
+    >>> candidate_penalty({"coin test": row(0.7, 1.0), "order_penalty=1": row(0.8, 1.2), "order_penalty=2": row(0.9, 2.0)})
+    1.0
+    """
+    best: tuple[float, float] | None = None
+    for label, row in sorted(summary.items(), key=lambda item: item[0]):
+        if label == name(None) or float(row["time_ratio_to_coin_test"]) > time_bound:  # type: ignore[arg-type]
+            continue
+        f1, penalty = float(row["f1"]["mean"]), float(label.removeprefix("order_penalty="))  # type: ignore[index]
+        if best is None or f1 > best[0] or (f1 == best[0] and penalty < best[1]):
+            best = (f1, penalty)
+    return None if best is None else best[1]
 
 
 def main() -> None:
@@ -106,6 +125,8 @@ def main() -> None:
         "tasks_per_cell": args.tasks_per_cell,
         "seed": args.seed,
         "settings": summary,
+        "candidate": candidate_penalty(summary),  # type: ignore[arg-type]
+        "procedure": "the penalty with the best mean F1 among those learning in at most 1.5x the coin test's time",
         "machine": {"python": platform.python_version(), "platform": platform.platform()},
         "seconds": round(time.perf_counter() - started, 1),
     }

@@ -90,6 +90,31 @@ def test_captaincook_never_cuts_a_number(
         assert f"F1 {interval} (95 % interval over the recipes)" in wide, (setting, interval)
 
 
+def test_captaincook_uniform_prints_both_learners_and_nests_its_json(
+    in_process: InProcess, captaincook_reports: list[RecipeReport], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from supportive.experiments.captaincook import recipes, uniform
+
+    asked: list[tuple[int, object]] = []
+
+    def drawn(recipes: list[object], draws: int, seed: int = 0, learner_options: object = None) -> uniform.UniformDraws:
+        asked.append((draws, learner_options))
+        figure = {"mean": 0.5 if learner_options else 0.25, "low": 0.125, "high": 0.75, "n": len(recipes)}
+        return uniform.UniformDraws(draws, seed, figure, figure)
+
+    monkeypatch.setattr(recipes, "captaincook_report", lambda recipes: captaincook_reports)
+    monkeypatch.setattr(uniform, "uniform_draws", drawn)
+    shown = json.loads(in_process("captaincook", "--json", "--uniform", "3", columns=200))
+    assert len(shown["recipes"]) == 24 and asked == [(3, None), (3, {"mode": "strict"})]
+    assert shown["uniform"]["strict"]["full"]["mean"] == 0.5 and shown["uniform"]["default"]["draws"] == 3
+    pairs = shown["free_pairs"]
+    assert 0 < pairs["kept"] <= pairs["free"] and 0 < pairs["expected"] <= pairs["free"]
+    text = " ".join(in_process("captaincook", "--uniform", "3", columns=80).split())
+    assert f"every recording in one order: {pairs['kept']} (uniform draws" in text
+    assert "the default learner on 3 sets of recordings drawn uniformly" in text
+    assert "task-graph F1 full 0.500 [0.125, 0.750], 5-shot 0.500 [0.125, 0.750]" in text
+
+
 def test_the_demo_wraps_at_words_and_cuts_nothing(in_process: InProcess) -> None:
     """Issue 16.6: the demo cut the actions' descriptions mid-word at 80 columns."""
     shown = in_process("demo", columns=80)

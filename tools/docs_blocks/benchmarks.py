@@ -124,7 +124,12 @@ def order_penalty_benchmark() -> str:
             f"{row['standard_error']:.3f} | {row['by_people']['uniform']:.3f} | {row['by_people']['habits']:.3f} | "
             f"{row['time_ratio_to_coin_test']:.2f}× |"
         )
-    return "\n".join(rows) + f"\n\n{result['tasks']:,} generated tasks ({result['tasks_per_cell']} per profile, kind of people and number of demonstrations).\n"
+    candidate = result["candidate"]
+    picked = "none" if candidate is None else f"order_penalty={candidate:g}"
+    return "\n".join(rows) + (
+        f"\n\n{result['tasks']:,} generated tasks ({result['tasks_per_cell']} per profile, kind of people and number "
+        f"of demonstrations). The procedure's candidate ({result['procedure']}): {picked}.\n"
+    )
 
 
 def habits_benchmark() -> str:

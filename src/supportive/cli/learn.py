@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Sequence
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -17,6 +18,9 @@ from supportive.errors import OptionError, TaskFileError
 from supportive.extras import require_extra
 from supportive.io.values import is_digits
 from supportive.render.terminal import printable
+
+if TYPE_CHECKING:
+    from supportive.io.captaincook import Recipe
 
 __all__ = ["captaincook", "evaluate", "generate", "learn"]
 
@@ -338,6 +342,17 @@ def captaincook(
     ] = False,
     threshold: DetectorThreshold = None,
     learn_from: DetectorLearnFrom = LearnFrom.all,
+    uniform: Annotated[
+        int,
+        typer.Option(
+            "--uniform",
+            min=0,
+            metavar="N",
+            help="Also learn N sets of recordings drawn uniformly from each published graph's orders (default "
+            "and strict learners) and give their task-graph F1: how much of the shortfall the recordings' habits "
+            'make (seconds per set; with --json the output becomes {"recipes": [...], "uniform": {...}}).',
+        ),
+    ] = 0,
 ) -> None:
     """Learn every CaptainCook4D recipe from its error-free recordings and score the "must come before" pairs
     the learned model implies against the recipe's published task graph. With --mistakes: leave each
@@ -350,14 +365,19 @@ def captaincook(
     from supportive.render.tables import fitted_table
 
     if mistakes:
+        if uniform:
+            raise OptionError("draws recordings for the task graphs, not for mistake detection: give it without --mistakes", "--uniform")
         _captaincook_mistakes(data, threshold, learn_from.value, as_json)
         return
     _without_mistakes(learn_from)
 
-    reports = captaincook_report(load_captaincook(data))
+    recipes = load_captaincook(data)
+    reports = captaincook_report(recipes)
+    habits = _habits(recipes, uniform)
     if as_json:
         rows = [r.as_dict() for r in reports]
-        sys.stdout.write(json.dumps(rows, indent=2) + "\n")
+        shown: object = rows if habits is None else {"recipes": rows, **habits}
+        sys.stdout.write(json.dumps(shown, indent=2) + "\n")
         return
     headers = ["recipe", "demos", "actions", "roots", "precision", "recall", "F1", "edge F1", "5-shot"]
     cells = [
@@ -393,6 +413,42 @@ def captaincook(
             f"(95 % interval over the recipes); published: {peers}"
         )
         out.print(f"  wrong edges ({setting}, all recipes): " + "; ".join(f"{n} {kind}" for kind, n in errors.items()))
+    if habits is not None:
+        _print_habits(habits)
+
+
+def _habits(recipes: Sequence[Recipe], draws: int) -> dict[str, dict[str, Any]] | None:
+    """``captaincook --uniform``: the default and the strict learner on ``draws`` sets of uniformly drawn
+    recordings of each recipe, and the free pairs the real recordings keep (None for 0 draws)."""
+    from supportive.experiments.captaincook.uniform import kept_free_pairs, uniform_draws
+
+    if not draws:
+        return None
+    return {
+        "uniform": {
+            "default": uniform_draws(recipes, draws).as_dict(),
+            "strict": uniform_draws(recipes, draws, learner_options={"mode": "strict"}).as_dict(),
+        },
+        "free_pairs": kept_free_pairs(recipes).as_dict(),
+    }
+
+
+def _print_habits(habits: dict[str, dict[str, Any]]) -> None:
+    """The lines ``captaincook --uniform`` adds to the table."""
+    from supportive.experiments.statistics import format_ci
+
+    pairs = habits["free_pairs"]
+    out.print(
+        f"pairs of steps the published graphs leave unordered, done by two or more recordings: {pairs['free']}; "
+        f"every recording in one order: {pairs['kept']} (uniform draws from the graphs' orders: "
+        f"{pairs['expected']:.1f} on average)"
+    )
+    for learner, figures in habits["uniform"].items():
+        out.print(
+            f"the {learner} learner on {figures['draws']} sets of recordings drawn uniformly from each published "
+            f"graph's orders (seed {figures['seed']}): task-graph F1 full {format_ci(figures['full'])}, 5-shot "
+            f"{format_ci(figures['5-shot'])}"
+        )
 
 
 def _without_mistakes(learn_from: LearnFrom) -> None:

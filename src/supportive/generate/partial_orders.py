@@ -18,9 +18,9 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import functools
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import cache
 
 import numpy as np
 
@@ -98,23 +98,65 @@ class PartialOrderTask:
 
     def count_executions(self) -> int:
         """How many valid executions there are (dynamic programming over what each chain has done)."""
+        count, _ = self._counter()
+        return count(tuple(0 for _ in self.chains))
+
+    def counting_sampler(self) -> Callable[[Seed], tuple[str, ...]]:
+        """A function drawing one execution at a time, uniformly among the valid ones however tight the
+        constraints: each next step is drawn with chance proportional to the valid executions that go on from
+        it (the counts of :meth:`count_executions`, worked out once for every draw). :meth:`sample` redraws
+        whole interleavings instead, which is quicker for loose constraints and fails for tight ones (a
+        recipe's graph as chains of one step each).
+
+        Raises:
+            GenerationError: when the constraints admit no execution.
+
+        >>> draw = PartialOrderTask((("a",), ("b",), ("c",)), (("a", "b"), ("a", "c"))).counting_sampler()
+        >>> sorted({draw(s) for s in range(20)})
+        [('a', 'b', 'c'), ('a', 'c', 'b')]
+        """
+        count, moves = self._counter()
+        start = tuple(0 for _ in self.chains)
+        if count(start) == 0:
+            raise GenerationError("the constraints admit no execution")
+
+        def draw(seed: Seed = None) -> tuple[str, ...]:
+            rng = rng_from(seed)
+            done, execution = start, []
+            for _ in range(len(self.steps)):
+                options = [(c, nxt) for c, nxt in moves(done) if count(nxt)]
+                weights = np.array([count(nxt) for _, nxt in options], dtype=float)
+                chain, done = options[int(rng.choice(len(options), p=weights / weights.sum()))]
+                execution.append(self.chains[chain][done[chain] - 1])
+            return tuple(execution)
+
+        return draw
+
+    def _counter(
+        self,
+    ) -> tuple[Callable[[tuple[int, ...]], int], Callable[[tuple[int, ...]], list[tuple[int, tuple[int, ...]]]]]:
+        """The valid executions that go on from what each chain has done (memoised), and the moves from such
+        a state: each chain whose next step may come then, with the state after it."""
         lengths = tuple(len(chain) for chain in self.chains)
         index = {step: (c, i) for c, chain in enumerate(self.chains) for i, step in enumerate(chain)}
         needs: dict[tuple[int, int], list[tuple[int, int]]] = {}
         for a, b in self.cross:
             needs.setdefault(index[b], []).append(index[a])
 
-        @cache
+        def moves(done: tuple[int, ...]) -> list[tuple[int, tuple[int, ...]]]:
+            return [
+                (c, (*done[:c], k + 1, *done[c + 1 :]))
+                for c, k in enumerate(done)
+                if k < lengths[c] and all(done[ac] > ai for ac, ai in needs.get((c, k), ()))
+            ]
+
+        @functools.cache
         def count(done: tuple[int, ...]) -> int:
             if done == lengths:
                 return 1
-            total = 0
-            for c, k in enumerate(done):
-                if k < lengths[c] and all(done[ac] > ai for ac, ai in needs.get((c, k), ())):
-                    total += count((*done[:c], k + 1, *done[c + 1 :]))
-            return total
+            return sum(count(nxt) for _, nxt in moves(done))
 
-        return count(tuple(0 for _ in lengths))
+        return count, moves
 
 
 def random_partial_order(n_steps: int, seed: Seed = None, *, chains: int = 2, cross: int = 0) -> PartialOrderTask:
