@@ -349,8 +349,10 @@ def captaincook(
             min=0,
             metavar="N",
             help="Also learn N sets of recordings drawn uniformly from each published graph's orders (default "
-            "and strict learners) and give their task-graph F1: how much of the shortfall the recordings' habits "
-            'make (seconds per set; with --json the output becomes {"recipes": [...], "uniform": {...}}).',
+            "and strict learners) and give their task-graph F1, and count the pairs the graphs leave unordered "
+            "that every recording keeps in one order: how much of the shortfall the recordings' habits make "
+            '(seconds per set; with --json the output becomes {"recipes": [...], "uniform": {...}, '
+            '"free_pairs": {...}}).',
         ),
     ] = 0,
 ) -> None:
@@ -445,9 +447,9 @@ def _print_habits(habits: dict[str, dict[str, Any]]) -> None:
     )
     for learner, figures in habits["uniform"].items():
         out.print(
-            f"the {learner} learner on {figures['draws']} sets of recordings drawn uniformly from each published "
-            f"graph's orders (seed {figures['seed']}): task-graph F1 full {format_ci(figures['full'])}, 5-shot "
-            f"{format_ci(figures['5-shot'])}"
+            f"the {learner} learner on {figures['draws']} set{'' if figures['draws'] == 1 else 's'} of recordings "
+            f"drawn uniformly from each published graph's orders (seed {figures['seed']}): task-graph F1 full "
+            f"{format_ci(figures['full'])}, 5-shot {format_ci(figures['5-shot'])}"
         )
 
 
