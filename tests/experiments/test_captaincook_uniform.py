@@ -6,7 +6,7 @@ import itertools
 
 import pytest
 
-from supportive.errors import DatasetError
+from supportive.errors import DatasetError, InvalidValueError
 from supportive.experiments.captaincook import uniform
 from supportive.experiments.captaincook.uniform import kept_free_pairs, published_order, uniform_draws
 from supportive.io.captaincook import Recipe, load_recipe
@@ -63,7 +63,7 @@ def test_recordings_drawn_are_as_many_as_the_recipe_has(subset: list[Recipe], mo
 
 
 def test_bad_requests_are_refused(subset: list[Recipe]) -> None:
-    with pytest.raises(DatasetError, match="draws must be 1 or more"):
+    with pytest.raises(InvalidValueError, match="draws must be 1 or more"):
         uniform_draws(subset, 0)
     with pytest.raises(DatasetError, match="no CaptainCook4D recipe"):
         uniform_draws([], 1)

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from supportive.errors import DatasetError
+from supportive.errors import DatasetError, InvalidValueError
 from supportive.experiments.captaincook.recipes import FEW_SHOT
 from supportive.experiments.statistics import mean_ci
 from supportive.generate.partial_orders import PartialOrderTask
@@ -103,7 +103,10 @@ def kept_free_pairs(recipes: Sequence[Recipe]) -> KeptPairs:
             if len(both) < 2:
                 continue
             first = sum(p[steps[i]] < p[steps[j]] for p in both)
-            share = (count_linear_extensions(len(steps), [*pairs, (i, j)]) or 0) / total
+            keeping = count_linear_extensions(len(steps), [*pairs, (i, j)])
+            if keeping is None:
+                raise DatasetError(f"{recipe.name}: its published graph's orders could not be counted")
+            share = keeping / total
             free += 1
             kept += first in (0, len(both))
             expected += share ** len(both) + (1 - share) ** len(both)
@@ -127,12 +130,13 @@ def uniform_draws(
     recipe ``i`` uses the generator ``default_rng([seed, i, d])``: the same seed gives the same numbers.
 
     Raises:
-        DatasetError: when there is no recipe, or ``draws`` is below 1.
+        DatasetError: when there is no recipe.
+        InvalidValueError: when ``draws`` is below 1.
     """
     if not recipes:
         raise DatasetError("no CaptainCook4D recipe to draw recordings for")
     if draws < 1:
-        raise DatasetError(f"draws must be 1 or more, got {draws}")
+        raise InvalidValueError(f"draws must be 1 or more, got {draws}")
     options = dict(learner_options or {})
     full: list[float] = []
     few: list[float] = []
