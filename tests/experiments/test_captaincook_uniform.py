@@ -38,7 +38,7 @@ def test_the_published_order_admits_what_the_published_graph_admits(subset: list
             assert all(position[a] < position[b] for a, b in recipe.published), recipe.name
 
 
-def test_the_same_seed_gives_the_same_figures_and_another_seed_other_draws(subset: list[Recipe]) -> None:
+def test_the_same_seed_gives_the_same_figures(subset: list[Recipe]) -> None:
     strict = {"mode": "strict"}
     first = uniform_draws(subset, 2, seed=3, learner_options=strict)
     assert first == uniform_draws(subset, 2, seed=3, learner_options=strict)
@@ -47,19 +47,24 @@ def test_the_same_seed_gives_the_same_figures_and_another_seed_other_draws(subse
     assert first.as_dict()["5-shot"] == first.few_shot
 
 
-def test_recordings_drawn_are_as_many_as_the_recipe_has(subset: list[Recipe], monkeypatch: pytest.MonkeyPatch) -> None:
+def test_as_many_recordings_as_the_recipe_has_are_drawn_again_for_another_seed(
+    subset: list[Recipe], monkeypatch: pytest.MonkeyPatch
+) -> None:
     from supportive.learning.learner import learn as real_learn
 
-    learned: list[int] = []
+    learned: list[tuple[tuple[str, ...], ...]] = []
 
-    def counting_learn(spec, **options):  # type: ignore[no-untyped-def]
-        learned.append(len(spec.demonstrations))
+    def recording_learn(spec, **options):  # type: ignore[no-untyped-def]
+        learned.append(tuple(demo.actions for demo in spec.demonstrations))
         return real_learn(spec, **options)
 
-    monkeypatch.setattr(uniform, "learn", counting_learn)
-    uniform_draws(subset[:1], 1, learner_options={"mode": "strict"})
+    monkeypatch.setattr(uniform, "learn", recording_learn)
+    for seed in (0, 0, 1):
+        uniform_draws(subset[:1], 1, seed=seed, learner_options={"mode": "strict"})
     recordings = len(subset[0].spec.demonstrations)
-    assert learned == [recordings, min(recordings, 5)]
+    assert [len(sequences) for sequences in learned] == [recordings, min(recordings, 5)] * 3
+    assert learned[0] == learned[2] != learned[4]  # the same seed, the same draws; another, others
+    assert learned[1] == learned[0][:5]
 
 
 def test_bad_requests_are_refused(subset: list[Recipe]) -> None:
