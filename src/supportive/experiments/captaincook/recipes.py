@@ -19,8 +19,9 @@ from supportive.io.captaincook import Recipe
 from supportive.learning.graph_edges import EDGE_ERRORS, compare_edges
 from supportive.learning.learner import learn
 from supportive.learning.precedence import PrecedenceScore, implied_precedences, precedence_scores
+from supportive.tasks.spec import TaskSpec
 
-__all__ = ["FEW_SHOT", "RecipeMeans", "RecipeReport", "captaincook_report", "compare_recipe", "recipe_means"]
+__all__ = ["FEW_SHOT", "RecipeMeans", "RecipeReport", "captaincook_report", "compare_recipe", "few_shot_spec", "recipe_means"]
 
 FEW_SHOT = 5
 """Recordings of the few-shot setting of the task-graph protocol (each recipe's first five)."""
@@ -87,6 +88,11 @@ def _as_dict(score: PrecedenceScore) -> dict[str, float]:
     return {"precision": score.precision, "recall": score.recall, "f1": score.f1}
 
 
+def few_shot_spec(spec: TaskSpec) -> TaskSpec:
+    """``spec`` with its first :data:`FEW_SHOT` demonstrations only (the protocol's 5-shot setting)."""
+    return spec.with_demonstrations(spec.demonstrations[:FEW_SHOT])
+
+
 def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = None) -> RecipeReport:
     """Learn ``recipe``'s hierarchy from its demonstrations and score its implied precedences.
 
@@ -100,7 +106,7 @@ def compare_recipe(recipe: Recipe, learner_options: Mapping[str, Any] | None = N
     options = dict(learner_options or {})
     learner = learn(recipe.spec, **options)
     htn = learner.htn_
-    few = learn(recipe.spec.with_demonstrations(recipe.spec.demonstrations[:FEW_SHOT]), **options).htn_
+    few = learn(few_shot_spec(recipe.spec), **options).htn_
     deviating = {d.demonstration for d in learner.deviations_}
     demos = [demo for i, demo in enumerate(recipe.spec.demonstrations) if i not in deviating]
     implied = implied_precedences(htn)

@@ -7,9 +7,9 @@ needs it or the people who recorded it have a habit, and no learner of orders ca
 recipe's recordings are replaced by as many executions drawn **uniformly** among the orders its published graph
 admits (:meth:`~supportive.generate.partial_orders.PartialOrderTask.counting_sampler`), learned as
 :func:`~supportive.experiments.captaincook.recipes.compare_recipe` learns the real ones (every drawn recording,
-then the first :data:`~supportive.experiments.captaincook.recipes.FEW_SHOT`), and scored against the same graph
-the same way. The gap between these figures and the real recordings' is what the people's habits cost; the gap
-between these and 1 is the learner's own, given that many recordings.
+then the first few, :func:`~supportive.experiments.captaincook.recipes.few_shot_spec`), and scored against the
+same graph the same way. The gap between these figures and the real recordings' is what the people's habits
+cost; the gap between these and 1 is the learner's own, given that many recordings.
 
 :func:`kept_free_pairs` asks the recordings themselves: of the pairs of steps the published graph leaves
 unordered, how many every recording doing both keeps in one order, against how many uniform draws would keep
@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from supportive.errors import DatasetError, InvalidValueError
-from supportive.experiments.captaincook.recipes import FEW_SHOT
+from supportive.experiments.captaincook.recipes import few_shot_spec
 from supportive.experiments.statistics import mean_ci
 from supportive.generate.partial_orders import PartialOrderTask
 from supportive.io.captaincook import Recipe
@@ -151,8 +151,7 @@ def uniform_draws(
                 for k in range(len(recipe.spec.demonstrations))
             )
             spec = recipe.spec.with_demonstrations(recordings)
-            few_spec = spec.with_demonstrations(recordings[:FEW_SHOT])
-            scores.append((_edge_f1(recipe, learn(spec, **options).htn_), _edge_f1(recipe, learn(few_spec, **options).htn_)))
+            scores.append((_edge_f1(recipe, learn(spec, **options).htn_), _edge_f1(recipe, learn(few_shot_spec(spec), **options).htn_)))
         full.append(statistics.fmean(s[0] for s in scores))
         few.append(statistics.fmean(s[1] for s in scores))
     return UniformDraws(draws, seed, mean_ci(full, bounds=(0.0, 1.0)), mean_ci(few, bounds=(0.0, 1.0)))
