@@ -306,3 +306,23 @@ def test_a_clean_sample_whose_free_steps_look_like_a_subtask_by_chance_has_no_sl
     rng.integers(3, 31), rng.integers(1, 201)  # the check drew the size and the number of demonstrations first
     task = random_known_task("uniform", 22, rng)
     _assert_clean([task.sample(rng) for _ in range(9)])
+
+
+@pytest.mark.parametrize("order_penalty", [None, 1.0])
+def test_a_repeat_done_after_its_successor_is_one_repeated_step(order_penalty: float | None) -> None:
+    """The generalisation experiment's slip check, task 641 (a 21-step partial order, 50 demonstrations by
+    people drawing uniformly, five with a step done twice): in demonstrations 10 and 23 ``s20`` is done in its
+    place and again after ``s21``. Without the exchange pass the search took the earlier performance for the
+    repeat and then the later for a step out of order (with the top level's orders weighed), or called the
+    later one out of order (with the coin test) — 12.5 and 7.7 nats less probable than the later one repeated,
+    which needs one slip out and another in at once."""
+    from supportive.experiments.generalisation.measure import DEFAULT_TRIALS, make_trials
+    from supportive.experiments.learner_settings.measure import trial_demonstrations
+
+    demos, truth, _ = trial_demonstrations(make_trials(DEFAULT_TRIALS, 0)[641])
+    found = HTNLearner(order_penalty=order_penalty).fit(demos).deviations_
+    for d in (10, 23):
+        assert d in truth
+        (slip,) = [s for s in found if s.demonstration == d]
+        later = max(i for i, step in enumerate(demos[d]) if step == "s20")
+        assert (slip.kind, slip.leaf[0], slip.position) == ("repeated", "s20", later)

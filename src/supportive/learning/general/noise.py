@@ -20,9 +20,11 @@ are noise):
   clean data the rates go to zero), and where each landed (a uniform choice among the demonstration's
   positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
-  gain exceeds ``margin`` nats a slip; then takes back the slips not worth ``margin`` nats each; and repeats the two
-  until a pass changes nothing (slips that only pay together can be missed by a pass that took a few that pay
-  alone). It also runs from a second start, the most telling step out of place in every demonstration that
+  gain exceeds ``margin`` nats a slip; then takes back the slips not worth ``margin`` nats each; then replaces the
+  slips of one demonstration by a single candidate of its own where that is more probable (the earlier of two
+  performances taken for the repeat and the later then out of place, where the later is the repeat: a move
+  that needs one slip out and another in at once); and repeats the three until a pass changes nothing (slips
+  that only pay together can be missed by a pass that took a few that pay alone). It also runs from a second start, the most telling step out of place in every demonstration that
   has one (when that beats no slip), and keeps the more probable of the two ends: a greedy search from the
   large start can stall where taking back the variants of a step would mean keeping its real slips (issue
   #23: four real slips of a step kept with eighteen valid variants, 70 nats less probable than the four
@@ -345,7 +347,7 @@ class _Search:
         pass starts from is added to ``passed``."""
         while slips not in passed:
             passed.add(slips)
-            slips = self._backward(self._forward(slips))
+            slips = self._exchange(self._backward(self._forward(slips)))
         return slips
 
     def _joint(self) -> frozenset[Deviation]:
@@ -412,6 +414,32 @@ class _Search:
             if not value > 0.0:
                 break
             slips, current = slips - unit, current + value - self.settings.margin * len(unit)
+        return slips
+
+    def _exchange(self, slips: frozenset[Deviation]) -> frozenset[Deviation]:
+        """Replace the slips of one demonstration by a candidate of its own, best first, while that makes the
+        explanation more probable (``margin`` nats a slip counted as :meth:`_forward` and :meth:`_backward`
+        count it); return the slips. The passes add or take back one candidate at a time, so they stop where
+        the better explanation of a demonstration needs one slip out and another in at once: the earlier of two
+        performances of a step taken for the repeat, the later then out of place, where the later is the
+        repeat."""
+        margin = self.settings.margin
+        current = self._total(slips) if slips else 0.0
+        while slips:
+            best: tuple[float, frozenset[Deviation]] | None = None
+            for demonstration in sorted({slip.demonstration for slip in slips}):
+                own = frozenset(slip for slip in slips if slip.demonstration == demonstration)
+                rest = slips - own
+                for candidate in self._candidates(rest):
+                    if candidate == own or {slip.demonstration for slip in candidate} != {demonstration}:
+                        continue
+                    value = self._total(rest | candidate) - current + margin * (len(own) - len(candidate))
+                    if value > 0.0 and (best is None or value > best[0]):
+                        best = (value, rest | candidate)
+            if best is None:
+                break
+            slips = best[1]
+            current = self._total(slips)
         return slips
 
     def _by_chance(self, slips: frozenset[Deviation]) -> frozenset[Deviation]:
