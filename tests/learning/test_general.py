@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import itertools
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
@@ -13,6 +15,7 @@ from hypothesis import strategies as st
 
 from supportive import examples
 from supportive.errors import LearningError
+from supportive.inference.predictor import StepPredictor
 from supportive.io.htn_json import htn_from_dict, htn_to_dict
 from supportive.learning import HTNLearner
 from supportive.learning.general.evidence import (
@@ -198,6 +201,14 @@ def test_with_an_order_penalty_the_top_level_keeps_the_orders_worth_it() -> None
     assert none.count_orderings() == 24
     with pytest.raises(LearningError, match="order_penalty"):
         HTNLearner(order_penalty=-1.0)
+
+
+def test_the_default_order_penalty_is_the_benchmarks_candidate() -> None:
+    # docs/learning.md quotes the recorded `make bench` run whose procedure picked it; a change of the procedure's
+    # pick must change the default (and the runs recorded with it), and the predictor passes the same on.
+    recorded = json.loads((Path(__file__).parents[2] / "benchmarks" / "results" / "order-penalty.json").read_text())
+    assert HTNLearner().order_penalty == recorded["candidate"] == StepPredictor()._learner().order_penalty
+    assert StepPredictor(order_penalty=None)._learner().order_penalty is None  # the coin test, asked for
 
 
 def test_glasses_learn_the_partial_order_they_show() -> None:

@@ -36,7 +36,7 @@ from supportive.errors import LearningError
 from supportive.estimator import Estimator
 from supportive.inference.bigram import OpenBigram
 from supportive.inference.tracker import END_LABEL, ProgressFilter, ProgressHMM
-from supportive.learning.learner import DemonstrationLike, HTNLearner, Mode
+from supportive.learning.learner import DEFAULT_ORDER_PENALTY, DemonstrationLike, HTNLearner, Mode
 from supportive.tasks.htn import HTN, ActionNode
 from supportive.tasks.spec import Demonstration, TaskSpec
 
@@ -45,7 +45,7 @@ __all__ = ["END_LABEL", "Calibration", "PredictionSession", "StepPredictor"]
 _LEARNER = (
     "mode", "slips", "slip_margin", "slip_rate", "slip_rate_weight", "order_concentration", "max_slip_candidates",
     "evidence",
-    "order_support", "order_penalty", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
+    "order_support", "subtask_demonstrations", "selection_folds", "selection_demonstrations",
 )
 _TRACKER = ("slip", "restart", "max_states", "beam")
 
@@ -91,7 +91,8 @@ class StepPredictor(Estimator):
         mode, slips, slip_margin, slip_rate, slip_rate_weight, order_concentration, max_slip_candidates, evidence,
             order_support, order_penalty,
             subtask_demonstrations, selection_folds, selection_demonstrations: The hierarchy learner's settings
-            (see :class:`HTNLearner`); None (the default) keeps the learner's own default.
+            (see :class:`HTNLearner`); None (the default) keeps the learner's own default, except for
+            ``order_penalty``, which is the learner's own: its default is the learner's and None the coin test.
         slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
             default.
         smoothing: Pseudo-counts per option of every choice, above 0; None: fitted.
@@ -128,7 +129,7 @@ class StepPredictor(Estimator):
         max_slip_candidates: int | None = None,
         evidence: float | None = None,
         order_support: int | None = None,
-        order_penalty: float | None = None,
+        order_penalty: float | None = DEFAULT_ORDER_PENALTY,
         subtask_demonstrations: int | None = None,
         selection_folds: int | None = None,
         selection_demonstrations: int | None = None,
@@ -223,7 +224,7 @@ class StepPredictor(Estimator):
         settings = self._given(_LEARNER)
         if reading is not None:
             settings["mode"] = reading
-        return HTNLearner(alternatives=0, **settings)
+        return HTNLearner(alternatives=0, order_penalty=self.order_penalty, **settings)
 
     def _hmm(self, htn: HTN, smoothing: float, *, build: bool = True) -> ProgressHMM:
         """The tracker's model over ``htn``, fitted unless ``build`` is False (then only its settings are

@@ -46,7 +46,10 @@ from supportive.tasks.naming import known_names, named
 from supportive.tasks.spec import Demonstration, TaskSpec
 from supportive.tasks.task_graph import TaskGraph
 
-__all__ = ["HTNLearner", "LearningStats", "learn"]
+__all__ = ["DEFAULT_ORDER_PENALTY", "HTNLearner", "LearningStats", "learn"]
+
+DEFAULT_ORDER_PENALTY = 1.0
+"""``HTNLearner``'s default ``order_penalty`` (nats), named for the estimators that pass it on."""
 
 DemonstrationLike = Demonstration | Sequence[str]
 Mode = Literal[
@@ -130,13 +133,14 @@ class HTNLearner(Estimator):
         order_support: ``general``: demonstrations showing two steps in one order that establish the order
             even when no step is between them (:func:`~supportive.learning.general.evidence.established_precedences`);
             by default the fewest with which that order would be chance below ``evidence`` (6 for 0.05).
-        order_penalty: ``general``: None (default): a partial top level keeps the orders ``order_support``
-            establishes. A number of nats (0 or more): it keeps instead each order that every demonstration doing
-            both roots keeps (two at least) and that is worth more than this against what the other orders
-            already predict (:func:`~supportive.learning.general.evidence.weighed_precedences`: a pair free in a
-            partial order is no coin); 0 keeps every such order. On generated tasks 1 recovers task graphs
-            better than the coin test in 1.3× its learning time (``make bench``,
-            benchmarks/results/order-penalty.json); not yet the default (docs/learning.md).
+        order_penalty: ``general``: a number of nats (0 or more): a partial top level keeps each order that
+            every demonstration doing both roots keeps (two at least) and that is worth more than this against
+            what the other orders already predict
+            (:func:`~supportive.learning.general.evidence.weighed_precedences`: a pair free in a partial order
+            is no coin); 0 keeps every such order. None: the coin test instead, the orders ``order_support``
+            establishes. Default 1, the procedure's pick on generated tasks (``make bench``,
+            benchmarks/results/order-penalty.json: the best task-graph F1 among the penalties learning in at
+            most 1.5× the coin test's time; docs/learning.md).
         subtask_demonstrations: ``general``: from how many demonstrations on contiguous runs are made
             subtasks (chains and cliques); with fewer, the steps are kept in the orders the evidence
             establishes (a partial order, as a partial hierarchy's top level); at least 1 (1 and 2 alike: one
@@ -205,7 +209,7 @@ class HTNLearner(Estimator):
         slip_cache: SlipSearchCache | None = None,
         evidence: float = 0.05,
         order_support: int | None = None,
-        order_penalty: float | None = None,
+        order_penalty: float | None = DEFAULT_ORDER_PENALTY,
         subtask_demonstrations: int = 2,
         selection_folds: int = 5,
         selection_demonstrations: int = 5,
