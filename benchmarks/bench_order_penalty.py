@@ -4,12 +4,12 @@ writes benchmarks/results/order-penalty.json.
 Generated tasks (the ``ikea`` and ``uniform`` chain/clique profiles and partial orders of interleaved chains,
 6–20 steps), done by people drawing uniformly among the valid executions and by people with habits, are learned
 by the default learner from 3, 5, 8 and 12 demonstrations with the coin test (``order_penalty=None``, the
-default) and with each penalty; each learned "a before b" relation is scored against the task's own, edge by
+default before 2026-12-07) and with each penalty; each learned "a before b" relation is scored against the task's own, edge by
 edge, with the protocol of *Differentiable Task Graph Learning* (:mod:`supportive.learning.graph_edges`), and
 the learning is timed. Reported: each setting's mean F1 with its 95 % interval, its difference from the coin
 test's (paired by task) with the standard error, per kind of people and number of demonstrations, and the
 learning time as a ratio to the coin test's in the same run, and the penalty a stated procedure picks
-(:func:`candidate_penalty`, the JSON's ``candidate``); whether it is the default is docs/learning.md's call.
+(:func:`candidate_penalty`, the JSON's ``candidate``), which ``HTNLearner``'s default is held to (a test).
 """
 
 from __future__ import annotations
@@ -125,7 +125,7 @@ def main() -> None:
     result = {
         "benchmark": "order-penalty",
         "what": "default learner: task-graph edge F1 against generated tasks' own orders, and learning time, "
-        "with the top level's orders weighed (order_penalty) or by the coin test (the default)",
+        "with the top level's orders weighed (order_penalty) or by the coin test (order_penalty=None)",
         "tasks": len(rows),
         "tasks_per_cell": args.tasks_per_cell,
         "seed": args.seed,
