@@ -41,11 +41,13 @@ COMPARED_SUBTASKS = 4
 
 
 class Drop(TypedDict):
-    """A fall of the mean share from one measured n (``from``) to the next (``to``), ``by`` < 0."""
+    """A fall of the mean share from one measured n (``start``) to the next (``end``), ``by`` < 0, with the
+    standard error of that mean change paired by task (how much of it the sample of tasks may explain)."""
 
     start: int
     end: int
     by: float
+    standard_error: float
 
 
 def valid_executions(task: KnownTask) -> list[list[str]]:
@@ -65,6 +67,7 @@ def main() -> None:
     slips: dict[int, int] = dict.fromkeys(SIZES, 0)
     own: dict[int, list[float]] = {n: [] for n in SIZES}
     compared: dict[int, list[float]] = {n: [] for n in SIZES}
+    shares: dict[int, list[float]] = {n: [] for n in SIZES}  # every task's, in one order, for the paired errors
     for profile in ("ikea", "uniform", "partial order"):
         curve[profile] = {n: [] for n in SIZES}
         for _ in range(TASKS_PER_PROFILE):
@@ -74,12 +77,13 @@ def main() -> None:
             for n in SIZES:
                 learner = HTNLearner().fit(demos[:n])
                 curve[profile][n].append(share_admitted(learner.htn_, valid))
+                shares[n].append(curve[profile][n][-1])
                 slips[n] += len(learner.deviations_)
                 own[n].append(share_admitted(learner.htn_, demos[:n]))
                 compared_htn = HTNLearner(subtask_demonstrations=COMPARED_SUBTASKS).fit(demos[:n]).htn_
                 compared[n].append(share_admitted(compared_htn, valid))
-    means = {n: float(np.mean([x for p in curve for x in curve[p][n]])) for n in SIZES}
-    drops = _drops(means)
+    means = {n: float(np.mean(shares[n])) for n in SIZES}
+    drops = _drops(shares)
     compared_means = {n: float(np.mean(compared[n])) for n in SIZES}
     result = {
         "benchmark": "admission",
@@ -95,7 +99,7 @@ def main() -> None:
         "compared_threshold": {
             "subtask_demonstrations": COMPARED_SUBTASKS,
             "mean_share_of_valid_executions_admitted": {str(n): round(v, 4) for n, v in compared_means.items()},
-            "drops": _drops(compared_means),
+            "drops": _drops(compared),
         },
         "seconds": round(time.perf_counter() - started, 1),
     }
@@ -105,7 +109,7 @@ def main() -> None:
     print("admitted: " + " ".join(f"{means[n]:6.3f}" for n in SIZES))
     print("set aside:" + " ".join(f"{slips[n]:6d}" for n in SIZES))
     print(f"from {COMPARED_SUBTASKS}:   " + " ".join(f"{compared_means[n]:6.3f}" for n in SIZES))
-    falls = "".join(f"; {d['start']}→{d['end']}: {d['by']:+.3f}" for d in drops)
+    falls = "".join(f"; {d['start']}→{d['end']}: {d['by']:+.3f} ± {d['standard_error']:.3f}" for d in drops)
     print(f"non-decreasing on average: {not drops}{falls}")
 
 
@@ -114,13 +118,16 @@ def share_admitted(htn: HTN, executions: list[list[str]]) -> float:
     return sum(htn.admits(e) for e in executions) / len(executions)
 
 
-def _drops(means: dict[int, float]) -> list[Drop]:
-    """Where the mean share (by n, in increasing n) falls from one measured n to the next."""
-    return [
-        Drop(start=a, end=b, by=round(means[b] - means[a], 4))
-        for a, b in itertools.pairwise(means)
-        if means[b] < means[a] - 1e-12
-    ]
+def _drops(shares: dict[int, list[float]]) -> list[Drop]:
+    """Where the mean share (``shares``: every task's by n, in increasing n, the tasks in one order) falls from
+    one measured n to the next, with the paired standard error of the change."""
+    drops = []
+    for a, b in itertools.pairwise(shares):
+        change = np.subtract(shares[b], shares[a])
+        if change.mean() < -1e-12:
+            error = float(change.std(ddof=1) / np.sqrt(len(change)))
+            drops.append(Drop(start=a, end=b, by=round(float(change.mean()), 4), standard_error=round(error, 4)))
+    return drops
 
 
 if __name__ == "__main__":

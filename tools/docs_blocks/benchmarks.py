@@ -160,7 +160,11 @@ def _verdict(drops: list[dict[str, float]]) -> str:
     """Whether a curve never falls, or where it does."""
     if not drops:
         return "non-decreasing in the number of demonstrations"
-    falls = ", ".join(f"from {d['start']} to {d['end']} demonstrations by {-d['by']:.3f}" for d in drops)
+    falls = ", ".join(
+        f"from {d['start']} to {d['end']} demonstrations by {-d['by']:.3f} (paired standard error "
+        f"{d['standard_error']:.3f})"
+        for d in drops
+    )
     return f"**not** non-decreasing: it falls {falls}"
 
 

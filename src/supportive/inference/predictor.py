@@ -91,8 +91,9 @@ class StepPredictor(Estimator):
         mode, slips, slip_margin, slip_rate, slip_rate_weight, order_concentration, max_slip_candidates, evidence,
             order_support, order_penalty,
             subtask_demonstrations, selection_folds, selection_demonstrations: The hierarchy learner's settings
-            (see :class:`HTNLearner`); None (the default) keeps the learner's own default, except for
-            ``order_penalty``, which is the learner's own: its default is the learner's and None the coin test.
+            (see :class:`HTNLearner`); None (the default) keeps the learner's own default — except
+            ``order_penalty``, whose default is the learner's (``DEFAULT_ORDER_PENALTY``) and whose None asks
+            for the coin test, as in :class:`HTNLearner`.
         slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
             default.
         smoothing: Pseudo-counts per option of every choice, above 0; None: fitted.

@@ -20,15 +20,15 @@ are noise):
   clean data the rates go to zero), and where each landed (a uniform choice among the demonstration's
   positions);
 * the search starts from no slip and adds, best first, the candidate whose score gain is largest, while that
-  gain exceeds ``margin`` nats a slip; then takes back the slips not worth ``margin`` nats each; then replaces the
-  slips of one demonstration by a single candidate of its own where that is more probable (the earlier of two
-  performances taken for the repeat and the later then out of place, where the later is the repeat: a move
-  that needs one slip out and another in at once); and repeats the three until a pass changes nothing (slips
-  that only pay together can be missed by a pass that took a few that pay alone). It also runs from a second start, the most telling step out of place in every demonstration that
-  has one (when that beats no slip), and keeps the more probable of the two ends: a greedy search from the
-  large start can stall where taking back the variants of a step would mean keeping its real slips (issue
-  #23: four real slips of a step kept with eighteen valid variants, 70 nats less probable than the four
-  alone). Candidates are the steps that reverse an order the others agree on (an order that so few
+  gain exceeds ``margin`` nats a slip; then takes back the slips not worth ``margin`` nats each; then replaces
+  the slips of one demonstration by a single candidate of its own where that is more probable (the earlier of
+  two performances taken for the repeat and the later then out of place, where the later is the repeat: a
+  move that needs one slip out and another in at once); and repeats the three until a pass changes nothing
+  (slips that only pay together can be missed by a pass that took a few that pay alone). It also runs from a
+  second start, the most telling step out of place in every demonstration that has one (when that beats no
+  slip), and keeps the more probable of the two ends: a greedy search from the large start can stall where
+  taking back the variants of a step would mean keeping its real slips (issue #23: four real slips of a step
+  kept with eighteen valid variants, 70 nats less probable than the four alone). Candidates are the steps that reverse an order the others agree on (an order that so few
   demonstrations reverse that the hierarchy learned without them, which predicts how often the pair comes
   either way, makes it unlikely: a binomial test), alone and, for an order several demonstrations reverse,
   together; steps found inside a subtask the others keep together, in fewer demonstrations than establish an
