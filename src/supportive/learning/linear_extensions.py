@@ -106,6 +106,25 @@ def _count(steps: int, before: list[int], after: list[int], limit: int) -> int |
                 return None
             total *= inner
         return total
+    return _prime(steps, tuple(before[v] & steps for v in range(steps.bit_length()) if steps >> v & 1), limit)
+
+
+@functools.lru_cache(maxsize=4096)  # a bound on memory: the count never depends on it
+def _prime(steps: int, inside: tuple[int, ...], limit: int) -> int | None:
+    """:func:`_down_sets` of a part that does not split, ``inside`` each of its steps' predecessors within it
+    (in the order of the steps): remembered by the part alone, for the counts of relations that differ
+    outside it (a weighing drops one order at a time, and the parts that order does not touch are asked
+    for again)."""
+    size = steps.bit_length()
+    before, after = [0] * size, [0] * size
+    members = [v for v in range(size) if steps >> v & 1]
+    for v, mask in zip(members, inside, strict=True):
+        before[v] = mask
+        rest = mask
+        while rest:
+            low = rest & -rest
+            after[low.bit_length() - 1] |= 1 << v
+            rest ^= low
     return _down_sets(steps, before, after, limit)
 
 
