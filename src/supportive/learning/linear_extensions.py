@@ -57,14 +57,18 @@ def _counted(n: int, precedences: tuple[tuple[int, int], ...], max_down_sets: in
     closure = _closed(before)
     if closure is None:
         return 0
-    after = [0] * n
-    for v in range(n):
-        rest = closure[v]
+    return _count((1 << n) - 1, closure, _successors(closure), max_down_sets)
+
+
+def _successors(before: list[int]) -> list[int]:
+    """Each step's successors (bit masks), from each step's predecessors ``before``."""
+    after = [0] * len(before)
+    for v, rest in enumerate(before):
         while rest:
             low = rest & -rest
             after[low.bit_length() - 1] |= 1 << v
             rest ^= low
-    return _count((1 << n) - 1, closure, after, max_down_sets)
+    return after
 
 
 def _closed(before: list[int]) -> list[int] | None:
@@ -115,17 +119,10 @@ def _prime(steps: int, inside: tuple[int, ...], limit: int) -> int | None:
     (in the order of the steps): remembered by the part alone, for the counts of relations that differ
     outside it (a weighing drops one order at a time, and the parts that order does not touch are asked
     for again)."""
-    size = steps.bit_length()
-    before, after = [0] * size, [0] * size
-    members = [v for v in range(size) if steps >> v & 1]
-    for v, mask in zip(members, inside, strict=True):
+    before = [0] * steps.bit_length()
+    for v, mask in zip((v for v in range(len(before)) if steps >> v & 1), inside, strict=True):
         before[v] = mask
-        rest = mask
-        while rest:
-            low = rest & -rest
-            after[low.bit_length() - 1] |= 1 << v
-            rest ^= low
-    return _down_sets(steps, before, after, limit)
+    return _down_sets(steps, before, _successors(before), limit)
 
 
 def _components(steps: int, neighbours: Callable[[int], int]) -> list[int]:
