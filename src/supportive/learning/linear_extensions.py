@@ -148,32 +148,34 @@ def _down_sets(steps: int, before: list[int], after: list[int], limit: int) -> i
     """The linear extensions of ``steps`` by the dynamic programme over its down-sets (a step may come once
     every step of ``steps`` before it is done); None past ``limit`` down-sets of one size. Each down-set
     carries the steps that may come next, so a step is tried only where it may come."""
-    ready = 0
-    for v in range(steps.bit_length()):
-        if steps >> v & 1 and before[v] & steps == 0:
-            ready |= 1 << v
-    ways = {0: (1, ready)}
-    for _ in range(steps.bit_count()):  # level by level: the down-sets of k steps, then of k + 1
-        following: dict[int, tuple[int, int]] = {}
-        for done, (count, ready) in ways.items():
+    members = [1 << v for v in range(steps.bit_length()) if steps >> v & 1]
+    needs = {bit: before[bit.bit_length() - 1] & steps for bit in members}  # by each step's bit
+    unlocks = {bit: after[bit.bit_length() - 1] & steps for bit in members}
+    counts = {0: 1}
+    readies = {0: sum(bit for bit in members if not needs[bit])}
+    for _ in members:  # level by level: the down-sets of k steps, then of k + 1
+        next_counts: dict[int, int] = {}
+        next_readies: dict[int, int] = {}
+        for done, count in counts.items():
+            ready = readies[done]
             left = ready
             while left:
                 bit = left & -left
                 left ^= bit
                 nxt = done | bit
-                known = following.get(nxt)
-                if known is not None:
-                    following[nxt] = (known[0] + count, known[1])
+                if nxt in next_counts:
+                    next_counts[nxt] += count
                     continue
+                next_counts[nxt] = count
                 now = ready ^ bit
-                unlocked = after[bit.bit_length() - 1] & steps & ~nxt
+                unlocked = unlocks[bit] & ~nxt
                 while unlocked:
                     low = unlocked & -unlocked
                     unlocked ^= low
-                    if before[low.bit_length() - 1] & steps & ~nxt == 0:
+                    if needs[low] & ~nxt == 0:
                         now |= low
-                following[nxt] = (count, now)
-        if len(following) > limit:
+                next_readies[nxt] = now
+        if len(next_counts) > limit:
             return None
-        ways = following
-    return ways[steps][0] if steps in ways else 0
+        counts, readies = next_counts, next_readies
+    return counts.get(steps, 0)
