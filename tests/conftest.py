@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import glob
 import os
+import pickle
 import random
 import sys
 from collections.abc import Callable
@@ -12,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import pytest
+from filelock import FileLock
 from hypothesis import HealthCheck, settings
 
 if TYPE_CHECKING:
@@ -90,13 +92,23 @@ def rng() -> np.random.Generator:
 
 
 @pytest.fixture(scope="session")
-def captaincook_reports() -> list[RecipeReport]:
-    """The CaptainCook4D report of every recipe (the dataset beside the repository), computed once per worker
-    for the tests that check it, print it and compare it with its record."""
+def captaincook_reports(tmp_path_factory: pytest.TempPathFactory, worker_id: str) -> list[RecipeReport]:
+    """The CaptainCook4D report of every recipe (the dataset beside the repository), for the tests that check
+    it, print it and compare it with its record: computed once per test run, the xdist workers sharing it
+    through a file in the run's temporary directory (the first to ask computes it, under a lock)."""
     from supportive.experiments.captaincook.recipes import captaincook_report
     from supportive.io.captaincook import load_captaincook
 
-    return captaincook_report(load_captaincook())
+    if worker_id == "master":  # not under xdist
+        return captaincook_report(load_captaincook())
+    shared = tmp_path_factory.getbasetemp().parent / "captaincook-reports.pickle"
+    with FileLock(f"{shared}.lock"):
+        if shared.is_file():
+            reports: list[RecipeReport] = pickle.loads(shared.read_bytes())
+            return reports
+        reports = captaincook_report(load_captaincook())
+        shared.write_bytes(pickle.dumps(reports))
+        return reports
 
 
 CliRunner = Callable[[list[str]], tuple[int, str, str]]
