@@ -67,7 +67,6 @@ def main() -> None:
     slips: dict[int, int] = dict.fromkeys(SIZES, 0)
     own: dict[int, list[float]] = {n: [] for n in SIZES}
     compared: dict[int, list[float]] = {n: [] for n in SIZES}
-    shares: dict[int, list[float]] = {n: [] for n in SIZES}  # every task's, in one order, for the paired errors
     for profile in ("ikea", "uniform", "partial order"):
         curve[profile] = {n: [] for n in SIZES}
         for _ in range(TASKS_PER_PROFILE):
@@ -77,11 +76,11 @@ def main() -> None:
             for n in SIZES:
                 learner = HTNLearner().fit(demos[:n])
                 curve[profile][n].append(share_admitted(learner.htn_, valid))
-                shares[n].append(curve[profile][n][-1])
                 slips[n] += len(learner.deviations_)
                 own[n].append(share_admitted(learner.htn_, demos[:n]))
                 compared_htn = HTNLearner(subtask_demonstrations=COMPARED_SUBTASKS).fit(demos[:n]).htn_
                 compared[n].append(share_admitted(compared_htn, valid))
+    shares = {n: [x for p in curve for x in curve[p][n]] for n in SIZES}  # every task's, in one order
     means = {n: float(np.mean(shares[n])) for n in SIZES}
     drops = _drops(shares)
     compared_means = {n: float(np.mean(compared[n])) for n in SIZES}

@@ -36,7 +36,7 @@ from supportive.errors import LearningError
 from supportive.estimator import Estimator
 from supportive.inference.bigram import OpenBigram
 from supportive.inference.tracker import END_LABEL, ProgressFilter, ProgressHMM
-from supportive.learning.learner import DEFAULT_ORDER_PENALTY, DemonstrationLike, HTNLearner, Mode
+from supportive.learning.learner import DemonstrationLike, HTNLearner, Mode
 from supportive.tasks.htn import HTN, ActionNode
 from supportive.tasks.spec import Demonstration, TaskSpec
 
@@ -92,8 +92,8 @@ class StepPredictor(Estimator):
             order_support, order_penalty,
             subtask_demonstrations, selection_folds, selection_demonstrations: The hierarchy learner's settings
             (see :class:`HTNLearner`); None (the default) keeps the learner's own default — except
-            ``order_penalty``, whose default is the learner's (``DEFAULT_ORDER_PENALTY``) and whose None asks
-            for the coin test, as in :class:`HTNLearner`.
+            ``order_penalty``, whose default is the learner's (1 nat; a test holds the two together) and whose
+            None asks for the coin test, as in :class:`HTNLearner`.
         slip, restart, max_states, beam: The tracker's settings (see :class:`ProgressHMM`); None keeps its
             default.
         smoothing: Pseudo-counts per option of every choice, above 0; None: fitted.
@@ -130,7 +130,7 @@ class StepPredictor(Estimator):
         max_slip_candidates: int | None = None,
         evidence: float | None = None,
         order_support: int | None = None,
-        order_penalty: float | None = DEFAULT_ORDER_PENALTY,
+        order_penalty: float | None = 1.0,
         subtask_demonstrations: int | None = None,
         selection_folds: int | None = None,
         selection_demonstrations: int | None = None,

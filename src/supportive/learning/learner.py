@@ -46,10 +46,7 @@ from supportive.tasks.naming import known_names, named
 from supportive.tasks.spec import Demonstration, TaskSpec
 from supportive.tasks.task_graph import TaskGraph
 
-__all__ = ["DEFAULT_ORDER_PENALTY", "HTNLearner", "LearningStats", "learn"]
-
-DEFAULT_ORDER_PENALTY = 1.0
-"""``HTNLearner``'s default ``order_penalty`` (nats), named for the estimators that pass it on."""
+__all__ = ["HTNLearner", "LearningStats", "learn"]
 
 DemonstrationLike = Demonstration | Sequence[str]
 Mode = Literal[
@@ -209,7 +206,7 @@ class HTNLearner(Estimator):
         slip_cache: SlipSearchCache | None = None,
         evidence: float = 0.05,
         order_support: int | None = None,
-        order_penalty: float | None = DEFAULT_ORDER_PENALTY,
+        order_penalty: float | None = 1.0,
         subtask_demonstrations: int = 2,
         selection_folds: int = 5,
         selection_demonstrations: int = 5,
