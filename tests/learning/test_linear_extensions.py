@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.errors import LearningError
-from supportive.learning.linear_extensions import count_linear_extensions
+from supportive.learning.linear_extensions import count_linear_extensions, covering_pairs
 
 
 def _brute(n: int, precedences: list[tuple[int, int]]) -> int:
@@ -80,3 +80,18 @@ def test_a_prime_part_past_the_bound_is_not_counted() -> None:
 def test_a_precedence_outside_the_steps_is_refused() -> None:
     with pytest.raises(LearningError, match=r"precedence \(0, 3\) is outside steps 0…2"):
         count_linear_extensions(3, [(0, 3)])
+
+
+@settings(max_examples=200, deadline=None)
+@given(_posets())
+def test_the_covering_pairs_are_the_edges_of_the_transitive_reduction(poset: tuple[int, list[tuple[int, int]]]) -> None:
+    import networkx as nx
+
+    n, precedences = poset
+    graph: nx.DiGraph[int] = nx.DiGraph(precedences)
+    graph.add_nodes_from(range(n))
+    if not nx.is_directed_acyclic_graph(graph):
+        with pytest.raises(LearningError, match="cycle"):
+            covering_pairs(n, precedences)
+        return
+    assert covering_pairs(n, precedences) == sorted(nx.transitive_reduction(graph).edges())

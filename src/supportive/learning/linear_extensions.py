@@ -26,7 +26,7 @@ from collections.abc import Callable, Iterable
 
 from supportive.errors import LearningError
 
-__all__ = ["MAX_DOWN_SETS", "count_linear_extensions"]
+__all__ = ["MAX_DOWN_SETS", "count_linear_extensions", "covering_pairs"]
 
 MAX_DOWN_SETS = 200_000
 """Most down-sets of one size the dynamic programme keeps for a part that does not split (a bound on the
@@ -47,17 +47,44 @@ def count_linear_extensions(n: int, precedences: Iterable[tuple[int, int]], max_
     return _counted(n, tuple(sorted(set(precedences))), max_down_sets)
 
 
+def covering_pairs(n: int, precedences: Iterable[tuple[int, int]]) -> list[tuple[int, int]]:
+    """The pairs of the acyclic relation ``precedences`` over steps ``0 … n-1`` that no path of two or more of
+    its pairs joins (the edges of its transitive reduction), sorted.
+
+    >>> covering_pairs(3, [(0, 1), (1, 2), (0, 2)])  # 0 before 2 follows from the other two
+    [(0, 1), (1, 2)]
+
+    Raises:
+        LearningError: a precedence names a step outside ``0 … n-1``, or the pairs form a cycle.
+    """
+    pairs = set(precedences)
+    closure = _closed(_predecessors(n, pairs))
+    if closure is None:
+        raise LearningError("the precedences form a cycle: no order keeps them")
+    after = _successors(closure)
+    return sorted((u, v) for u, v in pairs if not after[u] & closure[v])  # no step between u and v
+
+
 @functools.lru_cache(maxsize=1024)  # a bound on memory: the count never depends on it
 def _counted(n: int, precedences: tuple[tuple[int, int], ...], max_down_sets: int) -> int | None:
-    before = [0] * n  # before[v]: the steps that must come before v, transitively
+    closure = _closed(_predecessors(n, precedences))
+    if closure is None:
+        return 0
+    return _count((1 << n) - 1, closure, _successors(closure), max_down_sets)
+
+
+def _predecessors(n: int, precedences: Iterable[tuple[int, int]]) -> list[int]:
+    """Each step's direct predecessors in ``precedences`` (bit masks).
+
+    Raises:
+        LearningError: a precedence names a step outside ``0 … n-1``.
+    """
+    before = [0] * n
     for u, v in precedences:
         if not (0 <= u < n and 0 <= v < n):
             raise LearningError(f"precedence ({u}, {v}) is outside steps 0…{n - 1}")
         before[v] |= 1 << u
-    closure = _closed(before)
-    if closure is None:
-        return 0
-    return _count((1 << n) - 1, closure, _successors(closure), max_down_sets)
+    return before
 
 
 def _successors(before: list[int]) -> list[int]:

@@ -33,7 +33,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from supportive.learning.linear_extensions import count_linear_extensions
+from supportive.learning.linear_extensions import count_linear_extensions, covering_pairs
 
 __all__ = [
     "as_matrix",
@@ -145,7 +145,7 @@ def _weighed(size: int, pairs: tuple[tuple[int, int], ...], weights: tuple[int, 
         if not total:
             break
         cheapest: tuple[float, tuple[int, int]] | None = None
-        for pair in _covering(size, kept):
+        for pair in covering_pairs(size, kept):
             if pair in worth:
                 continue
             looser = count_linear_extensions(size, kept - {pair})
@@ -158,17 +158,6 @@ def _weighed(size: int, pairs: tuple[tuple[int, int], ...], weights: tuple[int, 
             break
         kept.discard(cheapest[1])
     return frozenset(kept)
-
-
-def _covering(size: int, pairs: set[tuple[int, int]]) -> list[tuple[int, int]]:
-    """The pairs of the acyclic relation ``pairs`` over steps ``0 … size-1`` that no path of two or more of
-    its pairs joins (the edges of its transitive reduction), sorted."""
-    import networkx as nx  # here: networkx is a fifth of every command's start-up
-
-    graph: nx.DiGraph[int] = nx.DiGraph()
-    graph.add_nodes_from(range(size))
-    graph.add_edges_from(pairs)
-    return sorted(nx.transitive_reduction(graph).edges())
 
 
 def position_pair_counts_listed(rows: Sequence[Sequence[int]], size: int) -> tuple[list[list[int]], list[list[int]]]:
