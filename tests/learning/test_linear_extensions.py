@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from supportive.errors import LearningError
-from supportive.learning.linear_extensions import count_linear_extensions, covering_pairs
+from supportive.learning.linear_extensions import count_linear_extensions, count_without, covering_pairs
 
 
 def _brute(n: int, precedences: list[tuple[int, int]]) -> int:
@@ -95,3 +95,26 @@ def test_the_covering_pairs_are_the_edges_of_the_transitive_reduction(poset: tup
             covering_pairs(n, precedences)
         return
     assert covering_pairs(n, precedences) == sorted(nx.transitive_reduction(graph).edges())
+
+
+@settings(max_examples=300, deadline=None)
+@given(_posets(), st.data())
+def test_the_count_without_a_pair_is_the_count_of_the_rest(poset: tuple[int, list[tuple[int, int]]], data: st.DataObject) -> None:
+    n, precedences = poset
+    pairs = sorted(set(precedences)) or [(0, 1)] if n >= 2 else []
+    if not pairs:
+        return
+    pair = data.draw(st.sampled_from(pairs))
+    rest = [p for p in precedences if p != pair]
+    assert count_without(n, precedences, pair) == _brute(n, rest)
+    bounded = count_without(n, precedences, pair, max_down_sets=2)
+    assert bounded is None or bounded == _brute(n, rest)
+
+
+def test_a_pair_inside_a_part_that_does_not_split_is_counted_from_the_part() -> None:
+    # two zigzags of 6 after one another, and 0 < 1 dropped inside the first: the part stays whole
+    zigzag = [(i, i + 1) if i % 2 == 0 else (i + 1, i) for i in range(5)]
+    second = [(u + 6, v + 6) for u, v in zigzag]
+    join = [(u, v) for u in range(6) for v in range(6, 12)]
+    precedences = zigzag + second + join
+    assert count_without(12, precedences, (0, 1)) == _brute(6, zigzag[1:]) * _brute(6, zigzag)

@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 
 from supportive.errors import LearningError
 
-__all__ = ["MAX_DOWN_SETS", "count_linear_extensions", "covering_pairs"]
+__all__ = ["MAX_DOWN_SETS", "count_linear_extensions", "count_without", "covering_pairs"]
 
 MAX_DOWN_SETS = 200_000
 """Most down-sets of one size the dynamic programme keeps for a part that does not split (a bound on the
@@ -45,6 +45,24 @@ def count_linear_extensions(n: int, precedences: Iterable[tuple[int, int]], max_
         LearningError: a precedence names a step outside ``0 … n-1``.
     """
     return _counted(n, tuple(sorted(set(precedences))), max_down_sets)
+
+
+def count_without(
+    n: int, precedences: Iterable[tuple[int, int]], pair: tuple[int, int], max_down_sets: int = MAX_DOWN_SETS
+) -> int | None:
+    """:func:`count_linear_extensions` of ``precedences`` without ``pair``, the question a weighing asks of
+    every covering pair (:func:`covering_pairs`) in turn: answered from the count with it, where the pair lies
+    in a part that does not split and stays one when the pair is dropped (the part's orders putting ``v``
+    before ``u`` are counted over the down-sets that hold ``v`` and not ``u``, from the part's own programme
+    run both ways once for all its pairs), and as :func:`count_linear_extensions` does otherwise.
+
+    >>> count_without(3, [(0, 1), (1, 2)], (0, 1))  # 0 free of 1 < 2: three orders
+    3
+
+    Raises:
+        LearningError: a precedence names a step outside ``0 … n-1``.
+    """
+    return _counted_without(n, tuple(sorted(set(precedences))), pair, max_down_sets)
 
 
 def covering_pairs(n: int, precedences: Iterable[tuple[int, int]]) -> list[tuple[int, int]]:
@@ -71,6 +89,110 @@ def _counted(n: int, precedences: tuple[tuple[int, int], ...], max_down_sets: in
     if closure is None:
         return 0
     return _count((1 << n) - 1, closure, _successors(closure), max_down_sets)
+
+
+@functools.lru_cache(maxsize=1024)  # a bound on memory: the count never depends on it
+def _counted_without(n: int, precedences: tuple[tuple[int, int], ...], pair: tuple[int, int], limit: int) -> int | None:
+    rest = tuple(p for p in precedences if p != pair)
+    closure, after = _closure(n, precedences)  # the same for every pair a weighing tries
+    looser = _closed(_predecessors(n, rest))
+    if closure is None or looser is None or rest == precedences:
+        return _counted(n, rest, limit)
+    u, v = pair
+    looser_after = _successors(looser)
+    part = _prime_part((1 << n) - 1, closure, after, u, v)
+    outside = ~part
+    if not part or any(
+        (closure[w] ^ looser[w]) & outside or (after[w] ^ looser_after[w]) & outside for w in range(n) if part >> w & 1
+    ):  # not within one part, or the part is no longer one: counted afresh
+        return _counted(n, rest, limit)
+    total = _counted(n, precedences, limit)
+    whole = _prime(part, _within(part, closure), limit)
+    if total is None or whole is None:
+        return None
+    reversed_orders = _reversed(part, _within(part, closure), _within(part, looser), u, v, limit)
+    if reversed_orders is None:
+        return None
+    return total + total // whole * reversed_orders  # the part's orders times those of the rest around it
+
+
+@functools.lru_cache(maxsize=64)
+def _closure(n: int, precedences: tuple[tuple[int, int], ...]) -> tuple[list[int] | None, list[int]]:
+    """:func:`_closed` of ``precedences`` and its :func:`_successors` (none for a cycle); not to be changed."""
+    closure = _closed(_predecessors(n, precedences))
+    return closure, [] if closure is None else _successors(closure)
+
+
+def _prime_part(steps: int, before: list[int], after: list[int], u: int, v: int) -> int:
+    """The part that does not split holding steps ``u`` and ``v`` of ``steps``, as :func:`_count` splits them;
+    0 when a split parts them."""
+    while True:
+        how, parts = _split(steps, before, after)
+        if how == "prime":
+            return steps
+        steps = next(part for part in parts if part >> u & 1)
+        if not steps >> v & 1:
+            return 0
+
+
+@functools.lru_cache(maxsize=4096)  # a bound on memory: the count never depends on it
+def _reversed(steps: int, inside: tuple[int, ...], looser: tuple[int, ...], u: int, v: int, limit: int) -> int | None:
+    """The orders of the part ``steps`` (predecessors within it ``inside``, as :func:`_within` gives them)
+    with the covering pair ``u < v`` dropped (predecessors ``looser``) that put ``v`` before ``u``: the
+    orders reaching each down-set that holds ``v`` and not ``u``, times the orders completing it from ``u``
+    on. Such a down-set is reached from one of the part's own (:func:`_both_ways`) by doing ``v``, or from
+    another such by doing a step other than ``u``; None past ``limit`` down-sets of one size."""
+    tables = _both_ways(steps, inside, limit)
+    if tables is None:
+        return None
+    forward, backward = tables
+    needs = _spread(steps, looser)
+    bit_u, bit_v = 1 << u, 1 << v
+    joining = [(1 << w, needs[w]) for w in range(steps.bit_length()) if steps >> w & 1 and w != u]
+    entering: dict[int, dict[int, int]] = {}  # by size: the down-sets v enters, with the orders reaching them
+    for done, count in forward.items():
+        if not done & (bit_u | bit_v) and not needs[v] & ~done:
+            entering.setdefault(done.bit_count() + 1, {})[done | bit_v] = count
+    total = 0
+    counts: dict[int, int] = {}
+    for size in range(1, steps.bit_count()):
+        for done, count in entering.get(size, {}).items():
+            counts[done] = counts.get(done, 0) + count
+        if len(counts) > limit:
+            return None
+        following: dict[int, int] = {}
+        for done, count in counts.items():
+            if not needs[u] & ~done:
+                total += count * backward[done | bit_u]
+            for bit, need in joining:
+                if not bit & done and not need & ~done:
+                    following[done | bit] = following.get(done | bit, 0) + count
+        counts = following
+    return total
+
+
+@functools.lru_cache(maxsize=64)  # each holds every down-set of a part
+def _both_ways(steps: int, inside: tuple[int, ...], limit: int) -> tuple[dict[int, int], dict[int, int]] | None:
+    """The orders reaching each down-set of the part ``steps`` (predecessors within it ``inside``) and the
+    orders completing the part from each; None past ``limit`` down-sets of one size."""
+    before = _spread(steps, inside)
+    forward: dict[int, int] = {}
+    levels: list[dict[int, int]] = []
+    for level in _levels(steps, before, _successors(before), limit):
+        if level is None:
+            return None
+        forward.update(level[0])
+        levels.append(level[1])
+    backward = {steps: 1}
+    for readies in reversed(levels[:-1]):
+        for done, ready in readies.items():
+            total = 0
+            while ready:
+                bit = ready & -ready
+                ready ^= bit
+                total += backward[done | bit]
+            backward[done] = total
+    return forward, backward
 
 
 def _predecessors(n: int, precedences: Iterable[tuple[int, int]]) -> list[int]:
@@ -119,25 +241,34 @@ def _count(steps: int, before: list[int], after: list[int], limit: int) -> int |
     size = steps.bit_count()
     if size <= 1:
         return 1
+    how, parts = _split(steps, before, after)
+    if how == "prime":
+        return _prime(steps, _within(steps, before), limit)
+    total = math.factorial(size) if how == "parallel" else 1
+    for part in parts:
+        inner = _count(part, before, after, limit)
+        if inner is None:
+            return None
+        total = total // math.factorial(part.bit_count()) * inner if how == "parallel" else total * inner
+    return total
+
+
+def _split(steps: int, before: list[int], after: list[int]) -> tuple[str, list[int]]:
+    """How the steps in ``steps`` (two or more) split: ``parallel`` into the parts no precedence joins,
+    ``series`` into layers each wholly before or after each other one, or not at all (``prime``, the steps as
+    the one part)."""
     parts = _components(steps, lambda v: (before[v] | after[v]) & steps)  # joined by some precedence
     if len(parts) > 1:
-        total = math.factorial(size)
-        for part in parts:
-            inner = _count(part, before, after, limit)
-            if inner is None:
-                return None
-            total = total // math.factorial(part.bit_count()) * inner
-        return total
+        return "parallel", parts
     layers = _components(steps, lambda v: steps & ~(before[v] | after[v] | 1 << v))  # joined by being free
-    if len(layers) > 1:  # each layer wholly before or after each other one
-        total = 1
-        for layer in layers:
-            inner = _count(layer, before, after, limit)
-            if inner is None:
-                return None
-            total *= inner
-        return total
-    return _prime(steps, tuple(before[v] & steps for v in range(steps.bit_length()) if steps >> v & 1), limit)
+    if len(layers) > 1:
+        return "series", layers
+    return "prime", [steps]
+
+
+def _within(steps: int, before: list[int]) -> tuple[int, ...]:
+    """Each step of ``steps``' predecessors among ``steps`` (in the order of the steps)."""
+    return tuple(before[v] & steps for v in range(steps.bit_length()) if steps >> v & 1)
 
 
 @functools.lru_cache(maxsize=4096)  # a bound on memory: the count never depends on it
@@ -146,10 +277,22 @@ def _prime(steps: int, inside: tuple[int, ...], limit: int) -> int | None:
     (in the order of the steps): remembered by the part alone, for the counts of relations that differ
     outside it (a weighing drops one order at a time, and the parts that order does not touch are asked
     for again)."""
+    before = _spread(steps, inside)
+    last = None
+    for level in _levels(steps, before, _successors(before), limit):
+        if level is None:
+            return None
+        last = level
+    assert last is not None  # the empty down-set's level at least
+    return last[0].get(steps, 0)
+
+
+def _spread(steps: int, inside: tuple[int, ...]) -> list[int]:
+    """Each step's predecessors from :func:`_within`'s ``inside`` (0 for the steps not in ``steps``)."""
     before = [0] * steps.bit_length()
     for v, mask in zip((v for v in range(len(before)) if steps >> v & 1), inside, strict=True):
         before[v] = mask
-    return _down_sets(steps, before, _successors(before), limit)
+    return before
 
 
 def _components(steps: int, neighbours: Callable[[int], int]) -> list[int]:
@@ -171,16 +314,20 @@ def _components(steps: int, neighbours: Callable[[int], int]) -> list[int]:
     return parts
 
 
-def _down_sets(steps: int, before: list[int], after: list[int], limit: int) -> int | None:
-    """The linear extensions of ``steps`` by the dynamic programme over its down-sets (a step may come once
-    every step of ``steps`` before it is done); None past ``limit`` down-sets of one size. Each down-set
-    carries the steps that may come next, so a step is tried only where it may come."""
+def _levels(
+    steps: int, before: list[int], after: list[int], limit: int
+) -> Iterator[tuple[dict[int, int], dict[int, int]] | None]:
+    """The dynamic programme over the down-sets of ``steps`` (a step may come once every step of ``steps``
+    before it is done), level by level: the down-sets of k steps with the orders reaching each and the steps
+    that may come next, for k = 0, 1, …; None, and nothing after, at a level of more than ``limit`` down-sets.
+    A step is tried only where it may come."""
     members = [1 << v for v in range(steps.bit_length()) if steps >> v & 1]
     needs = {bit: before[bit.bit_length() - 1] & steps for bit in members}  # by each step's bit
     unlocks = {bit: after[bit.bit_length() - 1] & steps for bit in members}
     counts = {0: 1}
     readies = {0: sum(bit for bit in members if not needs[bit])}
-    for _ in members:  # level by level: the down-sets of k steps, then of k + 1
+    yield counts, readies
+    for _ in members:  # the down-sets of k steps, then of k + 1
         next_counts: dict[int, int] = {}
         next_readies: dict[int, int] = {}
         for done, count in counts.items():
@@ -203,6 +350,7 @@ def _down_sets(steps: int, before: list[int], after: list[int], limit: int) -> i
                         now |= low
                 next_readies[nxt] = now
         if len(next_counts) > limit:
-            return None
+            yield None
+            return
         counts, readies = next_counts, next_readies
-    return counts.get(steps, 0)
+        yield counts, readies

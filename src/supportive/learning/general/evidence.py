@@ -33,7 +33,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from supportive.learning.linear_extensions import count_linear_extensions, covering_pairs
+from supportive.learning.linear_extensions import count_linear_extensions, count_without, covering_pairs
 
 __all__ = [
     "as_matrix",
@@ -148,7 +148,7 @@ def _weighed(size: int, pairs: tuple[tuple[int, int], ...], weights: tuple[int, 
         for pair in covering_pairs(size, kept):
             if pair in worth:
                 continue
-            looser = count_linear_extensions(size, kept - {pair})
+            looser = count_without(size, kept, pair)
             weight = math.inf if looser is None else shown[pair] * math.log(looser / total)
             if weight >= penalty:
                 worth.add(pair)
