@@ -92,14 +92,14 @@ class HTNLearner(Estimator):
         slip_margin: ``general``: each slip is kept only when it makes the demonstrations more probable by
             more than this many nats (natural log-likelihood ratio against the explanation without it, after
             the noise it claims has been paid for); 0 or more. Default 0, with ``slip_rate`` 0.1,
-            ``slip_rate_weight`` 1,000 and ``order_concentration`` 0.25: the setting ``supportive reproduce
+            ``slip_rate_weight`` 300 and ``order_concentration`` 0.25: the setting ``supportive reproduce
             learner-settings`` picks on generated tasks (docs/learning.md).
         slip_rate: ``general`` and ``auto``: the prior mean of how often a step slips, per step and kind, in
             (0, 0.5); ``auto`` also charges it for each step a held-out demonstration has out of place.
         slip_rate_weight: ``general``: how many observed steps that prior is worth (each kind's rate is
             integrated out under a beta prior with this mean and weight, so demonstrations with many more
             steps outweigh it, and the rates of clean data fall toward 0 as they grow); above 0. Default
-            1,000, with ``slip_margin``: swept over 100, 300 and 1,000 by ``supportive reproduce
+            300, with ``slip_margin``: swept over 100, 300 and 1,000 by ``supportive reproduce
             learner-settings`` on tasks done by people with and without habits.
         order_concentration: ``general``: how the slip search reads the orders a hierarchy admits. Each
             order choice it leaves open (a clique's order of its children, a partial top level's of its
@@ -200,7 +200,7 @@ class HTNLearner(Estimator):
         slips: bool = True,
         slip_margin: float = 0.0,
         slip_rate: float = 0.1,
-        slip_rate_weight: float = 1000.0,
+        slip_rate_weight: float = 300.0,
         order_concentration: float = 0.25,
         max_slip_candidates: int = 48,
         slip_cache: SlipSearchCache | None = None,
