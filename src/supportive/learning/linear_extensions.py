@@ -101,10 +101,9 @@ def _counted_without(n: int, precedences: tuple[tuple[int, int], ...], pair: tup
     u, v = pair
     looser_after = _successors(looser)
     part = _prime_part((1 << n) - 1, closure, after, u, v)
-    outside = ~part
     if not part or any(
-        (closure[w] ^ looser[w]) & outside or (after[w] ^ looser_after[w]) & outside for w in range(n) if part >> w & 1
-    ):  # not within one part, or the part is no longer one: counted afresh
+        (closure[w] ^ looser[w]) & ~part or (after[w] ^ looser_after[w]) & ~part for w in range(n) if part >> w & 1
+    ):  # not within one part, or the part is no longer one (a step outside relates otherwise to its steps)
         return _counted(n, rest, limit)
     total = _counted(n, precedences, limit)
     whole = _prime(part, _within(part, closure), limit)
@@ -116,7 +115,7 @@ def _counted_without(n: int, precedences: tuple[tuple[int, int], ...], pair: tup
     return total + total // whole * reversed_orders  # the part's orders times those of the rest around it
 
 
-@functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=64)  # a weighing asks for one relation's closure once per pair it tries
 def _closure(n: int, precedences: tuple[tuple[int, int], ...]) -> tuple[list[int] | None, list[int]]:
     """:func:`_closed` of ``precedences`` and its :func:`_successors` (none for a cycle); not to be changed."""
     closure = _closed(_predecessors(n, precedences))
